@@ -1,0 +1,33 @@
+#pragma once
+// The incremental potential of the strip over the free dofs (SPEC §2.7 without contact):
+//   Pi(x) = E(u(x)) - f_ext . u(x),  u = prescribed increments on constrained dofs, x elsewhere,
+// with f_ext the external nodal forces at the end of the increment. Its gradient is the
+// out-of-balance force, its Hessian the tangent stiffness K_L + K_NL.
+#include "roller/assembly/strip_model.hpp"
+#include "roller/solver/newton.hpp"
+
+namespace roller {
+
+class IncrementEnergy : public NewtonObjective {
+ public:
+  // `prescribed` holds the increments of the constrained dofs (other entries ignored).
+  IncrementEnergy(StripModel& model, VecX prescribed, VecX external_force);
+
+  Real evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) override;
+  // max(|f_ext|, |reactions|, |internal force at the start of the increment|).
+  Real force_scale(const VecX& x) override;
+
+  // Full increment vector for free values x.
+  VecX full_increment(const VecX& x) const;
+  // Reaction forces (internal minus external) at the constrained dofs for the last evaluation.
+  const VecX& last_full_gradient() const { return full_gradient_; }
+
+ private:
+  StripModel& model_;
+  VecX prescribed_;
+  VecX external_;
+  VecX full_gradient_;
+  Real start_scale_ = 0.0;
+};
+
+}  // namespace roller

@@ -1,0 +1,83 @@
+#pragma once
+// The deformable strip: mesh, start-of-increment configuration, committed material state per
+// integration point, and assembly of the incremental energy, its gradient and Hessian over the
+// whole mesh. History is committed only after an increment converges (deal.II step-18).
+#include <vector>
+
+#include "roller/assembly/dof_map.hpp"
+#include "roller/fem/element_kernel.hpp"
+#include "roller/mesh/mesh.hpp"
+
+namespace roller {
+
+class StripModel {
+ public:
+  StripModel(Mesh mesh, MaterialParams material, ElementOptions options);
+  StripModel(const StripModel&) = delete;
+  StripModel& operator=(const StripModel&) = delete;
+
+  const Mesh& mesh() const { return mesh_; }
+  const MaterialParams& material() const { return material_; }
+  const ElementOptions& options() const { return options_; }
+  Index n_dofs() const { return mesh_.n_dofs(); }
+
+  // Selects the free dofs and builds the sparsity pattern of the Hessian over them. Call again
+  // whenever the set of constrained dofs changes.
+  void set_dof_map(DofMap dofs);
+  const DofMap& dof_map() const { return dofs_; }
+
+  // Incremental strain energy of the increment `u` (all dofs; constrained entries hold their
+  // prescribed increments). Optionally the gradient over all dofs (internal forces, including
+  // reactions at constrained dofs) and the Hessian over the free dofs (full symmetric storage,
+  // fixed pattern). Throws NumericalError on inverted elements or failed material updates.
+  Real evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_free);
+
+  // Accepts the converged increment: material states become the trial states at `u` (stress
+  // pushed forward for finite kinematics), the total displacement grows by u, and for finite
+  // kinematics the reference configuration moves to the new one.
+  void commit(const VecX& u);
+
+  // Start-of-increment coordinates of each node (the reference of the next increment).
+  const std::vector<Vec2>& reference_coordinates() const { return reference_; }
+  // Current coordinates X0 + total displacement (equal to reference_coordinates() for finite
+  // kinematics; for small kinematics the mesh never moves but the contact sees these).
+  std::vector<Vec2> current_coordinates() const;
+  const VecX& total_displacement() const { return total_displacement_; }
+
+  int points_per_element() const { return n_points_; }
+  // Committed state of integration point q of element e.
+  const MaterialState& state(Index e, int q) const { return committed_[e * n_points_ + q]; }
+  const std::vector<MaterialState>& states() const { return committed_; }
+  Index n_yielded_last() const { return n_yielded_; }  // points that yielded in the last evaluate
+
+  // Total Green-Lagrange strain [xx, yy, zz, 2xy] of each integration point of element e with
+  // respect to the initial mesh (linearised for small kinematics), from the total displacement.
+  std::vector<Vec4> total_strain(Index e) const;
+
+  // Mass matrix over all dofs (rho from the material); lumped = diagonal row-sum lumping.
+  SparseMatrix mass_matrix(bool lumped) const;
+
+  // Volume (per unit width) of the strip in the start-of-increment configuration.
+  Real volume() const;
+
+ private:
+  void update_geometry();
+  ElementVector element_values(Index e, const VecX& u) const;
+
+  Mesh mesh_;
+  MaterialParams material_;
+  ElementOptions options_;
+  int n_points_;
+  std::vector<Vec2> reference_;
+  VecX total_displacement_;
+  std::vector<std::vector<PointGeometry>> geometry_;  // per element, start-of-increment
+  std::vector<MaterialState> committed_;
+  std::vector<MaterialState> trial_;
+  Index n_yielded_ = 0;
+
+  DofMap dofs_;
+  SparseMatrix pattern_;                       // free x free, values zero
+  std::vector<std::vector<int>> scatter_;      // per element: value slot of (i,j) or -1
+};
+
+}  // namespace roller

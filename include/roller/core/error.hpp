@@ -1,0 +1,36 @@
+#pragma once
+// Two tiers of checks (deal.II Assert/AssertThrow, MFEM_ASSERT/MFEM_VERIFY):
+//  * ROLLER_ASSERT: internal invariants, compiled out in release builds;
+//  * roller::require / throw InputError / NumericalError: always on, for user input, I/O and
+//    module boundaries. Messages say where, what, and the likely fix.
+#include <cassert>
+#include <stdexcept>
+#include <string>
+
+namespace roller {
+
+// Bad user input: scene files, CLI flags, state files. The message names file, key, value,
+// what was expected.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A computation that cannot continue (non-finite values, singular matrix, no convergence).
+// The driver catches it to cut the step; the message names the cause and the fix.
+class NumericalError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+inline void require(bool condition, const std::string& message) {
+  if (!condition) throw std::logic_error(message);
+}
+
+}  // namespace roller
+
+#ifdef NDEBUG
+#define ROLLER_ASSERT(cond) ((void)0)
+#else
+#define ROLLER_ASSERT(cond) assert(cond)
+#endif

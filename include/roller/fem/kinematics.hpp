@@ -1,0 +1,26 @@
+#pragma once
+// Element formulation choices (SPEC §2.2, issue "foundation" §3).
+#include <string>
+
+namespace roller {
+
+// "small": linear strain, no geometric stiffness, the mesh is never updated (thesis INFINI).
+// "finite": updated Lagrangian, Green-Lagrange strain of the increment, geometric stiffness,
+// objective push-forward of the stress (thesis LARGE).
+enum class Kinematics { Small, Finite };
+
+// Q4 volumetric treatment. "bbar": the volumetric part of the strain is replaced by its
+// element average (Hughes' B-bar, applied to the Green-Lagrange increment so that it stays
+// exactly objective); locking-free for isochoric plastic flow. "standard": full 2x2
+// integration, locks for nearly incompressible response. T3 has a constant strain and no option.
+enum class Q4Formulation { Standard, BBar };
+
+struct ElementOptions {
+  Kinematics kinematics = Kinematics::Finite;
+  Q4Formulation q4 = Q4Formulation::BBar;
+};
+
+std::string to_string(Kinematics k);
+std::string to_string(Q4Formulation f);
+
+}  // namespace roller

@@ -1,0 +1,78 @@
+#pragma once
+// A scene: everything one run needs, as plain structs filled by the scene loader
+// (docs/scenes.md documents every key, its unit and default).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "roller/fem/kinematics.hpp"
+#include "roller/material/material_params.hpp"
+#include "roller/mesh/strip_mesher.hpp"
+
+namespace roller {
+
+// Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
+struct NodeSelector {
+  std::string set_name;            // used when numbers is empty
+  std::vector<Index> numbers;      // thesis node numbers (1-based)
+  std::string describe() const;    // for messages: "set 'left'" or "nodes [5, 101]"
+};
+
+// A prescribed ramp: the quantity reaches `value` at the end of step `ramp_last`, rising
+// linearly from 0 at the end of step ramp_first-1, and stays constant afterwards.
+struct Ramp {
+  Real value = 0.0;
+  int ramp_first = 1;
+  int ramp_last = 1;
+  Real at_step(int step) const;  // cumulative value at the end of `step` (steps are 1-based)
+};
+
+// Prescribed displacement of the selected nodes in x and/or y (a component that is absent is
+// free). Values are total displacements from the initial configuration, in mm.
+struct DisplacementBC {
+  NodeSelector nodes;
+  std::optional<Ramp> x;
+  std::optional<Ramp> y;
+};
+
+// Nodal forces applied to each selected node [N per mm of strip width].
+struct NodalLoad {
+  NodeSelector nodes;
+  std::optional<Ramp> fx;
+  std::optional<Ramp> fy;
+};
+
+struct StepControl {
+  int n_steps = 1;        // scene steps (output is written at the end of each)
+  Real dt = 1.0;          // time step [s] (the step counter for quasistatic scenes)
+  int max_cuts = 4;       // a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments
+};
+
+struct NewtonOptions {
+  int max_iterations = 30;
+  Real residual_tolerance = 1e-8;   // converged when ||r|| <= tol * force scale
+  bool line_search = true;
+  bool is_valid(std::string* why) const;
+};
+
+struct OutputOptions {
+  int every = 1;          // write fields every N steps (and always the last step)
+  bool vtu = true;
+};
+
+struct Scene {
+  std::filesystem::path file;  // where it was loaded from (empty for scenes built in code)
+  std::string name;            // file stem unless given
+  std::string title;
+  StripMeshSpec mesh;
+  MaterialParams material;
+  ElementOptions element;
+  StepControl steps;
+  NewtonOptions newton;
+  OutputOptions output;
+  std::vector<DisplacementBC> displacements;
+  std::vector<NodalLoad> loads;
+};
+
+}  // namespace roller

@@ -1,0 +1,61 @@
+#pragma once
+// Typed, checked access to one table of a TOML scene file. Every read records the key; finish()
+// rejects keys that were never read (typos), suggesting the closest known key. All errors are
+// InputError with "file:line: key = value: expected ..." so a user can fix the file at once.
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "roller/core/types.hpp"
+
+namespace roller {
+
+class TomlSection {
+ public:
+  // `path` is the dotted name of the table in the file ("" for the root, "mesh", "displacement[2]").
+  TomlSection(const toml::table& table, std::string path, std::filesystem::path file);
+
+  bool has(const std::string& key) const;
+  std::optional<Real> real(const std::string& key);   // accepts integers too
+  std::optional<Index> integer(const std::string& key);
+  std::optional<bool> boolean(const std::string& key);
+  std::optional<std::string> string(const std::string& key);
+  std::optional<std::vector<Real>> real_array(const std::string& key);
+  std::optional<TomlSection> table(const std::string& key);
+  std::vector<TomlSection> table_array(const std::string& key);  // [[key]] blocks, empty if absent
+  // The raw node, for keys that accept several types (e.g. a number or a table).
+  const toml::node* node(const std::string& key);
+
+  // Checked getters with a default.
+  Real real_or(const std::string& key, Real fallback) { return real(key).value_or(fallback); }
+  Index integer_or(const std::string& key, Index fallback) { return integer(key).value_or(fallback); }
+  // One of `choices`; the error lists them.
+  std::string choice_or(const std::string& key, const std::vector<std::string>& choices,
+                        const std::string& fallback);
+
+  // Throws InputError for the first key that was never read.
+  void finish() const;
+
+  // Error helpers for callers that validate values: "file:line: path.key = value: <expected>".
+  [[noreturn]] void fail(const std::string& key, const std::string& expected) const;
+  std::string where(const std::string& key) const;  // "file:line: path.key"
+  const std::string& path() const { return path_; }
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  std::string full_key(const std::string& key) const;
+  std::string value_text(const std::string& key) const;
+  const toml::table* table_;
+  std::string path_;
+  std::filesystem::path file_;
+  std::set<std::string> read_;
+};
+
+// Levenshtein distance, for "did you mean" suggestions.
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
+}  // namespace roller

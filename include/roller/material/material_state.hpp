@@ -1,0 +1,17 @@
+#pragma once
+// State stored at each integration point and committed only after an increment converges.
+#include "roller/core/types.hpp"
+
+namespace roller {
+
+struct MaterialState {
+  // Cauchy stress [xx, yy, zz, xy] in the configuration at the start of the increment, which
+  // is the updated-Lagrangian reference; with that reference it is also the second
+  // Piola-Kirchhoff stress at the start of the step.
+  Vec4 stress = Vec4::Zero();
+  Real eq_plastic_strain = 0.0;  // equivalent plastic strain, eps_p = int sqrt(2/3 dep:dep)
+  Real plastic_work = 0.0;       // W_pl = int tau:d(eps_p) per unit volume [MPa = mJ/mm^3]
+  Real yield_stress = 0.0;       // current sigma_pl = sigma_y0 + H' eps_p (0 for elastic)
+};
+
+}  // namespace roller

@@ -1,0 +1,40 @@
+#pragma once
+// A 2D strip mesh: node coordinates, T3 or Q4 connectivity (counter-clockwise), named node sets.
+//
+// Numbering convention of the structured strip (the thesis's, so its node numbers are
+// addressable): nodes are numbered column by column from the left edge, top to bottom within a
+// column. Thesis node number N (1-based) is roller node N-1. With nx x ny elements the strip
+// has (nx+1)(ny+1) nodes; e.g. Z4 (20x4 Q4): node 5 is the bottom-left corner, node 101 the
+// top-right corner. Elements are numbered column by column, top to bottom, the same way.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "roller/core/types.hpp"
+
+namespace roller {
+
+enum class ElementType { T3, Q4 };
+
+inline int nodes_per_element(ElementType t) { return t == ElementType::T3 ? 3 : 4; }
+
+struct Mesh {
+  ElementType element_type = ElementType::Q4;
+  std::vector<Vec2> nodes;                 // initial coordinates [mm]
+  std::vector<std::vector<Index>> elements;  // node indices, counter-clockwise
+  // Named node sets, each sorted by increasing x then y where that matters:
+  //  "top", "bottom", "left", "right"     edges (top and bottom sorted by x; left/right by y)
+  //  "top_left", "top_right", "bottom_left", "bottom_right"   single corner nodes
+  //  "contact"                            contact candidates (default: the top edge)
+  //  "all"                                every node
+  std::map<std::string, std::vector<Index>> node_sets;
+
+  Index n_nodes() const { return static_cast<Index>(nodes.size()); }
+  Index n_elements() const { return static_cast<Index>(elements.size()); }
+  Index n_dofs() const { return 2 * n_nodes(); }
+
+  // Node set by name, or throws InputError listing the known names.
+  const std::vector<Index>& node_set(const std::string& name) const;
+};
+
+}  // namespace roller

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs everything roller needs from Debian 12's packages. Idempotent: re-running it only
+# checks that the packages are present. Needs root (or sudo) and network access to Debian's mirrors.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config ninja-build
+  coinor-libipopt-dev libmumps-seq-dev   # interior-point NLP solver + sparse direct solver
+  libeigen3-dev                          # dense/sparse linear algebra
+  catch2                                 # unit tests (v2)
+  libcli11-dev                           # command-line parsing
+  libtomlplusplus-dev                    # scene files (TOML)
+  libfmt-dev                             # formatting
+  nlohmann-json3-dev                     # summary.json, state files
+  python3 python3-numpy python3-matplotlib  # figures (PNG)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,89 @@
+#include "roller/io/field_output.hpp"
+
+#include "roller/material/j2_plasticity.hpp"
+
+namespace roller {
+
+namespace {
+
+const std::vector<std::string> kTensorComponents{"xx", "yy", "zz", "xy"};
+
+VtuField field(std::string name, int n_components, Index n_items,
+               std::vector<std::string> component_names = {}) {
+  VtuField f;
+  f.name = std::move(name);
+  f.n_components = n_components;
+  f.values.assign(n_items * n_components, 0.0);
+  f.component_names = std::move(component_names);
+  return f;
+}
+
+}  // namespace
+
+StripFields strip_fields(const StripModel& model) {
+  const Mesh& mesh = model.mesh();
+  const Index n_el = mesh.n_elements();
+  const Index n_nodes = mesh.n_nodes();
+  const int n_q = model.points_per_element();
+
+  StripFields out;
+  VtuField displacement = field("displacement", 3, n_nodes);
+  for (Index a = 0; a < n_nodes; ++a) {
+    displacement.values[3 * a] = model.total_displacement()(2 * a);
+    displacement.values[3 * a + 1] = model.total_displacement()(2 * a + 1);
+  }
+
+  VtuField stress = field("stress", 4, n_el, kTensorComponents);
+  VtuField strain = field("strain", 4, n_el, kTensorComponents);
+  VtuField sqrt_i2 = field("sqrt_I2", 1, n_el);
+  VtuField mises = field("von_mises", 1, n_el);
+  VtuField eps_p = field("eq_plastic_strain", 1, n_el);
+  VtuField w_pl = field("plastic_work", 1, n_el);
+  for (Index e = 0; e < n_el; ++e) {
+    Vec4 s_avg = Vec4::Zero(), e_avg = Vec4::Zero();
+    const auto total = model.total_strain(e);
+    for (int q = 0; q < n_q; ++q) {
+      const MaterialState& st = model.state(e, q);
+      s_avg += st.stress / n_q;
+      e_avg += total[q] / n_q;
+      sqrt_i2.values[e] += sqrt_j2(st.stress) / n_q;
+      mises.values[e] += von_mises(st.stress) / n_q;
+      eps_p.values[e] += st.eq_plastic_strain / n_q;
+      w_pl.values[e] += st.plastic_work / n_q;
+    }
+    e_avg(3) *= 0.5;  // output the tensor shear component, like the stress
+    for (int c = 0; c < 4; ++c) {
+      stress.values[4 * e + c] = s_avg(c);
+      strain.values[4 * e + c] = e_avg(c);
+    }
+  }
+
+  // Nodal averages of the element values, weighted equally per adjacent element.
+  std::vector<Real> count(n_nodes, 0.0);
+  VtuField stress_n = field("stress_nodal", 4, n_nodes, kTensorComponents);
+  VtuField sqrt_i2_n = field("sqrt_I2_nodal", 1, n_nodes);
+  VtuField strain_n = field("strain_nodal", 4, n_nodes, kTensorComponents);
+  for (Index e = 0; e < n_el; ++e)
+    for (Index a : mesh.elements[e]) {
+      count[a] += 1.0;
+      sqrt_i2_n.values[a] += sqrt_i2.values[e];
+      for (int c = 0; c < 4; ++c) {
+        stress_n.values[4 * a + c] += stress.values[4 * e + c];
+        strain_n.values[4 * a + c] += strain.values[4 * e + c];
+      }
+    }
+  for (Index a = 0; a < n_nodes; ++a) {
+    if (count[a] == 0.0) continue;
+    sqrt_i2_n.values[a] /= count[a];
+    for (int c = 0; c < 4; ++c) {
+      stress_n.values[4 * a + c] /= count[a];
+      strain_n.values[4 * a + c] /= count[a];
+    }
+  }
+
+  out.point_data = {displacement, stress_n, sqrt_i2_n, strain_n};
+  out.cell_data = {stress, strain, sqrt_i2, mises, eps_p, w_pl};
+  return out;
+}
+
+}  // namespace roller

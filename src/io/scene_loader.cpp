@@ -1,0 +1,310 @@
+#include "roller/io/scene_loader.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "roller/core/error.hpp"
+#include "roller/io/toml_section.hpp"
+
+namespace roller {
+
+namespace {
+
+// ---- overrides -------------------------------------------------------------------------------
+
+void apply_override(toml::table& root, const SceneOverride& o) {
+  std::vector<std::string> parts;
+  std::stringstream ss(o.key);
+  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  toml::table* t = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    toml::node* n = t->get(parts[i]);
+    if (!n) {
+      t->insert(parts[i], toml::table{});
+      n = t->get(parts[i]);
+    }
+    t = n->as_table();
+    if (!t)
+      throw InputError(fmt::format("--set {}={}: '{}' is not a table in the scene", o.key, o.value,
+                                   parts[i]));
+  }
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + o.value);
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{{"v", o.value}};  // bare word: take it as a string
+  }
+  t->insert_or_assign(parts.back(), *parsed.get("v"));
+}
+
+// ---- sections --------------------------------------------------------------------------------
+
+Grading read_grading(TomlSection& s, const std::string& key) {
+  Grading g;
+  auto t = s.table(key);
+  if (!t) return g;
+  g.kind = Grading::Kind::Geometric;
+  g.ratio = t->real_or("ratio", 1.0);
+  g.focus = t->real_or("focus", 0.0);
+  if (!(g.ratio >= 1.0)) t->fail("ratio", "expected ratio >= 1 (largest over smallest interval)");
+  t->finish();
+  return g;
+}
+
+void read_mesh(TomlSection& root, Scene& scene) {
+  auto s = root.table("mesh");
+  if (!s) root.fail("mesh", "a [mesh] table is required (element, length, height, nx, ny)");
+  StripMeshSpec& m = scene.mesh;
+  m.element = s->choice_or("element", {"Q4", "T3"}, "Q4") == "T3" ? ElementType::T3 : ElementType::Q4;
+  m.length = s->real_or("length", m.length);
+  m.height = s->real_or("height", m.height);
+  m.nx = static_cast<int>(s->integer_or("nx", m.nx));
+  m.ny = static_cast<int>(s->integer_or("ny", m.ny));
+  m.refine = static_cast<int>(s->integer_or("refine", m.refine));
+  m.grading_x = read_grading(*s, "grading_x");
+  m.grading_y = read_grading(*s, "grading_y");
+  if (auto v = s->real_array("x_lines")) m.x_lines = *v;
+  if (auto v = s->real_array("y_lines")) m.y_lines = *v;
+  const std::string diag = s->choice_or("diagonal", {"rising", "falling", "alternating"}, "rising");
+  m.diagonal = diag == "falling" ? Diagonal::Falling
+               : diag == "alternating" ? Diagonal::Alternating : Diagonal::Rising;
+  if (auto f = s->string("q4_formulation")) {
+    if (*f != "bbar" && *f != "standard") s->fail("q4_formulation", "expected \"bbar\" or \"standard\"");
+    scene.element.q4 = *f == "bbar" ? Q4Formulation::BBar : Q4Formulation::Standard;
+  } else {
+    // Full-integration Q4 locks under isochoric plastic flow: B-bar is the plastic default.
+    scene.element.q4 = scene.material.plastic ? Q4Formulation::BBar : Q4Formulation::Standard;
+  }
+  std::string why;
+  if (!m.is_valid(&why)) throw InputError(fmt::format("{}: {}", s->where(""), why));
+  s->finish();
+}
+
+void read_material(TomlSection& root, Scene& scene) {
+  auto s = root.table("material");
+  if (!s) root.fail("material", "a [material] table is required (at least E and nu)");
+  MaterialParams& p = scene.material;
+  const auto e = s->real("E");
+  if (!e) s->fail("E", "Young's modulus E [MPa] is required");
+  p.youngs_modulus = *e;
+  p.poisson_ratio = s->real_or("nu", p.poisson_ratio);
+  p.density = s->real_or("density", 0.0);
+  const auto yield = s->real("yield_stress");
+  const auto et = s->real("tangent_modulus");
+  const auto kappa = s->real("kappa");
+  p.plastic = yield.has_value();
+  if (!p.plastic && (et || kappa))
+    s->fail(et ? "tangent_modulus" : "kappa", "hardening needs yield_stress (set it, or remove this key)");
+  if (et && kappa) s->fail("kappa", "give either tangent_modulus or kappa = E_T/E, not both");
+  if (p.plastic) {
+    p.yield_stress = *yield;
+    p.tangent_modulus = et ? *et : kappa.value_or(0.0) * p.youngs_modulus;
+  }
+  const std::string integ = s->choice_or("stress_integration", {"return_mapping", "substep"}, "return_mapping");
+  p.integration = integ == "substep" ? StressIntegration::Substep : StressIntegration::ReturnMapping;
+  p.n_substeps = static_cast<int>(s->integer_or("substeps", p.n_substeps));
+  std::string why;
+  if (!p.is_valid(&why)) throw InputError(fmt::format("{}: {}", s->where(""), why));
+  s->finish();
+}
+
+Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
+  const toml::node* n = s.node(key);
+  Ramp r;
+  r.ramp_first = 1;
+  r.ramp_last = 1;
+  if (n->is_number()) {  // a constant: reached at once and held
+    r.value = n->value<double>().value();
+    return r;
+  }
+  auto t = s.table(key);
+  if (!t) s.fail(key, "expected a number or { value = .., ramp = [first_step, last_step] }");
+  const auto v = t->real("value");
+  if (!v) t->fail("value", "the value reached at the end of the ramp is required");
+  r.value = *v;
+  if (auto steps = t->real_array("ramp")) {
+    if (steps->size() != 2 || (*steps)[0] < 1 || (*steps)[1] < (*steps)[0] ||
+        (*steps)[0] != static_cast<int>((*steps)[0]) || (*steps)[1] != static_cast<int>((*steps)[1]))
+      t->fail("ramp", "expected [first_step, last_step] with 1 <= first_step <= last_step");
+    r.ramp_first = static_cast<int>((*steps)[0]);
+    r.ramp_last = static_cast<int>((*steps)[1]);
+  } else {
+    r.ramp_last = n_steps;  // default: linear over the whole run
+  }
+  t->finish();
+  return r;
+}
+
+NodeSelector read_selector(TomlSection& s) {
+  NodeSelector sel;
+  const toml::node* n = s.node("nodes");
+  if (!n) s.fail("nodes", "required: a node set name (\"top\", \"left\", ...) or thesis node numbers [5, 101]");
+  if (auto name = n->value_exact<std::string>()) {
+    sel.set_name = *name;
+  } else if (const toml::array* arr = n->as_array()) {
+    for (const auto& item : *arr) {
+      auto i = item.value_exact<int64_t>();
+      if (!i) s.fail("nodes", "expected an array of integer node numbers (1-based, thesis numbering)");
+      sel.numbers.push_back(*i);
+    }
+    if (sel.numbers.empty()) s.fail("nodes", "the node list is empty");
+  } else {
+    s.fail("nodes", "expected a node set name or an array of node numbers");
+  }
+  return sel;
+}
+
+void read_steps(TomlSection& root, Scene& scene) {
+  auto s = root.table("steps");
+  if (!s) return;
+  StepControl& st = scene.steps;
+  st.n_steps = static_cast<int>(s->integer_or("count", st.n_steps));
+  st.dt = s->real_or("dt", st.dt);
+  st.max_cuts = static_cast<int>(s->integer_or("max_cuts", st.max_cuts));
+  if (st.n_steps < 1) s->fail("count", "expected at least 1 step");
+  if (!(st.dt > 0.0)) s->fail("dt", "expected a time step > 0 [s]");
+  if (st.max_cuts < 0 || st.max_cuts > 20) s->fail("max_cuts", "expected 0 <= max_cuts <= 20");
+  s->finish();
+}
+
+void read_newton(TomlSection& root, Scene& scene) {
+  auto s = root.table("newton");
+  if (!s) return;
+  NewtonOptions& n = scene.newton;
+  n.max_iterations = static_cast<int>(s->integer_or("max_iterations", n.max_iterations));
+  n.residual_tolerance = s->real_or("residual_tolerance", n.residual_tolerance);
+  n.line_search = s->boolean("line_search").value_or(n.line_search);
+  std::string why;
+  if (!n.is_valid(&why)) throw InputError(fmt::format("{}: {}", s->where(""), why));
+  s->finish();
+}
+
+void read_output(TomlSection& root, Scene& scene) {
+  auto s = root.table("output");
+  if (!s) return;
+  scene.output.every = static_cast<int>(s->integer_or("every", scene.output.every));
+  scene.output.vtu = s->boolean("vtu").value_or(scene.output.vtu);
+  if (scene.output.every < 1) s->fail("every", "expected an integer >= 1");
+  s->finish();
+}
+
+void read_conditions(TomlSection& root, Scene& scene) {
+  const int n = scene.steps.n_steps;
+  for (auto& s : root.table_array("displacement")) {
+    DisplacementBC bc;
+    bc.nodes = read_selector(s);
+    if (s.has("x")) bc.x = read_ramp(s, "x", n);
+    if (s.has("y")) bc.y = read_ramp(s, "y", n);
+    s.node("x");
+    s.node("y");
+    if (!bc.x && !bc.y) s.fail("x", "a [[displacement]] block needs x and/or y");
+    s.finish();
+    scene.displacements.push_back(bc);
+  }
+  for (auto& s : root.table_array("load")) {
+    NodalLoad load;
+    load.nodes = read_selector(s);
+    if (s.has("fx")) load.fx = read_ramp(s, "fx", n);
+    if (s.has("fy")) load.fy = read_ramp(s, "fy", n);
+    s.node("fx");
+    s.node("fy");
+    if (!load.fx && !load.fy) s.fail("fx", "a [[load]] block needs fx and/or fy");
+    s.finish();
+    scene.loads.push_back(load);
+  }
+}
+
+Scene scene_from_table(const toml::table& table, const std::filesystem::path& file) {
+  Scene scene;
+  scene.file = file;
+  TomlSection root(table, "", file);
+  scene.name = root.string("name").value_or(file.stem().string());
+  scene.title = root.string("title").value_or("");
+  const std::string kin = root.choice_or("kinematics", {"small", "finite"}, "finite");
+  scene.element.kinematics = kin == "small" ? Kinematics::Small : Kinematics::Finite;
+  read_material(root, scene);  // before the mesh: the Q4 default depends on plasticity
+  read_mesh(root, scene);
+  read_steps(root, scene);
+  read_newton(root, scene);
+  read_output(root, scene);
+  read_conditions(root, scene);
+  root.finish();
+  return scene;
+}
+
+}  // namespace
+
+SceneOverride parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw InputError(fmt::format("--set '{}': expected key=value, e.g. --set material.E=2e5", text));
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+Scene parse_scene(const std::string& text, const std::filesystem::path& file_name,
+                  const std::vector<SceneOverride>& overrides) {
+  toml::table table;
+  try {
+    table = toml::parse(text, file_name.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_name.string(),
+                                 e.source().begin.line, e.source().begin.column, e.description()));
+  }
+  for (const auto& o : overrides) apply_override(table, o);
+  return scene_from_table(table, file_name);
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<SceneOverride>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot open the scene file (check the path)", file.string()));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_scene(buffer.str(), file, overrides);
+}
+
+std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
+                                 const std::string& context) {
+  if (selector.numbers.empty()) {
+    try {
+      return mesh.node_set(selector.set_name);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", context, e.what()));
+    }
+  }
+  std::vector<Index> out;
+  for (Index number : selector.numbers) {
+    if (number < 1 || number > mesh.n_nodes())
+      throw InputError(fmt::format("{}: node {} does not exist: the mesh has nodes 1..{} "
+                                   "(thesis numbering: column by column from the left, top to bottom)",
+                                   context, number, mesh.n_nodes()));
+    out.push_back(number - 1);
+  }
+  return out;
+}
+
+std::string NodeSelector::describe() const {
+  if (numbers.empty()) return fmt::format("set '{}'", set_name);
+  return fmt::format("nodes [{}]", fmt::join(numbers, ", "));
+}
+
+Real Ramp::at_step(int step) const {
+  if (step >= ramp_last) return value;
+  if (step < ramp_first) return 0.0;
+  return value * static_cast<Real>(step - ramp_first + 1) / static_cast<Real>(ramp_last - ramp_first + 1);
+}
+
+bool NewtonOptions::is_valid(std::string* why) const {
+  auto bad = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (max_iterations < 1) return bad(fmt::format("newton.max_iterations = {}: must be >= 1", max_iterations));
+  if (!(residual_tolerance > 0.0 && residual_tolerance < 1.0))
+    return bad(fmt::format("newton.residual_tolerance = {}: must be in (0, 1)", residual_tolerance));
+  return true;
+}
+
+}  // namespace roller

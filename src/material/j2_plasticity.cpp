@@ -1,0 +1,312 @@
+#include "roller/material/j2_plasticity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "roller/core/error.hpp"
+
+namespace roller {
+namespace {
+
+// A trial stress counts as plastic only when it exceeds the yield stress by more than this
+// relative margin, so that a zero increment from a state on the yield surface is elastic
+// (decided by the data, not by round-off).
+constexpr Real kYieldTolerance = 1e-12;
+// continuum_tangent treats a stress as on the yield surface down to this relative margin
+// below it: stresses returned to the surface sit there only up to round-off.
+constexpr Real kOnSurfaceTolerance = 1e-8;
+
+const Vec4 kIdentity = (Vec4() << 1.0, 1.0, 1.0, 0.0).finished();
+
+Vec4 deviator(const Vec4& stress) {
+  const Real mean = (stress(0) + stress(1) + stress(2)) / 3.0;
+  return stress - mean * kIdentity;
+}
+
+// a:b of two symmetric tensors stored as [xx, yy, zz, xy]: the shear pair counts twice.
+Real contract(const Vec4& a, const Vec4& b) {
+  return a(0) * b(0) + a(1) * b(1) + a(2) * b(2) + 2.0 * a(3) * b(3);
+}
+
+// The same tensor in the strain convention [xx, yy, zz, 2xy], so that a . b_strain = a:b.
+Vec4 as_strain_vector(const Vec4& tensor) {
+  Vec4 v = tensor;
+  v(3) *= 2.0;
+  return v;
+}
+
+Real yield_stress_at(const MaterialParams& p, Real eq_plastic_strain) {
+  return p.yield_stress + p.plastic_modulus() * eq_plastic_strain;
+}
+
+// int_{eps_p}^{eps_p + d} sigma_pl(a) da, exact for linear hardening (thesis (2.28)).
+Real plastic_work_increment(const MaterialParams& p, Real eq_plastic_strain, Real d) {
+  return p.yield_stress * d + p.plastic_modulus() * (eq_plastic_strain * d + 0.5 * d * d);
+}
+
+// C^-1 in the [xx, yy, zz, xy] -> [xx, yy, zz, 2xy] convention (isotropic 3D compliance).
+Mat4 compliance_matrix(const MaterialParams& p) {
+  const Real e = p.youngs_modulus;
+  const Real nu = p.poisson_ratio;
+  Mat4 s = Mat4::Zero();
+  s.topLeftCorner<3, 3>().setConstant(-nu / e);
+  s.topLeftCorner<3, 3>().diagonal().setConstant(1.0 / e);
+  s(3, 3) = 1.0 / p.shear_modulus();
+  return s;
+}
+
+// psi_e(C^-1 new) - psi_e(C^-1 old) written as 1/2 (new - old) . C^-1 (new + old), which
+// avoids cancelling two large stored energies when the increment is small.
+Real elastic_energy_change(const MaterialParams& p, const Vec4& stress_old,
+                           const Vec4& stress_new) {
+  return 0.5 * (stress_new - stress_old).dot(compliance_matrix(p) * (stress_new + stress_old));
+}
+
+void require_finite(const Vec4& strain_increment, const MaterialState& committed) {
+  if (strain_increment.allFinite() && committed.stress.allFinite() &&
+      std::isfinite(committed.eq_plastic_strain)) {
+    return;
+  }
+  std::ostringstream msg;
+  msg << "update_material: non-finite input (strain increment [" << strain_increment.transpose()
+      << "], committed stress [" << committed.stress.transpose() << "], eq_plastic_strain "
+      << committed.eq_plastic_strain << "); the displacement iterate has diverged, cut the step";
+  throw NumericalError(msg.str());
+}
+
+MaterialUpdate elastic_update(const MaterialParams& p, const Vec4& strain_increment,
+                              const MaterialState& committed) {
+  MaterialUpdate u;
+  u.tangent = elastic_matrix(p);
+  u.stress = committed.stress + u.tangent * strain_increment;
+  u.energy = committed.stress.dot(strain_increment) +
+             0.5 * strain_increment.dot(u.tangent * strain_increment);
+  u.trial = committed;
+  u.trial.stress = u.stress;
+  u.trial.yield_stress = 0.0;
+  return u;
+}
+
+// Algorithmic tangent of the radial return for linear isotropic hardening (Simo & Hughes,
+// Computational Inelasticity, 1998, ch. 3):
+//   C_alg = K 1(x)1 + 2G theta I_dev - 2G theta_bar n(x)n,
+//   theta = 1 - 3G d/q_trial,  theta_bar = 1/(1 + H'/(3G)) - (1 - theta),
+// n = s_trial/|s_trial|. As a [xx,yy,zz,2xy] -> [xx,yy,zz,xy] map, I_dev = diag(1,1,1,1/2)
+// - 1/3 m m^T and n(x)n is n n^T of the stress-like n.
+Mat4 consistent_tangent(const MaterialParams& p, const Vec4& unit_normal, Real theta,
+                        Real theta_bar) {
+  const Real g = p.shear_modulus();
+  Mat4 i_dev = Mat4::Zero();
+  i_dev.diagonal() << 1.0, 1.0, 1.0, 0.5;
+  i_dev -= kIdentity * kIdentity.transpose() / 3.0;
+  return p.bulk_modulus() * kIdentity * kIdentity.transpose() + 2.0 * g * theta * i_dev -
+         2.0 * g * theta_bar * unit_normal * unit_normal.transpose();
+}
+
+// Backward-Euler radial return (Wilkins; Simo & Hughes ch. 3). With linear hardening the
+// consistency condition q_trial - 3G d = sigma_y0 + H'(eps_p + d) is linear in d.
+MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain_increment,
+                                     const MaterialState& committed) {
+  const Mat4 c = elastic_matrix(p);
+  const Vec4 trial_stress = committed.stress + c * strain_increment;
+  const Vec4 s_trial = deviator(trial_stress);
+  const Real q_trial = von_mises(trial_stress);
+  const Real eps_p = committed.eq_plastic_strain;
+  const Real sigma_pl = yield_stress_at(p, eps_p);
+
+  MaterialUpdate u;
+  u.trial = committed;
+  u.trial.yield_stress = sigma_pl;
+  if (q_trial <= sigma_pl * (1.0 + kYieldTolerance)) {
+    u.stress = trial_stress;
+    u.tangent = c;
+  } else {
+    const Real g = p.shear_modulus();
+    const Real h = p.plastic_modulus();
+    const Real d = (q_trial - sigma_pl) / (3.0 * g + h);
+    const Real theta = 1.0 - 3.0 * g * d / q_trial;
+    const Real theta_bar = 3.0 * g / (3.0 * g + h) - (1.0 - theta);
+    u.stress = trial_stress - (1.0 - theta) * s_trial;
+    u.tangent =
+        consistent_tangent(p, s_trial / std::sqrt(contract(s_trial, s_trial)), theta, theta_bar);
+    u.yielded = true;
+    u.trial.eq_plastic_strain = eps_p + d;
+    u.trial.plastic_work += plastic_work_increment(p, eps_p, d);
+    u.trial.yield_stress = yield_stress_at(p, eps_p + d);
+    u.energy = plastic_work_increment(p, eps_p, d);
+  }
+  u.trial.stress = u.stress;
+  u.energy += elastic_energy_change(p, committed.stress, u.stress);
+  return u;
+}
+
+// ---- Substep ("variable stiffness", thesis §4.2.2) -------------------------------------------
+
+struct PointState {
+  Vec4 stress;
+  Real eq_plastic_strain;
+  Real plastic_work;
+};
+
+void add_plastic_strain(const MaterialParams& p, Real d, PointState& state) {
+  state.plastic_work += plastic_work_increment(p, state.eq_plastic_strain, d);
+  state.eq_plastic_strain += d;
+}
+
+// Fraction alpha in [0, 1] of the elastic stress increment ds after which the path
+// stress + alpha ds leaves the yield surface for good: the largest root of
+//   |s + alpha ds_dev|^2 = 2/3 sigma_pl^2   (a alpha^2 + 2 b alpha + c = 0),
+// 1 when the end point is inside or the deviator does not change (a state left outside by
+// round-off must not flow under a volumetric strain). From a point on the surface this is 0
+// for loading (b > 0) and the re-crossing point for unloading then reloading (b < 0).
+Real elastic_fraction(const Vec4& stress, const Vec4& d_stress, Real sigma_pl) {
+  if (von_mises(stress + d_stress) <= sigma_pl) return 1.0;
+  const Vec4 s = deviator(stress);
+  const Vec4 ds = deviator(d_stress);
+  const Real a = contract(ds, ds);
+  if (!(a > 0.0)) return 1.0;  // a purely volumetric step cannot move the state across J2
+  const Real b = contract(s, ds);
+  const Real c = contract(s, s) - 2.0 / 3.0 * sigma_pl * sigma_pl;
+  const Real disc = std::max(b * b - a * c, 0.0);
+  // Rationalised root for b > 0 avoids cancellation when c ~ 0.
+  const Real alpha = b > 0.0 ? -c / (b + std::sqrt(disc)) : (-b + std::sqrt(disc)) / a;
+  return std::clamp(alpha, 0.0, 1.0);
+}
+
+// Drift correction: a closed-form backward-Euler return from the drifted stress at zero strain
+// increment (the "consistent correction" of Potts & Gens 1985, exact for J2 with linear
+// hardening). It rescales the deviator and moves eps_p together with the stress, so the
+// state ends on the yield surface and keeps the hardening law; the correction can be of
+// either sign because the forward-Euler drift can be.
+void return_to_yield_surface(const MaterialParams& p, PointState& state) {
+  const Real q = von_mises(state.stress);
+  const Real g = p.shear_modulus();
+  const Real d =
+      (q - yield_stress_at(p, state.eq_plastic_strain)) / (3.0 * g + p.plastic_modulus());
+  state.stress -= 3.0 * g * d / q * deviator(state.stress);
+  add_plastic_strain(p, d, state);
+}
+
+// One forward-Euler sub-step: elastic up to the surface, then dS = C^EP dE (thesis (2.29))
+// at the stress where plastic flow starts, then the drift correction whenever plastic flow
+// occurred or the step left the surface (neutral loading, s:dE = 0, moves tangentially and
+// leaves it at second order). Returns true when plastic flow occurred.
+bool advance_substep(const MaterialParams& p, const Mat4& c, const Vec4& d_strain,
+                     PointState& state) {
+  const Vec4 d_stress_elastic = c * d_strain;
+  const Real alpha =
+      elastic_fraction(state.stress, d_stress_elastic, yield_stress_at(p, state.eq_plastic_strain));
+  state.stress += alpha * d_stress_elastic;
+  if (alpha >= 1.0) return false;
+
+  // Plastic multiplier of the flow rule dE^p = d_lambda n, n = df/dS = s (thesis (2.30)).
+  const Vec4 rest = (1.0 - alpha) * d_strain;
+  const Vec4 s = deviator(state.stress);
+  const Real ss = contract(s, s);
+  const Vec4 n = as_strain_vector(s);
+  const Vec4 c_n = c * n;
+  const Real d_lambda =
+      std::max(c_n.dot(rest) / (n.dot(c_n) + 2.0 / 3.0 * p.plastic_modulus() * ss), 0.0);
+  state.stress += c * rest - d_lambda * c_n;
+  add_plastic_strain(p, d_lambda * std::sqrt(2.0 / 3.0 * ss), state);
+  const bool outside = von_mises(state.stress) > yield_stress_at(p, state.eq_plastic_strain);
+  if (d_lambda > 0.0 || outside) return_to_yield_surface(p, state);
+  return d_lambda > 0.0 || outside;
+}
+
+MaterialUpdate substep_update(const MaterialParams& p, const Vec4& strain_increment,
+                              const MaterialState& committed) {
+  ROLLER_ASSERT(p.n_substeps >= 1);
+  const int n = std::max(p.n_substeps, 1);
+  const Mat4 c = elastic_matrix(p);
+  const Vec4 d_strain = strain_increment / static_cast<Real>(n);
+  PointState state{committed.stress, committed.eq_plastic_strain, committed.plastic_work};
+
+  MaterialUpdate u;
+  for (int k = 0; k < n; ++k) {
+    const Vec4 stress_before = state.stress;
+    u.yielded = advance_substep(p, c, d_strain, state) || u.yielded;
+    u.energy += 0.5 * (stress_before + state.stress).dot(d_strain);
+  }
+  u.stress = state.stress;
+  u.trial = committed;
+  u.trial.stress = state.stress;
+  u.trial.eq_plastic_strain = state.eq_plastic_strain;
+  u.trial.plastic_work = state.plastic_work;
+  u.trial.yield_stress = yield_stress_at(p, state.eq_plastic_strain);
+  u.tangent = continuum_tangent(p, state.stress, u.trial.yield_stress);
+  return u;
+}
+
+MaterialUpdate integrate(const MaterialParams& p, const Vec4& strain_increment,
+                         const MaterialState& committed) {
+  if (!p.plastic) return elastic_update(p, strain_increment, committed);
+  if (p.integration == StressIntegration::Substep) {
+    return substep_update(p, strain_increment, committed);
+  }
+  return return_mapping_update(p, strain_increment, committed);
+}
+
+}  // namespace
+
+Mat4 elastic_matrix(const MaterialParams& p) {
+  const Real lambda = p.lame_lambda();
+  const Real g = p.shear_modulus();
+  Mat4 c = Mat4::Zero();
+  c.topLeftCorner<3, 3>().setConstant(lambda);
+  c.topLeftCorner<3, 3>().diagonal().setConstant(lambda + 2.0 * g);
+  c(3, 3) = g;
+  return c;
+}
+
+// Thesis (2.29)-(2.30): C^EP = C - (C n)(C n)^T / (n.C.n + n_p.n) with n = s (as a strain-like
+// vector, C n = 2G s) and n_p = 2/3 sigma_pl dsigma_pl/dW_pl s = 2/3 H' s, so the denominator
+// is (2G + 2/3 H') s:s. The thesis's explicit forms (2.29 expanded, (3.4)) put s:s = 2/3
+// sigma_pl^2 (true on the surface), giving C - 2G beta s s^T with
+// beta = 3/(2 sigma_pl^2) / (1 + H'/(3G)); that form is used so that the matrix depends on the
+// deviator and sigma_pl separately, as the monotonicity study of §3 needs.
+Mat4 plastic_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress) {
+  require(yield_stress > 0.0, "plastic_tangent: yield_stress must be > 0 (it divides C^EP)");
+  const Real g = p.shear_modulus();
+  const Real beta = 1.5 / (yield_stress * yield_stress) / (1.0 + p.plastic_modulus() / (3.0 * g));
+  const Vec4 s = deviator(stress);
+  return elastic_matrix(p) - 2.0 * g * beta * s * s.transpose();
+}
+
+Mat4 continuum_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress) {
+  if (!p.plastic || von_mises(stress) < yield_stress * (1.0 - kOnSurfaceTolerance) ||
+      !(yield_stress > 0.0)) {
+    return elastic_matrix(p);
+  }
+  return plastic_tangent(p, stress, yield_stress);
+}
+
+MaterialState initial_state(const MaterialParams& p) {
+  MaterialState state;
+  state.yield_stress = p.plastic ? p.yield_stress : 0.0;
+  return state;
+}
+
+MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment,
+                               const MaterialState& committed) {
+  require_finite(strain_increment, committed);
+  MaterialUpdate u = integrate(p, strain_increment, committed);
+  // Finite input with non-finite output means inadmissible parameters (e.g. E_T = E).
+  if (!u.stress.allFinite() || !u.tangent.allFinite() || !std::isfinite(u.energy)) {
+    throw NumericalError(
+        "update_material: non-finite stress, tangent or energy from a finite strain increment; "
+        "check the material with MaterialParams::is_valid (E_T < E, yield_stress > 0)");
+  }
+  return u;
+}
+
+Real sqrt_j2(const Vec4& stress) {
+  const Vec4 s = deviator(stress);
+  return std::sqrt(0.5 * contract(s, s));
+}
+
+Real von_mises(const Vec4& stress) { return std::sqrt(3.0) * sqrt_j2(stress); }
+
+}  // namespace roller

@@ -1,0 +1,113 @@
+#include "roller/solver/newton.hpp"
+
+#include <cmath>
+
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+#include "roller/core/error.hpp"
+
+namespace roller {
+
+namespace {
+
+// Solves H d = -g. LDL^T without pivoting works for the symmetric tangents met here, including
+// mildly indefinite ones (geometric stiffness under compression); when the result is not a
+// descent direction the Hessian is shifted (Levenberg) until it is.
+bool newton_direction(const SparseMatrix& h, const VecX& g, VecX& d, int& factorizations) {
+  Eigen::SimplicialLDLT<SparseMatrix> solver;
+  solver.analyzePattern(h);
+  Real shift = 0.0;
+  const Real diag_scale = h.diagonal().cwiseAbs().maxCoeff();
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    SparseMatrix shifted = h;
+    if (shift > 0.0) shifted.diagonal().array() += shift;
+    solver.factorize(shifted);
+    ++factorizations;
+    if (solver.info() == Eigen::Success) {
+      d = solver.solve(-g);
+      if (d.allFinite() && d.dot(g) < 0.0) return true;
+    }
+    shift = shift == 0.0 ? 1e-8 * diag_scale : shift * 100.0;
+  }
+  return false;
+}
+
+}  // namespace
+
+NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOptions& options) {
+  NewtonReport report;
+  VecX g, d, x_trial, g_trial;
+  SparseMatrix h;
+  Real pi = 0.0;
+  try {
+    pi = objective.evaluate(x, &g, &h);
+  } catch (const NumericalError& e) {
+    report.message = fmt::format("cannot evaluate the start of the increment: {}", e.what());
+    return report;
+  }
+  for (int it = 0;; ++it) {
+    const Real scale = std::max(objective.force_scale(x), 1e-300);
+    const Real gnorm = g.norm();
+    report.residual_history.push_back(gnorm);
+    report.residual = gnorm / scale;
+    report.iterations = it;
+    if (!std::isfinite(gnorm)) {
+      report.message = "the residual is not finite (NaN/Inf): the increment diverged; use smaller steps";
+      return report;
+    }
+    if (report.residual <= options.residual_tolerance || g.size() == 0) {
+      report.status = NewtonStatus::Converged;
+      report.message = fmt::format("converged in {} iterations, |r|/F = {:.2e}", it, report.residual);
+      return report;
+    }
+    if (it >= options.max_iterations) {
+      report.status = NewtonStatus::NotConverged;
+      report.message = fmt::format(
+          "no convergence in {} Newton iterations (|r|/F = {:.2e} > {:.1e}); use smaller steps "
+          "or raise newton.max_iterations",
+          it, report.residual, options.residual_tolerance);
+      return report;
+    }
+    if (!newton_direction(h, g, d, report.factorizations)) {
+      report.message = "the tangent stiffness could not be factorised into a descent direction "
+                       "(singular or strongly indefinite: a mechanism, missing supports, or loss "
+                       "of monotonicity); check the boundary conditions or use smaller steps";
+      return report;
+    }
+    // Backtracking on Pi (Armijo); the full step is also accepted when it lowers the residual,
+    // because near the solution Pi changes only at round-off level.
+    Real alpha = 1.0;
+    const Real slope = g.dot(d);
+    bool accepted = false;
+    for (int ls = 0; ls < 30 && !accepted; ++ls) {
+      x_trial = x + alpha * d;
+      try {
+        const Real pi_trial = objective.evaluate(x_trial, &g_trial, nullptr);
+        const bool armijo = pi_trial <= pi + 1e-4 * alpha * slope;
+        const bool residual_drop = alpha == 1.0 && g_trial.norm() < gnorm;
+        accepted = !options.line_search || armijo || residual_drop;
+        if (accepted) pi = pi_trial;
+      } catch (const NumericalError&) {
+        accepted = false;  // e.g. an inverted element: shorten the step
+      }
+      if (!accepted) {
+        alpha *= 0.5;
+        ++report.line_search_cuts;
+      }
+    }
+    if (!accepted) {
+      report.message = "the line search found no decrease of the incremental energy; use smaller steps";
+      return report;
+    }
+    x = x_trial;
+    try {
+      pi = objective.evaluate(x, &g, &h);
+    } catch (const NumericalError& e) {
+      report.message = e.what();
+      return report;
+    }
+  }
+}
+
+}  // namespace roller

@@ -1,0 +1,135 @@
+// Scene files: a good scene loads with its defaults; every kind of bad input is rejected with a
+// message that names the file, the key, the value and what was expected.
+#include <catch2/catch.hpp>
+
+#include "roller/core/error.hpp"
+#include "roller/io/scene_loader.hpp"
+#include "roller/mesh/strip_mesher.hpp"
+
+using namespace roller;
+
+namespace {
+
+const std::string kGood = R"(
+title = "block"
+[mesh]
+element = "Q4"
+length = 10.0
+height = 5.0
+nx = 4
+ny = 2
+[material]
+E = 2.1e5
+nu = 0.3
+yield_stress = 50.0
+kappa = 0.07
+[steps]
+count = 4
+[[displacement]]
+nodes = "bottom"
+y = 0.0
+[[displacement]]
+nodes = [1, 2]
+x = { value = 0.5, ramp = [2, 3] }
+)";
+
+// Loads kGood with one line replaced or appended, and returns the error message ("" if none).
+std::string error_of(const std::string& text, const std::vector<SceneOverride>& overrides = {}) {
+  try {
+    parse_scene(text, "bad.toml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  REQUIRE(pos != std::string::npos);
+  return text.replace(pos, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("a valid scene loads with its values and defaults", "[io][scene]") {
+  const Scene s = parse_scene(kGood, "good.toml");
+  CHECK(s.name == "good");
+  CHECK(s.mesh.nx == 4);
+  CHECK(s.material.plastic);
+  CHECK(s.material.tangent_modulus == Approx(0.07 * 2.1e5));
+  CHECK(s.element.kinematics == Kinematics::Finite);
+  CHECK(s.element.q4 == Q4Formulation::BBar);  // plastic default
+  CHECK(s.steps.n_steps == 4);
+  REQUIRE(s.displacements.size() == 2);
+  CHECK(s.displacements[1].nodes.numbers == std::vector<Index>{1, 2});
+  CHECK(s.displacements[1].x->at_step(1) == 0.0);
+  CHECK(s.displacements[1].x->at_step(2) == Approx(0.25));
+  CHECK(s.displacements[1].x->at_step(4) == Approx(0.5));
+  CHECK_FALSE(s.displacements[1].y.has_value());
+}
+
+TEST_CASE("the resolved scene written back loads to the same scene", "[io][scene]") {
+  const Scene a = parse_scene(kGood, "good.toml");
+  const Scene b = parse_scene(scene_to_toml(a), "resolved.toml");
+  CHECK(b.name == a.name);
+  CHECK(b.material.tangent_modulus == a.material.tangent_modulus);
+  CHECK(b.mesh.ny == a.mesh.ny);
+  CHECK(b.displacements.size() == a.displacements.size());
+  CHECK(b.displacements[1].x->ramp_first == 2);
+  CHECK(scene_to_toml(b) == scene_to_toml(a));
+}
+
+TEST_CASE("command-line overrides replace scene values and are validated", "[io][scene]") {
+  const Scene s = parse_scene(kGood, "good.toml", {{"material.E", "1e5"}, {"mesh.element", "T3"}});
+  CHECK(s.material.youngs_modulus == 1e5);
+  CHECK(s.mesh.element == ElementType::T3);
+  CHECK_THAT(error_of(kGood, {{"material.nu", "0.7"}}), Catch::Contains("material.nu = 0.7"));
+  CHECK_THROWS_AS(parse_override("material.E"), InputError);
+}
+
+TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
+  using Catch::Contains;
+  // Unknown key with a suggestion, and with its line number.
+  const auto typo = error_of(replace(kGood, "nu = 0.3", "nuu = 0.3"));
+  CHECK_THAT(typo, Contains("bad.toml:11") && Contains("material.nuu") && Contains("did you mean 'material.nu'"));
+  // Wrong type.
+  CHECK_THAT(error_of(replace(kGood, "E = 2.1e5", "E = \"steel\"")),
+             Contains("material.E = \"steel\"") && Contains("expected a number"));
+  // Out-of-range values name the field, the value and the rule.
+  CHECK_THAT(error_of(replace(kGood, "nu = 0.3", "nu = 0.5")), Contains("poisson_ratio") && Contains("0.5"));
+  CHECK_THAT(error_of(replace(kGood, "kappa = 0.07", "kappa = 1.2")), Contains("tangent_modulus"));
+  CHECK_THAT(error_of(replace(kGood, "nx = 4", "nx = 0")), Contains("nx") && Contains("0"));
+  CHECK_THAT(error_of(replace(kGood, "count = 4", "count = 0")), Contains("steps.count = 0"));
+  // Bad choices list the alternatives.
+  CHECK_THAT(error_of(replace(kGood, "element = \"Q4\"", "element = \"Q8\"")),
+             Contains("mesh.element = \"Q8\"") && Contains("\"Q4\", \"T3\""));
+  // Missing required parts.
+  CHECK_THAT(error_of(replace(kGood, "E = 2.1e5", "")), Contains("material.E") && Contains("required"));
+  CHECK_THAT(error_of(replace(kGood, "[mesh]", "[meshes]")), Contains("unknown key"));
+  // Ramps and selectors.
+  CHECK_THAT(error_of(replace(kGood, "ramp = [2, 3]", "ramp = [3, 2]")), Contains("displacement[1].x.ramp"));
+  CHECK_THAT(error_of(replace(kGood, "nodes = [1, 2]", "nodes = 7")), Contains("displacement[1].nodes"));
+  CHECK_THAT(error_of(replace(kGood, "kappa = 0.07", "kappa = 0.07\ntangent_modulus = 100.0")),
+             Contains("either tangent_modulus or kappa"));
+  // Syntax errors give line and column.
+  CHECK_THAT(error_of(replace(kGood, "nx = 4", "nx = = 4")), Contains("bad.toml:7") && Contains("syntax"));
+  // Missing file.
+  CHECK_THROWS_WITH(load_scene("/nonexistent/scene.toml"), Contains("cannot open"));
+}
+
+TEST_CASE("node selectors are checked against the mesh", "[io][scene][errors]") {
+  StripMeshSpec spec;
+  spec.nx = 2;
+  spec.ny = 1;
+  const Mesh mesh = make_strip_mesh(spec);
+  NodeSelector by_number;
+  by_number.numbers = {1, 6, 7};
+  CHECK_THROWS_WITH(resolve_nodes(by_number, mesh, "displacement[0].nodes"),
+                    Catch::Contains("displacement[0].nodes") && Catch::Contains("node 7") &&
+                        Catch::Contains("1..6"));
+  NodeSelector by_name;
+  by_name.set_name = "topp";
+  CHECK_THROWS_WITH(resolve_nodes(by_name, mesh, "load[0].nodes"), Catch::Contains("topp"));
+  by_name.set_name = "top";
+  CHECK(resolve_nodes(by_name, mesh, "x").size() == 3);
+}
