@@ -428,9 +428,7 @@ std::vector<Real> grid_lines(Real extent, int n, const Grading& grading) {
                                 : geometric_lines(extent, n, grading);
   require_input(strictly_increasing(lines),
                 "grid_lines: grading.ratio = " + to_text(grading.ratio) + " over " +
-                    std::to_string(n) +
-                    " intervals makes intervals vanish in round-off: "
-                    "lower the ratio");
+                    std::to_string(n) + " intervals shrinks some below round-off: lower it");
   return lines;
 }
 

@@ -1,5 +1,6 @@
-#include <algorithm>
 #include <catch2/catch.hpp>
+
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -436,18 +437,9 @@ TEST_CASE("Bad mesh specs are rejected with the offending key in the message", "
       {[](StripMeshSpec& s) { s.grading_x = geometric(0.5, 0.0); }, "mesh.grading_x.ratio = 0.5"},
       {[](StripMeshSpec& s) { s.grading_y = geometric(2.0, 41.0); }, "mesh.grading_y.focus = 41"},
       {[](StripMeshSpec& s) { s.x_lines = {0.0}; }, "mesh.x_lines"},
-      {[](StripMeshSpec& s) {
-         s.x_lines = {1.0, 100.0};
-       },
-       "mesh.x_lines[0] = 1"},
-      {[](StripMeshSpec& s) {
-         s.x_lines = {0.0, 90.0};
-       },
-       "mesh.x_lines[1] = 90"},
-      {[](StripMeshSpec& s) {
-         s.y_lines = {0.0, 20.0, 20.0, 40.0};
-       },
-       "mesh.y_lines[2] = 20"},
+      {[](StripMeshSpec& s) { s.x_lines = {1.0, 100.0}; }, "mesh.x_lines[0] = 1"},
+      {[](StripMeshSpec& s) { s.x_lines = {0.0, 90.0}; }, "mesh.x_lines[1] = 90"},
+      {[](StripMeshSpec& s) { s.y_lines = {0.0, 20.0, 20.0, 40.0}; }, "mesh.y_lines[2] = 20"},
       {[](StripMeshSpec& s) { s.element = static_cast<ElementType>(7); }, "mesh.element"},
       {[](StripMeshSpec& s) { s.diagonal = static_cast<Diagonal>(9); }, "mesh.diagonal"},
   };

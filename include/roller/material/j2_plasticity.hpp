@@ -53,11 +53,12 @@ MaterialState initial_state(const MaterialParams& p);
 // referred to the configuration at its start) from the committed state.
 // The hardening variable is committed.eq_plastic_strain: the yield stress used is
 // sigma_y0 + H' eps_p (committed.yield_stress is an output, recomputed in trial).
-// A trial stress within a relative 1e-12 of the yield stress is elastic, so a zero increment
-// is always elastic. Substep ends every plastic sub-step with a closed-form backward-Euler
-// return of the drifted stress (consistent drift correction, eps_p moves with it), so its
-// end state also lies on the yield surface.
-// Throws NumericalError when the strain increment or committed state is not finite.
+// Zero and purely volumetric increments are always elastic (ReturnMapping: a trial stress
+// within a relative 1e-12 of the yield stress is elastic). Substep ends every plastic sub-step
+// with a closed-form backward-Euler return of the drifted stress at fixed strain (consistent
+// drift correction: eps_p moves with the stress), so its end state lies on the yield surface.
+// Throws NumericalError when the strain increment or committed state is not finite, or when
+// the result is (inadmissible parameters).
 MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment,
                                const MaterialState& committed);
 

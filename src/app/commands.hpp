@@ -1,0 +1,15 @@
+#pragma once
+// Sub-commands of the roller CLI. Each registers itself on the app and returns a callable
+// that runs it (returning the process exit code) when its sub-command was chosen.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace roller::app {
+
+using Command = std::function<int()>;
+
+// roller monotonicity ... (SPEC §3): maps of the positive definiteness of operator A.
+Command add_monotonicity_command(CLI::App& app);
+
+}  // namespace roller::app
