@@ -79,7 +79,7 @@ void read_mesh(TomlSection& root, Scene& scene) {
     scene.element.q4 = scene.material.plastic ? Q4Formulation::BBar : Q4Formulation::Standard;
   }
   std::string why;
-  if (!m.is_valid(&why)) throw InputError(fmt::format("{}: {}", s->where(""), why));
+  if (!m.is_valid(&why)) s->fail_invalid(why, {{"element", "element"}});
   s->finish();
 }
 
@@ -107,7 +107,11 @@ void read_material(TomlSection& root, Scene& scene) {
   p.integration = integ == "substep" ? StressIntegration::Substep : StressIntegration::ReturnMapping;
   p.n_substeps = static_cast<int>(s->integer_or("substeps", p.n_substeps));
   std::string why;
-  if (!p.is_valid(&why)) throw InputError(fmt::format("{}: {}", s->where(""), why));
+  if (!p.is_valid(&why))
+    s->fail_invalid(why, {{"youngs_modulus", "E"},
+                          {"poisson_ratio", "nu"},
+                          {"tangent_modulus", kappa ? "kappa" : "tangent_modulus"},
+                          {"n_substeps", "substeps"}});
   s->finish();
 }
 
@@ -178,7 +182,7 @@ void read_newton(TomlSection& root, Scene& scene) {
   n.residual_tolerance = s->real_or("residual_tolerance", n.residual_tolerance);
   n.line_search = s->boolean("line_search").value_or(n.line_search);
   std::string why;
-  if (!n.is_valid(&why)) throw InputError(fmt::format("{}: {}", s->where(""), why));
+  if (!n.is_valid(&why)) s->fail_invalid(why, {});
   s->finish();
 }
 
@@ -221,6 +225,9 @@ Scene scene_from_table(const toml::table& table, const std::filesystem::path& fi
   Scene scene;
   scene.file = file;
   TomlSection root(table, "", file);
+  root.allow({"name", "title", "kinematics", "mesh", "material", "steps", "newton", "output",
+              "displacement", "load"});
+  root.finish();
   scene.name = root.string("name").value_or(file.stem().string());
   scene.title = root.string("title").value_or("");
   const std::string kin = root.choice_or("kinematics", {"small", "finite"}, "finite");

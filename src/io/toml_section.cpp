@@ -17,16 +17,30 @@ std::string TomlSection::full_key(const std::string& key) const {
 }
 
 std::string TomlSection::where(const std::string& key) const {
-  const toml::node* n = table_->get(key);
+  const toml::node* n = key.empty() ? nullptr : table_->get(key);
   const auto line = n ? n->source().begin.line : table_->source().begin.line;
   std::string location = file_.empty() ? std::string("scene") : file_.string();
   if (line > 0) location += fmt::format(":{}", line);
-  return fmt::format("{}: {}", location, full_key(key));
+  return fmt::format("{}: {}", location, key.empty() ? path_ : full_key(key));
+}
+
+void TomlSection::fail_invalid(const std::string& why,
+                               const std::vector<std::pair<std::string, std::string>>& key_of_field) const {
+  const auto dot = why.find('.');
+  const auto eq = why.find(" = ");
+  const auto colon = why.find(": ", eq == std::string::npos ? 0 : eq);
+  if (dot == std::string::npos || eq == std::string::npos || colon == std::string::npos || dot > eq)
+    throw InputError(fmt::format("{}: {}", where(""), why));
+  std::string key = why.substr(dot + 1, eq - dot - 1);
+  for (const auto& [field, scene_key] : key_of_field)
+    if (key == field) key = scene_key;
+  fail(key, why.substr(colon + 2));
 }
 
 std::string TomlSection::value_text(const std::string& key) const {
   const toml::node* n = table_->get(key);
   if (!n) return "(missing)";
+  if (auto d = n->value_exact<double>()) return fmt::format("{}", *d);  // shortest round-trip form
   std::ostringstream s;
   n->visit([&s](const auto& v) { s << v; });
   return s.str();

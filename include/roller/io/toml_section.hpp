@@ -39,6 +39,14 @@ class TomlSection {
 
   // Throws InputError for the first key that was never read.
   void finish() const;
+  // Declares keys as known without reading them, so finish() can run before they are read
+  // (the root checks its table names first: "[meshes]" is a typo, not a missing [mesh]).
+  void allow(const std::vector<std::string>& keys) { read_.insert(keys.begin(), keys.end()); }
+  // Re-throws a struct's is_valid() message "<prefix>.<field> = <value>: <rule>" as an error
+  // at the scene key that holds the field (`key_of_field` maps field names to scene keys where
+  // they differ).
+  [[noreturn]] void fail_invalid(const std::string& why,
+                                 const std::vector<std::pair<std::string, std::string>>& key_of_field) const;
 
   // Error helpers for callers that validate values: "file:line: path.key = value: <expected>".
   [[noreturn]] void fail(const std::string& key, const std::string& expected) const;

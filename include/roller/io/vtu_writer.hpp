@@ -1,6 +1,7 @@
 #pragma once
 // VTK XML unstructured-grid (.vtu) files and the .pvd collection that ParaView opens as a time
-// series. Fields are written as base64-encoded binary (Float64, Int32/Int64) inline data.
+// series. Fields are written as base64-encoded binary inline data (Float64 values, Int64 connectivity
+// and offsets, UInt8 cell types).
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -1,0 +1,286 @@
+#include "roller/analysis/monotonicity.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+#include "roller/assembly/strip_model.hpp"
+#include "roller/core/error.hpp"
+#include "roller/fem/element_kernel.hpp"
+#include "roller/fem/shape_functions.hpp"
+
+namespace roller {
+
+namespace {
+
+constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
+
+using Mat3 = Eigen::Matrix<Real, 3, 3>;
+
+}  // namespace
+
+// ---- Parameters ------------------------------------------------------------------------------
+
+ThesisParameters thesis_parameters(const Vec4& stress) {
+  return {2.0 * stress(0) - stress(1), 2.0 * stress(1) - stress(0), stress(3)};
+}
+
+Vec4 stress_from_parameters(const ThesisParameters& p, OutOfPlaneStress rule, Real poisson_ratio) {
+  const Real t11 = (2.0 * p.a + p.b) / 3.0;
+  const Real t22 = (2.0 * p.b + p.a) / 3.0;
+  const Real t33 = rule == OutOfPlaneStress::Zero ? 0.0 : poisson_ratio * (t11 + t22);
+  return Vec4(t11, t22, t33, p.c);
+}
+
+// ---- 4x4 matrices ----------------------------------------------------------------------------
+
+std::string to_string(GradientLayout layout) {
+  switch (layout) {
+    case GradientLayout::Thesis: return "thesis";
+    case GradientLayout::Navier: return "navier";
+    case GradientLayout::Gradient: return "gradient";
+  }
+  return "?";
+}
+
+GradientLayout parse_gradient_layout(const std::string& name) {
+  if (name == "thesis") return GradientLayout::Thesis;
+  if (name == "navier") return GradientLayout::Navier;
+  if (name == "gradient") return GradientLayout::Gradient;
+  throw InputError(fmt::format("layout '{}': expected one of thesis, navier, gradient", name));
+}
+
+Mat4 gradient_tangent(const Mat4& tangent, Real shear_modulus, GradientLayout layout) {
+  static constexpr int kInPlane[3] = {0, 1, 3};  // xx, yy, xy of the 4-vectors
+  Mat3 c3;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) c3(i, j) = tangent(kInPlane[i], kInPlane[j]);
+  Eigen::Matrix<Real, 3, 4> p;  // [e11, e22, 2 e12] = P [u1,1, u2,2, u1,2, u2,1]
+  p << 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1;
+  Mat4 c = p.transpose() * c3 * p;
+  if (layout != GradientLayout::Gradient) {
+    // Elastic C_1221 = C_2112 = G out of the shear block ...
+    c(2, 3) -= shear_modulus;
+    c(3, 2) -= shear_modulus;
+  }
+  if (layout == GradientLayout::Navier) {
+    // ... and into the normal block: + 2G (u1,1 u2,2 - u1,2 u2,1), a null Lagrangian.
+    c(0, 1) += shear_modulus;
+    c(1, 0) += shear_modulus;
+  }
+  return c;
+}
+
+Mat4 initial_stress_matrix(const Vec4& stress) {
+  const Real t11 = stress(0), t22 = stress(1), t12 = stress(3);
+  Mat4 t;
+  t << t11, 0, t12, 0,  //
+      0, t22, 0, t12,   //
+      t12, 0, t22, 0,   //
+      0, t12, 0, t11;
+  return t;
+}
+
+Real initial_stress_min_eigenvalue(const Vec4& stress) {
+  const Real half_sum = 0.5 * (stress(0) + stress(1));
+  const Real half_diff = 0.5 * (stress(0) - stress(1));
+  return half_sum - std::hypot(half_diff, stress(3));
+}
+
+Real initial_stress_min_eigenvalue(const ThesisParameters& p) {
+  return 0.5 * ((p.a + p.b) - std::sqrt((p.a - p.b) * (p.a - p.b) / 9.0 + 4.0 * p.c * p.c));
+}
+
+Mat4 thesis_elastic_split(Real poisson_ratio) {
+  const Real nu = poisson_ratio;
+  Mat4 s = Mat4::Zero();
+  s(0, 0) = s(1, 1) = (1.0 - nu) / (1.0 - 2.0 * nu);
+  s(0, 1) = s(1, 0) = nu / (1.0 - 2.0 * nu);
+  s(2, 2) = s(3, 3) = 0.5;
+  return s;
+}
+
+Mat4 thesis_plastic_pattern() {
+  const Vec4 w(1.0 / 3.0, 1.0 / 3.0, 1.0, 1.0);
+  return w * w.transpose();
+}
+
+Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress,
+                const OperatorOptions& options) {
+  Mat4 tangent;
+  switch (options.tangent) {
+    case TangentKind::Elastic: tangent = elastic_matrix(material); break;
+    case TangentKind::Continuum: tangent = continuum_tangent(material, stress, yield_stress); break;
+    case TangentKind::PlasticBranch: tangent = plastic_tangent(material, stress, yield_stress); break;
+  }
+  Mat4 a = gradient_tangent(tangent, material.shear_modulus(), options.layout);
+  if (options.initial_stress) a += initial_stress_matrix(stress);
+  a.diagonal().array() += options.mass_scale;
+  return a;
+}
+
+Mat4 operator_a_algorithmic(const MaterialParams& material, const MaterialState& committed,
+                            const Vec4& strain_increment, const OperatorOptions& options) {
+  const MaterialUpdate u = update_material(material, strain_increment, committed);
+  Mat4 a = gradient_tangent(u.tangent, material.shear_modulus(), options.layout);
+  if (options.initial_stress) a += initial_stress_matrix(u.stress);
+  a.diagonal().array() += options.mass_scale;
+  return a;
+}
+
+// ---- Definiteness ----------------------------------------------------------------------------
+
+Definiteness definiteness(const Mat4& a) {
+  Definiteness d;
+  const Eigen::SelfAdjointEigenSolver<Mat4> eig(a, Eigen::EigenvaluesOnly);
+  d.lambda_min = eig.eigenvalues()(0);
+  d.by_eigenvalue = d.lambda_min > 0.0;
+  d.by_cholesky = Eigen::LLT<Mat4>(a).info() == Eigen::Success;
+  d.leading_minors << a(0, 0), a.topLeftCorner<2, 2>().determinant(),
+      a.topLeftCorner<3, 3>().determinant(), a.determinant();
+  d.by_minors = (d.leading_minors.array() > 0.0).all();
+  return d;
+}
+
+// ---- Dynamics --------------------------------------------------------------------------------
+
+Real mass_scale(Real density, Real h, Real dt) {
+  require(density >= 0.0 && h >= 0.0 && dt >= 0.0,
+          "mass_scale: density, h and dt must be >= 0");
+  if (dt == 0.0) return 0.0;
+  return density * h * h / (dt * dt);
+}
+
+Real restoring_time_step(Real density, Real h, Real lambda_min) {
+  require(density >= 0.0 && h >= 0.0, "restoring_time_step: density and h must be >= 0");
+  if (lambda_min > 0.0) return kInfinity;
+  if (lambda_min == 0.0) return density * h > 0.0 ? kInfinity : 0.0;  // any dt > 0 lifts it
+  return h * std::sqrt(density / -lambda_min);
+}
+
+Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates,
+                             bool lumped_mass) {
+  const std::vector<PointGeometry> geometry = element_geometry(type, coordinates, -1);
+  const Index n = geometry.front().shape.size();
+  MatX laplacian = MatX::Zero(n, n);
+  for (const auto& g : geometry) laplacian += g.weight * g.gradients * g.gradients.transpose();
+  const ElementMatrix vector_mass = element_mass(type, geometry, 1.0, lumped_mass);
+  MatX mass(n, n);
+  for (Index a = 0; a < n; ++a)
+    for (Index b = 0; b < n; ++b) mass(a, b) = vector_mass(2 * a, 2 * b);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eig(laplacian, mass,
+                                                           Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) {
+    throw NumericalError("inverse_estimate_length: generalised eigenproblem failed");
+  }
+  return 1.0 / std::sqrt(eig.eigenvalues()(n - 1));
+}
+
+// ---- The strip -------------------------------------------------------------------------------
+
+std::string StripMonotonicity::brief_report() const {
+  const std::string mode = dt > 0.0 ? fmt::format("dt = {:.3e} s", dt) : std::string("quasistatic");
+  if (n_not_pd == 0) {
+    return fmt::format("monotonicity ({}): A positive definite at all {} integration points, "
+                       "min lambda = {:.4g} MPa (element {}, point {})",
+                       mode, n_points, lambda_min, worst.element, worst.point);
+  }
+  std::string remedy;
+  if (dt_restore_all > 0.0) {
+    remedy = fmt::format("; dt < {:.3e} s restores the worst point, dt < {:.3e} s every point",
+                         dt_restore_worst, dt_restore_all);
+  } else {
+    remedy = "; no time step restores it (zero density)";
+  }
+  return fmt::format("monotonicity ({}): A not positive definite at {} of {} integration points, "
+                     "min lambda = {:.4g} MPa at element {}, point {}{}",
+                     mode, n_not_pd, n_points, lambda_min, worst.element, worst.point, remedy);
+}
+
+StripMonotonicity check_strip(const StripModel& model, Real dt,
+                              const StripMonotonicityOptions& options) {
+  require(dt >= 0.0, "check_strip: dt must be >= 0 (0 = quasistatic)");
+  const MaterialParams& material = model.material();
+  const Mesh& mesh = model.mesh();
+  OperatorOptions op;
+  op.layout = options.layout;
+  op.tangent = TangentKind::Continuum;
+  switch (options.initial_stress) {
+    case InitialStressTerm::FollowKinematics:
+      op.initial_stress = model.options().kinematics == Kinematics::Finite;
+      break;
+    case InitialStressTerm::Always: op.initial_stress = true; break;
+    case InitialStressTerm::Never: op.initial_stress = false; break;
+  }
+  const Real rho = material.density;
+
+  StripMonotonicity out;
+  out.dt = dt;
+  Real lambda_static_worst = kInfinity;
+  Real h_worst = 0.0;
+  std::vector<Vec2> xe;
+  for (Index e = 0; e < mesh.n_elements(); ++e) {
+    xe.clear();
+    for (Index a : mesh.elements[e]) xe.push_back(model.reference_coordinates()[a]);
+    const Real h = inverse_estimate_length(mesh.element_type, xe, options.lumped_mass);
+    const Real kappa = mass_scale(rho, h, dt);
+    for (int q = 0; q < model.points_per_element(); ++q) {
+      const MaterialState& s = model.state(e, q);
+      const Mat4 a = operator_a(material, s.stress, s.yield_stress, op);
+      const Real lambda_static =
+          Eigen::SelfAdjointEigenSolver<Mat4>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
+      const Real lambda = lambda_static + kappa;  // the mass term shifts every eigenvalue
+      ++out.n_points;
+      if (lambda < out.lambda_min) {
+        out.lambda_min = lambda;
+        out.worst = {e, q};
+        lambda_static_worst = lambda_static;
+        h_worst = h;
+      }
+      if (!(lambda > 0.0)) {
+        ++out.n_not_pd;
+        out.not_pd.push_back({e, q});
+        out.dt_restore_all =
+            std::min(out.dt_restore_all, restoring_time_step(rho, h, lambda_static));
+      }
+    }
+  }
+  if (out.n_not_pd > 0) out.dt_restore_worst = restoring_time_step(rho, h_worst, lambda_static_worst);
+  return out;
+}
+
+// ---- Sparse ----------------------------------------------------------------------------------
+
+SparseDefiniteness sparse_definiteness(const SparseMatrix& k, Real relative_tolerance) {
+  require(k.rows() == k.cols(), "sparse_definiteness: the matrix must be square");
+  SparseDefiniteness out;
+  if (k.rows() == 0) {
+    out.factorized = true;
+    return out;
+  }
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(k);
+  out.factorized = ldlt.info() == Eigen::Success;
+  if (!out.factorized) return out;
+  const VecX d = ldlt.vectorD();
+  out.min_pivot = d.minCoeff();
+  out.max_pivot = d.maxCoeff();
+  const Real zero = relative_tolerance * d.cwiseAbs().maxCoeff();
+  for (Index i = 0; i < d.size(); ++i) {
+    if (std::abs(d(i)) <= zero || d(i) == 0.0) {
+      ++out.n_zero;
+    } else if (d(i) < 0.0) {
+      ++out.n_negative;
+    }
+  }
+  return out;
+}
+
+bool is_positive_definite(const SparseMatrix& k_eff) {
+  return sparse_definiteness(k_eff).positive_definite();
+}
+
+}  // namespace roller
