@@ -266,6 +266,10 @@ SparseDefiniteness sparse_definiteness(const SparseMatrix& k, Real relative_tole
   out.factorized = ldlt.info() == Eigen::Success;
   if (!out.factorized) return out;
   const VecX d = ldlt.vectorD();
+  if (!d.allFinite()) {
+    out.factorized = false;
+    return out;
+  }
   out.min_pivot = d.minCoeff();
   out.max_pivot = d.maxCoeff();
   const Real zero = relative_tolerance * d.cwiseAbs().maxCoeff();

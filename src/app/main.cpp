@@ -8,6 +8,7 @@
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "commands.hpp"
 
 namespace {
 
@@ -16,6 +17,7 @@ struct RunArgs {
   std::string out;
   int refine = 0;
   int steps = 0;
+  std::string contact;
   std::vector<std::string> sets;
 };
 
@@ -24,6 +26,7 @@ int run_scene(const RunArgs& args) {
   for (const auto& s : args.sets) overrides.push_back(roller::parse_override(s));
   if (args.refine > 0) overrides.push_back({"mesh.refine", std::to_string(args.refine)});
   if (args.steps > 0) overrides.push_back({"steps.count", std::to_string(args.steps)});
+  if (!args.contact.empty()) overrides.push_back({"contact.backend", "\"" + args.contact + "\""});
   roller::Scene scene = roller::load_scene(args.scene, overrides);
   roller::Simulation sim(std::move(scene));
   const std::string out = args.out.empty() ? "out/" + sim.scene().name : args.out;
@@ -55,12 +58,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   run->add_option("--steps", run_args.steps, "number of steps to run (overrides steps.count)")
       ->check(CLI::Range(1, 1000000));
+  run->add_option("--contact", run_args.contact, "contact backend (overrides contact.backend)")
+      ->check(CLI::IsMember({"penalty", "ipopt"}));
   run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")
       ->type_name("KEY=VALUE");
+  const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) return run_scene(run_args);
+    if (app.got_subcommand("monotonicity")) return monotonicity();
   } catch (const roller::InputError& e) {
     std::cerr << "roller: input error: " << e.what() << "\n";
     return 2;

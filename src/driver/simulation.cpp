@@ -1,6 +1,7 @@
 #include "roller/driver/simulation.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <ostream>
 
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "roller/assembly/increment_energy.hpp"
+#include "roller/contact/contact_set.hpp"
 #include "roller/core/error.hpp"
 #include "roller/io/csv_table.hpp"
 #include "roller/io/field_output.hpp"
@@ -24,35 +26,111 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-Mesh build_mesh(const Scene& scene) { return make_strip_mesh(scene.mesh); }
-
 }  // namespace
-
-struct Simulation::Increment {
-  NewtonReport report;
-  VecX u;
-};
 
 Simulation::Simulation(Scene scene)
     : scene_(std::move(scene)),
-      model_(std::make_unique<StripModel>(build_mesh(scene_), scene_.material, scene_.element)),
+      model_(std::make_unique<StripModel>(make_strip_mesh(scene_.mesh), scene_.material, scene_.element)),
       loads_(scene_, model_->mesh()) {
   model_->set_dof_map(loads_.dof_map());
+  if (scene_.roller) {
+    backend_ = make_contact_backend(scene_.contact, scene_.newton);
+    NodeSelector sel;
+    sel.set_name = scene_.contact.candidates;
+    candidate_nodes_ = resolve_nodes(sel, model_->mesh(), "contact.candidates");
+    pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
+  }
 }
 
-Simulation::Increment Simulation::solve_increment(Real s_from, Real s_to) {
+Vec2 Simulation::start_centre() const {
+  if (scene_.roller->start_centre) return *scene_.roller->start_centre;
+  // Default: touching the top of the strip at mid-length.
+  return Vec2(0.5 * scene_.mesh.length, scene_.mesh.height + scene_.roller->radius);
+}
+
+Vec2 Simulation::roller_force() const {
+  Vec2 f = Vec2::Zero();
+  for (const auto& c : contact_) f -= c.force;
+  return f;
+}
+
+Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
+  Increment inc;
   // Prescribed increments: target total minus what the dof already has, so sub-increments
   // never accumulate drift.
-  VecX prescribed = loads_.prescribed_displacement(s_to) - model_->total_displacement();
+  const VecX prescribed = loads_.prescribed_displacement(s_to) - model_->total_displacement();
   IncrementEnergy energy(*model_, prescribed, loads_.external_force(s_to));
-  Increment inc;
   // Predictor: the previous converged increment scaled to this one's length (a linear
   // extrapolation of the path), which starts Newton near the solution on smooth paths.
-  VecX x = VecX::Zero(model_->dof_map().n_free());
+  VecX predictor = VecX::Zero(model_->n_dofs());
   if (last_increment_.size() == model_->n_dofs() && last_length_ > 0.0)
-    x = model_->dof_map().restrict_to_free(last_increment_) * ((s_to - s_from) / last_length_);
-  inc.report = minimise_newton(energy, x, scene_.newton);
-  inc.u = energy.full_increment(x);
+    predictor = last_increment_ * ((s_to - s_from) / last_length_);
+  VecX x = model_->dof_map().restrict_to_free(predictor);
+
+  VecX u;
+  std::vector<ContactCandidate> candidates;
+  BackendResult contact_result;
+  if (!scene_.roller) {
+    const NewtonReport r = minimise_newton(energy, x, scene_.newton);
+    inc.converged = r.converged();
+    inc.iterations = r.iterations;
+    inc.factorizations = r.factorizations;
+    inc.residual = r.residual;
+    inc.message = r.message;
+    u = energy.full_increment(x);
+  } else {
+    RollerMotion motion;
+    motion.radius = scene_.roller->radius;
+    motion.start = roller_pose(*scene_.roller, start_centre(), s_from);
+    motion.end = roller_pose(*scene_.roller, start_centre(), s_to);
+    motion.friction = scene_.contact.friction;
+    // Nodes farther from the roller than it can travel within the increment cannot touch it.
+    const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
+    candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor,
+                                         motion.end.centre, motion.radius, reach);
+    for (auto& c : candidates) {
+      const auto h = history_.find(c.node);
+      if (h == history_.end()) continue;
+      c.tangential_force = h->second.tangential_force;
+      c.normal_force_guess = h->second.normal_force;
+    }
+    IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus,
+                             scene_.material.poisson_ratio);
+    contact_result = backend_->solve(problem, x);
+    inc.converged = contact_result.converged();
+    inc.iterations = contact_result.iterations;
+    inc.factorizations = contact_result.factorizations;
+    inc.residual = contact_result.residual;
+    inc.max_penetration = contact_result.max_penetration;
+    inc.stats = contact_result.stats;
+    inc.message = contact_result.message;
+    if (inc.converged) {
+      u = energy.full_increment(contact_result.x);
+      pose_ = motion.end;
+    }
+  }
+  if (!inc.converged) return inc;
+
+  model_->commit(u);
+  last_increment_ = u;
+  last_length_ = s_to - s_from;
+  if (scene_.roller) {
+    contact_.clear();
+    history_.clear();
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const ContactCandidate& c = candidates[i];
+      const NodeContact& nc = contact_result.contact[i];
+      NodeContactRecord rec;
+      rec.node = c.node;
+      rec.position = c.position + Vec2(u(2 * c.node), u(2 * c.node + 1));
+      rec.contact = nc;
+      rec.tributary_length = c.tributary_length;
+      const Vec2 n = (rec.position - pose_.centre).normalized();
+      rec.force = nc.normal_force * n + nc.tangential_force * c.tangent;
+      contact_.push_back(rec);
+      if (nc.status != ContactStatus::Open) history_[c.node] = nc;
+    }
+  }
   return inc;
 }
 
@@ -64,8 +142,18 @@ RunSummary Simulation::run(const RunOptions& options) {
     resolved << scene_to_toml(scene_);
   }
   CsvTable solver_csv(options.out_dir / "solver.csv",
-                      {"step", "time", "iterations", "residual", "cuts", "yielded_points",
-                       "factorizations", "wall_s", "status"});
+                      {"step", "time", "iterations", "residual", "max_penetration", "wall_s", "cuts",
+                       "yielded_points", "factorizations", "complementarity", "constraint_violation",
+                       "fixed_point_iterations", "contact_nodes", "status"});
+  std::unique_ptr<CsvTable> contact_csv, roller_csv;
+  if (scene_.roller) {
+    contact_csv = std::make_unique<CsvTable>(
+        options.out_dir / "contact.csv",
+        std::vector<std::string>{"step", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"});
+    roller_csv = std::make_unique<CsvTable>(
+        options.out_dir / "roller.csv", std::vector<std::string>{"step", "time", "xc", "yc", "phi", "fx", "fy"});
+    roller_csv->add_row({Index{0}, 0.0, pose_.centre.x(), pose_.centre.y(), pose_.angle, 0.0, 0.0});
+  }
   PvdSeries series(options.out_dir / "fields.pvd");
   auto write_fields = [&](int step) {
     if (!scene_.output.vtu) return;
@@ -82,28 +170,28 @@ RunSummary Simulation::run(const RunOptions& options) {
   for (int step = 1; step <= scene_.steps.n_steps; ++step) {
     const auto t_step = Clock::now();
     int cuts = 0, iterations = 0, factorizations = 0;
-    Real residual = 0.0;
+    Increment last;
     bool ok = true;
     std::string failure;
+    Real penetration = 0.0;
     // Sub-increments of 1/2^cuts of the step; a failed sub-increment is halved again.
     Real s = step - 1;
     Real ds = 1.0;
     while (s < step - 1e-12) {
-      Increment inc = solve_increment(s, s + ds);
-      iterations += inc.report.iterations;
-      factorizations += inc.report.factorizations;
-      if (inc.report.converged()) {
-        model_->commit(inc.u);
-        last_increment_ = inc.u;
-        last_length_ = ds;
+      Increment inc = advance(s, s + ds);
+      iterations += inc.iterations;
+      factorizations += inc.factorizations;
+      if (inc.converged) {
         s += ds;
-        residual = inc.report.residual;
+        penetration = std::max(penetration, inc.max_penetration);
+        last = inc;
         continue;
       }
       if (cuts >= scene_.steps.max_cuts) {
         ok = false;
         failure = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}",
-                              step, cuts, ds, inc.report.message);
+                              step, cuts, ds, inc.message);
+        last = inc;
         break;
       }
       ++cuts;
@@ -112,9 +200,18 @@ RunSummary Simulation::run(const RunOptions& options) {
     const double wall = seconds_since(t_step);
     summary.iterations_total += iterations;
     summary.cuts_total += cuts;
+    summary.max_penetration = std::max(summary.max_penetration, penetration);
+    auto stat = [&](const char* key) {
+      const auto it = last.stats.find(key);
+      return it == last.stats.end() ? 0.0 : it->second;
+    };
+    Index n_contact = 0;
+    for (const auto& c : contact_) n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
     solver_csv.add_row({static_cast<Index>(step), step * scene_.steps.dt, static_cast<Index>(iterations),
-                        residual, static_cast<Index>(cuts), model_->n_yielded_last(),
-                        static_cast<Index>(factorizations), wall, std::string(ok ? "converged" : "failed")});
+                        last.residual, penetration, wall, static_cast<Index>(cuts), model_->n_yielded_last(),
+                        static_cast<Index>(factorizations), stat("complementarity"),
+                        stat("constraint_violation"), stat("fixed_point_iterations"), n_contact,
+                        std::string(ok ? "converged" : "failed")});
     if (!ok) {
       summary.converged = false;
       summary.message = failure;
@@ -122,20 +219,35 @@ RunSummary Simulation::run(const RunOptions& options) {
       break;
     }
     summary.steps_done = step;
+    if (scene_.roller) {
+      for (const auto& c : contact_)
+        contact_csv->add_row({static_cast<Index>(step), c.node + 1, c.position.x(), c.position.y(),
+                              c.contact.gap, c.contact.normal_force / c.tributary_length,
+                              c.contact.tangential_force / c.tributary_length,
+                              std::string(to_string(c.contact.status)), c.contact.slip});
+      const Vec2 f = roller_force();
+      roller_csv->add_row({static_cast<Index>(step), step * scene_.steps.dt, pose_.centre.x(),
+                           pose_.centre.y(), pose_.angle, f.x(), f.y()});
+    }
     if (step % scene_.output.every == 0 || step == scene_.steps.n_steps) write_fields(step);
-    if (options.progress)
+    if (options.progress) {
+      std::string contact_text;
+      if (scene_.roller)
+        contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", n_contact, penetration,
+                                   roller_force().y());
       *options.progress << fmt::format(
-          "step {:>4}/{:<4} t={:<10.4g} newton {:>2}  |r|/F {:8.2e}  cuts {}  yielded {:>5}  {:7.3f} s\n",
-          step, scene_.steps.n_steps, step * scene_.steps.dt, iterations, residual, cuts,
-          model_->n_yielded_last(), wall)
+                               "step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
+                               step, scene_.steps.n_steps, step * scene_.steps.dt, iterations, last.residual,
+                               cuts, model_->n_yielded_last(), contact_text, wall)
                         << std::flush;
+    }
   }
   summary.wall_s = seconds_since(t_start);
   if (summary.converged) summary.message = fmt::format("{} steps converged", summary.steps_done);
 
   nlohmann::json j;
   j["scene"] = scene_.name;
-  j["backend"] = "none";
+  j["backend"] = scene_.roller ? scene_.contact.backend : "none";
   j["ndof"] = model_->n_dofs();
   j["n_free_dofs"] = model_->dof_map().n_free();
   j["n_elements"] = model_->mesh().n_elements();
@@ -145,6 +257,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   j["wall_s"] = summary.wall_s;
   j["iterations_total"] = summary.iterations_total;
   j["cuts_total"] = summary.cuts_total;
+  j["max_penetration"] = summary.max_penetration;
   j["message"] = summary.message;
   std::ofstream(options.out_dir / "summary.json") << j.dump(2) << "\n";
   return summary;

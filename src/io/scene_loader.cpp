@@ -1,5 +1,6 @@
 #include "roller/io/scene_loader.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -221,12 +222,90 @@ void read_conditions(TomlSection& root, Scene& scene) {
   }
 }
 
+void read_roller(TomlSection& root, Scene& scene) {
+  auto s = root.table("roller");
+  if (!s) return;
+  RollerSpec r;
+  r.radius = s->real_or("radius", r.radius);
+  if (auto c = s->real_array("centre")) {
+    if (c->size() != 2) s->fail("centre", "expected [x, y] of the roller centre at the start [mm]");
+    r.start_centre = Vec2((*c)[0], (*c)[1]);
+  }
+  r.start_angle = s->real_or("angle", 0.0);
+  for (auto& seg : s->table_array("path")) {
+    PathSegment p;
+    const auto steps = seg.real_array("steps");
+    if (!steps || steps->size() != 2 || (*steps)[0] != std::floor((*steps)[0]) ||
+        (*steps)[1] != std::floor((*steps)[1]))
+      seg.fail("steps", "expected [first_step, last_step] (integers, 1-based, inclusive)");
+    p.first_step = static_cast<int>((*steps)[0]);
+    p.last_step = static_cast<int>((*steps)[1]);
+    p.dx = seg.real_or("dx", 0.0);
+    p.dy = seg.real_or("dy", 0.0);
+    if (const toml::node* slip = seg.node("slip")) {
+      if (slip->is_number()) {
+        p.slip_start = p.slip_end = slip->value<double>().value();
+      } else if (auto pair = seg.real_array("slip"); pair && pair->size() == 2) {
+        p.slip_start = (*pair)[0];
+        p.slip_end = (*pair)[1];
+      } else {
+        seg.fail("slip", "expected a slip ratio s = (v - omega R)/v, or [s_start, s_end]");
+      }
+    }
+    if (auto h = seg.table("harmonic")) {
+      p.harmonic_amplitude = h->real_or("amplitude", 0.0);
+      const auto wl = h->real("wavelength");
+      if (!wl || !(*wl > 0.0)) h->fail("wavelength", "expected the wavelength L_p > 0 [mm]");
+      p.harmonic_wavelength = *wl;
+      h->finish();
+    }
+    seg.finish();
+    r.path.push_back(p);
+  }
+  std::string why;
+  if (!r.is_valid(&why)) s->fail_invalid(why, {});
+  s->finish();
+  scene.roller = r;
+}
+
+void read_contact(TomlSection& root, Scene& scene) {
+  auto s = root.table("contact");
+  if (!s) return;
+  if (!scene.roller) s->fail("backend", "a [contact] table needs a [roller]");
+  ContactOptions& c = scene.contact;
+  c.backend = s->choice_or("backend", {"penalty", "ipopt"}, c.backend);
+  c.friction = s->real_or("friction", c.friction);
+  c.candidates = s->string("candidates").value_or(c.candidates);
+  if (auto p = s->table("penalty")) {
+    c.penalty.factor = p->real_or("factor", c.penalty.factor);
+    c.penalty.tangential_factor = p->real_or("tangential_factor", c.penalty.tangential_factor);
+    p->finish();
+  }
+  if (auto p = s->table("ipopt")) {
+    IpoptOptions& o = c.ipopt;
+    o.tol = p->real_or("tol", o.tol);
+    o.max_iter = static_cast<int>(p->integer_or("max_iter", o.max_iter));
+    o.mu_strategy = p->choice_or("mu_strategy", {"adaptive", "monotone"}, o.mu_strategy);
+    o.print_level = static_cast<int>(p->integer_or("print_level", o.print_level));
+    o.warm_start = p->boolean("warm_start").value_or(o.warm_start);
+    o.friction = p->choice_or("friction", {"split", "regularized"}, o.friction);
+    o.regularization = p->real_or("regularization", o.regularization);
+    o.fixed_point = p->choice_or("fixed_point", {"converge", "single"}, o.fixed_point);
+    o.fixed_point_tol = p->real_or("fixed_point_tol", o.fixed_point_tol);
+    o.fixed_point_max = static_cast<int>(p->integer_or("fixed_point_max", o.fixed_point_max));
+    p->finish();
+  }
+  std::string why;
+  if (!c.is_valid(&why)) s->fail_invalid(why, {});
+  s->finish();
+}
+
 Scene scene_from_table(const toml::table& table, const std::filesystem::path& file) {
   Scene scene;
   scene.file = file;
   TomlSection root(table, "", file);
   root.allow({"name", "title", "kinematics", "mesh", "material", "steps", "newton", "output",
-              "displacement", "load"});
+              "displacement", "load", "roller", "contact"});
   root.finish();
   scene.name = root.string("name").value_or(file.stem().string());
   scene.title = root.string("title").value_or("");
@@ -238,6 +317,8 @@ Scene scene_from_table(const toml::table& table, const std::filesystem::path& fi
   read_newton(root, scene);
   read_output(root, scene);
   read_conditions(root, scene);
+  read_roller(root, scene);
+  read_contact(root, scene);
   root.finish();
   return scene;
 }

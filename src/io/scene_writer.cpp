@@ -98,6 +98,42 @@ std::string scene_to_toml(const Scene& scene) {
   }
   if (!loads.empty()) root.insert("load", loads);
 
+  if (scene.roller) {
+    const RollerSpec& r = *scene.roller;
+    toml::table roller{{"radius", r.radius}, {"angle", r.start_angle}};
+    if (r.start_centre) roller.insert("centre", toml::array{r.start_centre->x(), r.start_centre->y()});
+    toml::array path;
+    for (const PathSegment& p : r.path) {
+      toml::table t{{"steps", toml::array{static_cast<int64_t>(p.first_step), static_cast<int64_t>(p.last_step)}},
+                    {"dx", p.dx},
+                    {"dy", p.dy},
+                    {"slip", toml::array{p.slip_start, p.slip_end}}};
+      if (p.harmonic_wavelength > 0.0)
+        t.insert("harmonic", toml::table{{"amplitude", p.harmonic_amplitude}, {"wavelength", p.harmonic_wavelength}});
+      path.push_back(t);
+    }
+    if (!path.empty()) roller.insert("path", path);
+    root.insert("roller", roller);
+    const ContactOptions& c = scene.contact;
+    const IpoptOptions& o = c.ipopt;
+    root.insert("contact",
+                toml::table{{"backend", c.backend},
+                            {"friction", c.friction},
+                            {"candidates", c.candidates},
+                            {"penalty", toml::table{{"factor", c.penalty.factor},
+                                                    {"tangential_factor", c.penalty.tangential_factor}}},
+                            {"ipopt", toml::table{{"tol", o.tol},
+                                                  {"max_iter", static_cast<int64_t>(o.max_iter)},
+                                                  {"mu_strategy", o.mu_strategy},
+                                                  {"print_level", static_cast<int64_t>(o.print_level)},
+                                                  {"warm_start", o.warm_start},
+                                                  {"friction", o.friction},
+                                                  {"regularization", o.regularization},
+                                                  {"fixed_point", o.fixed_point},
+                                                  {"fixed_point_tol", o.fixed_point_tol},
+                                                  {"fixed_point_max", static_cast<int64_t>(o.fixed_point_max)}}}});
+  }
+
   std::ostringstream out;
   out << "# Resolved scene: every value roller used, defaults included.\n" << root << "\n";
   return out.str();

@@ -138,7 +138,7 @@ Real restoring_time_step(Real density, Real h, Real lambda_min);
 // the element's shape-function space (v scalar; the same h serves each displacement component),
 // h = lambda_max(K_lap, M)^(-1/2) with K_lap the Laplacian matrix under the element's stiffness
 // quadrature and M its consistent (or row-sum lumped) mass. Square Q4 of side d: d/sqrt(24)
-// (lumped: d/sqrt(8)); right T3 with legs d: d/6. Throws NumericalError for inverted elements.
+// (lumped: d/2); right T3 with legs d: d/6 (lumped: d/3). Throws NumericalError for inverted elements.
 Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates,
                              bool lumped_mass);
 

@@ -17,6 +17,8 @@ class IncrementEnergy : public NewtonObjective {
   // max(|f_ext|, |reactions|, |internal force at the start of the increment|).
   Real force_scale(const VecX& x) override;
 
+  Index n_free() const { return model_.dof_map().n_free(); }
+  const StripModel& model() const { return model_; }
   // Full increment vector for free values x.
   VecX full_increment(const VecX& x) const;
   // Reaction forces (internal minus external) at the constrained dofs for the last evaluation.

@@ -4,10 +4,12 @@
 // a kill loses nothing already done.
 #include <filesystem>
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "roller/assembly/strip_model.hpp"
+#include "roller/contact/backend.hpp"
 #include "roller/driver/load_program.hpp"
 #include "roller/io/scene.hpp"
 
@@ -24,7 +26,17 @@ struct RunSummary {
   int iterations_total = 0;
   int cuts_total = 0;
   double wall_s = 0.0;
+  Real max_penetration = 0.0;
   std::string message;
+};
+
+// Contact result of one node at the end of a step (for output and friction history).
+struct NodeContactRecord {
+  Index node = 0;
+  Vec2 position = Vec2::Zero();
+  NodeContact contact;
+  Real tributary_length = 0.0;
+  Vec2 force = Vec2::Zero();  // force of the roller on the node [N per mm width]
 };
 
 class Simulation {
@@ -37,16 +49,37 @@ class Simulation {
   const Scene& scene() const { return scene_; }
   StripModel& model() { return *model_; }
   const StripModel& model() const { return *model_; }
+  // Roller pose at the end of the last committed increment, and the contact of that increment.
+  const RollerPose& pose() const { return pose_; }
+  const std::vector<NodeContactRecord>& contact() const { return contact_; }
+  Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
+
+  // Advances the state from s_from to s_to (scene steps, fractional) with one increment;
+  // commits and returns true on success, leaves the state untouched on failure.
+  struct Increment {
+    bool converged = false;
+    int iterations = 0;
+    int factorizations = 0;
+    Real residual = 0.0;
+    Real max_penetration = 0.0;
+    std::map<std::string, Real> stats;
+    std::string message;
+  };
+  Increment advance(Real s_from, Real s_to);
 
  private:
-  struct Increment;
-  Increment solve_increment(Real s_from, Real s_to);
+  Vec2 start_centre() const;
 
   Scene scene_;
   std::unique_ptr<StripModel> model_;
   LoadProgram loads_;
+  std::unique_ptr<ContactBackend> backend_;
+  std::vector<Index> candidate_nodes_;
   VecX last_increment_;     // last converged increment (all dofs), for the predictor
   Real last_length_ = 0.0;  // its length in steps
+  RollerPose pose_;
+  std::vector<NodeContactRecord> contact_;
+  std::map<Index, NodeContact> history_;  // committed contact per node (friction history)
 };
 
 }  // namespace roller

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "roller/contact/contact_options.hpp"
+#include "roller/contact/roller.hpp"
 #include "roller/fem/kinematics.hpp"
 #include "roller/material/material_params.hpp"
 #include "roller/mesh/strip_mesher.hpp"
@@ -49,12 +51,6 @@ struct StepControl {
   int max_cuts = 4;       // a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments
 };
 
-struct NewtonOptions {
-  int max_iterations = 30;
-  Real residual_tolerance = 1e-8;   // converged when ||r|| <= tol * force scale
-  bool line_search = true;
-  bool is_valid(std::string* why) const;
-};
 
 struct OutputOptions {
   int every = 1;          // write fields every N steps (and always the last step)
@@ -73,6 +69,8 @@ struct Scene {
   OutputOptions output;
   std::vector<DisplacementBC> displacements;
   std::vector<NodalLoad> loads;
+  std::optional<RollerSpec> roller;  // absent: no contact
+  ContactOptions contact;
 };
 
 }  // namespace roller

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "roller/core/types.hpp"
-#include "roller/io/scene.hpp"
+#include "roller/solver/newton_options.hpp"
 
 namespace roller {
 

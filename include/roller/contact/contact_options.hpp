@@ -1,0 +1,40 @@
+#pragma once
+// Options of the contact model and of the two backends (scene tables [contact],
+// [contact.penalty], [contact.ipopt]; docs/scenes.md).
+#include <string>
+
+#include "roller/core/types.hpp"
+#include "roller/solver/newton_options.hpp"
+
+namespace roller {
+
+struct PenaltyOptions {
+  Real factor = 1e3;             // kappa_N = factor * E* * l_i / h_i  (per candidate)
+  Real tangential_factor = 1.0;  // kappa_T = tangential_factor * kappa_N
+  bool is_valid(std::string* why) const;
+};
+
+struct IpoptOptions {
+  Real tol = 1e-9;               // Ipopt's tol on the scaled NLP
+  int max_iter = 500;
+  std::string mu_strategy = "adaptive";  // "adaptive" | "monotone"
+  int print_level = 0;
+  bool warm_start = false;
+  std::string friction = "split";        // "split" (v_T = s+ - s-, exact) | "regularized"
+  Real regularization = 1e-8;            // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only
+  std::string fixed_point = "converge";  // "converge" (Coulomb) | "single" (thesis's explicit variant)
+  Real fixed_point_tol = 1e-6;           // relative change of F_N that ends the fixed point
+  int fixed_point_max = 30;
+  bool is_valid(std::string* why) const;
+};
+
+struct ContactOptions {
+  std::string backend = "penalty";  // "penalty" | "ipopt"
+  Real friction = 0.0;              // Coulomb mu
+  std::string candidates = "contact";  // node set of contact candidates
+  PenaltyOptions penalty;
+  IpoptOptions ipopt;
+  bool is_valid(std::string* why) const;
+};
+
+}  // namespace roller

@@ -1,0 +1,78 @@
+#pragma once
+// One increment as both contact backends see it (DESIGN: "IncrementProblem"): the strip's
+// incremental potential over the free dofs, the contact candidates with their start-of-step
+// positions, and the roller's motion over the increment. Backends know nothing about elements
+// or time; this class knows nothing about how the increment is solved.
+//
+// Contact kinematics for candidate i with increment u_i (x_i = x_i^n + u_i, c = c^{n+1}):
+//   gap      g_i(u) = |x_i - c| - R            (exact circle; g >= 0 admissible)
+//   normal   n_i = (x_i - c) / |x_i - c|       (from the roller centre to the node)
+//   tangent  t_i = (-n_y, n_x) of the normal at the predictor, held fixed in the increment
+//   slip     s_i(u) = t_i . (u_i - dc) - R dphi   (relative tangential motion of the node against
+//            the roller's surface material point; the roller surface moves R dphi along t)
+// Forces on the strip node: F_N n_i + F_T t_i with F_N >= 0 (compression) and |F_T| <= mu F_N.
+#include <vector>
+
+#include "roller/assembly/increment_energy.hpp"
+#include "roller/contact/roller.hpp"
+
+namespace roller {
+
+struct ContactCandidate {
+  Index node = 0;
+  Index free_dof[2] = {-1, -1};  // free index of the x and y dof, -1 when prescribed
+  Vec2 position = Vec2::Zero();  // x^n, start of the increment
+  Vec2 prescribed = Vec2::Zero();// increment of prescribed components (0 for free components)
+  Vec2 tangent = Vec2::Zero();   // t_i, fixed within the increment
+  Real tributary_length = 0.0;   // surface length [mm] that node i represents (for pressures)
+  Real element_size = 0.0;       // depth of the surface element under node i [mm] (penalty scale)
+  Real tangential_force = 0.0;   // committed F_T^n of the previous increment (penalty history)
+  Real normal_force_guess = 0.0; // F_N of the previous increment / fixed-point pass (friction
+                                 // threshold mu F_N for Tresca-type inner problems)
+};
+
+struct RollerMotion {
+  Real radius = 0.0;
+  RollerPose start;
+  RollerPose end;
+  Real friction = 0.0;  // Coulomb coefficient mu
+  Vec2 dc() const { return end.centre - start.centre; }
+  Real dphi() const { return end.angle - start.angle; }
+};
+
+class IncrementProblem {
+ public:
+  IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates,
+                   RollerMotion roller, Real youngs_modulus, Real poisson_ratio);
+
+  // Strip part: Pi(x) over the free dofs, its gradient and Hessian (full symmetric storage).
+  Index n_free() const { return n_free_; }
+  Real strip_energy(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
+    return strip_.evaluate(x, gradient, hessian);
+  }
+  Real force_scale(const VecX& x) { return strip_.force_scale(x); }
+  VecX full_increment(const VecX& x) const { return strip_.full_increment(x); }
+
+  const std::vector<ContactCandidate>& candidates() const { return candidates_; }
+  std::vector<ContactCandidate>& candidates() { return candidates_; }
+  const RollerMotion& roller() const { return roller_; }
+  Real youngs_modulus() const { return youngs_modulus_; }
+  Real plane_strain_modulus() const;  // E* = E / (1 - nu^2)
+
+  // Kinematics of candidate c at free values x (see the header comment).
+  Vec2 increment(const ContactCandidate& c, const VecX& x) const;
+  Vec2 position(const ContactCandidate& c, const VecX& x) const { return c.position + increment(c, x); }
+  Real gap(const ContactCandidate& c, const VecX& x) const;
+  Vec2 normal(const ContactCandidate& c, const VecX& x) const;
+  Real slip(const ContactCandidate& c, const VecX& x) const;
+
+ private:
+  IncrementEnergy& strip_;
+  std::vector<ContactCandidate> candidates_;
+  RollerMotion roller_;
+  Real youngs_modulus_;
+  Real poisson_ratio_;
+  Index n_free_;
+};
+
+}  // namespace roller

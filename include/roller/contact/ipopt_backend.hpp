@@ -1,0 +1,21 @@
+#pragma once
+// The main backend (SPEC §1, §2.7): each increment is a nonlinear program solved by the
+// interior-point code Ipopt with MUMPS. Variables: free-dof increments (+ friction
+// auxiliaries); objective: the strip's incremental potential plus the friction dissipation;
+// constraints: the exact gaps g_i(u) >= 0. Contact forces are the constraint multipliers.
+// Ipopt types never appear in this header (the TNLP adapter lives in the .cpp).
+#include "roller/contact/backend.hpp"
+
+namespace roller {
+
+class IpoptBackend : public ContactBackend {
+ public:
+  explicit IpoptBackend(ContactOptions options);
+  std::string name() const override { return "ipopt"; }
+
+ private:
+  BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
+  ContactOptions options_;
+};
+
+}  // namespace roller

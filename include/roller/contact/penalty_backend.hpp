@@ -1,0 +1,27 @@
+#pragma once
+// The thesis's method (§4.2.1): quadratic penalty on penetration and on tangential stick slip,
+// Coulomb return map on the tangential penalty force, Newton–Raphson with the consistent
+// (unsymmetric in slip) tangent and a residual line search.
+//
+// Per candidate i with penalty stiffnesses kN = factor E* l_i / h_i, kT = tangential_factor kN:
+//   F_N = kN <-g>                                   (zero when the node is off the roller)
+//   F_T^trial = F_T^n - kT s_i                      (s_i: slip increment, F_T^n committed)
+//   stick if |F_T^trial| <= mu F_N: F_T = F_T^trial; else slip: F_T = mu F_N sign(F_T^trial)
+// so a node in contact penetrates by exactly F_N / kN = p_N h_i / (factor E*): with the default
+// factor 1e3 the penetration is 1e-3 of the elastic compression p_N h / E* of the element.
+#include "roller/contact/backend.hpp"
+
+namespace roller {
+
+class PenaltyBackend : public ContactBackend {
+ public:
+  PenaltyBackend(ContactOptions options, NewtonOptions newton);
+  std::string name() const override { return "penalty"; }
+
+ private:
+  BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
+  ContactOptions options_;
+  NewtonOptions newton_;
+};
+
+}  // namespace roller

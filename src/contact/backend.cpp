@@ -1,0 +1,104 @@
+#include "roller/contact/backend.hpp"
+
+#include <chrono>
+
+#include <fmt/format.h>
+
+#include "roller/contact/ipopt_backend.hpp"
+#include "roller/contact/penalty_backend.hpp"
+#include "roller/core/error.hpp"
+
+namespace roller {
+
+const char* to_string(ContactStatus s) {
+  switch (s) {
+    case ContactStatus::Open: return "open";
+    case ContactStatus::Stick: return "stick";
+    case ContactStatus::Slip: return "slip";
+  }
+  return "?";
+}
+
+std::string BackendResult::brief_report() const {
+  std::string s = fmt::format("{} in {} iterations, |r|/F {:.2e}, max penetration {:.2e} mm",
+                              converged() ? "converged" : "FAILED", iterations, residual, max_penetration);
+  for (const auto& [k, v] : stats) s += fmt::format(", {} {:.3g}", k, v);
+  if (!converged()) s += ": " + message;
+  return s;
+}
+
+BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
+  if (x0.size() != problem.n_free())
+    throw std::logic_error(fmt::format("{} backend: start vector has {} entries, the problem {} free dofs",
+                                       name(), x0.size(), problem.n_free()));
+  const auto t0 = std::chrono::steady_clock::now();
+  BackendResult r = do_solve(problem, x0);
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  // Nothing non-finite leaves a backend: a converged result with NaN is a failure.
+  bool finite = r.x.size() == problem.n_free() && r.x.allFinite();
+  for (const auto& c : r.contact)
+    finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) &&
+             std::isfinite(c.gap) && std::isfinite(c.slip);
+  if (!finite && r.converged()) {
+    r.status = NewtonStatus::Failure;
+    r.message = fmt::format("{} backend returned non-finite values; use smaller steps", name());
+  }
+  r.max_penetration = 0.0;
+  for (const auto& c : r.contact) r.max_penetration = std::max(r.max_penetration, -c.gap);
+  return r;
+}
+
+bool PenaltyOptions::is_valid(std::string* why) const {
+  if (!(factor > 0.0)) {
+    if (why) *why = fmt::format("contact.penalty.factor = {}: must be > 0", factor);
+    return false;
+  }
+  if (!(tangential_factor > 0.0)) {
+    if (why) *why = fmt::format("contact.penalty.tangential_factor = {}: must be > 0", tangential_factor);
+    return false;
+  }
+  return true;
+}
+
+bool IpoptOptions::is_valid(std::string* why) const {
+  auto bad = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(tol > 0.0 && tol < 1.0)) return bad(fmt::format("contact.ipopt.tol = {}: must be in (0, 1)", tol));
+  if (max_iter < 1) return bad(fmt::format("contact.ipopt.max_iter = {}: must be >= 1", max_iter));
+  if (mu_strategy != "adaptive" && mu_strategy != "monotone")
+    return bad(fmt::format("contact.ipopt.mu_strategy = \"{}\": expected \"adaptive\" or \"monotone\"", mu_strategy));
+  if (print_level < 0 || print_level > 12)
+    return bad(fmt::format("contact.ipopt.print_level = {}: expected 0..12", print_level));
+  if (friction != "split" && friction != "regularized")
+    return bad(fmt::format("contact.ipopt.friction = \"{}\": expected \"split\" or \"regularized\"", friction));
+  if (!(regularization > 0.0)) return bad(fmt::format("contact.ipopt.regularization = {}: must be > 0", regularization));
+  if (fixed_point != "converge" && fixed_point != "single")
+    return bad(fmt::format("contact.ipopt.fixed_point = \"{}\": expected \"converge\" or \"single\"", fixed_point));
+  if (!(fixed_point_tol > 0.0)) return bad(fmt::format("contact.ipopt.fixed_point_tol = {}: must be > 0", fixed_point_tol));
+  if (fixed_point_max < 1) return bad(fmt::format("contact.ipopt.fixed_point_max = {}: must be >= 1", fixed_point_max));
+  return true;
+}
+
+bool ContactOptions::is_valid(std::string* why) const {
+  if (backend != "penalty" && backend != "ipopt") {
+    if (why) *why = fmt::format("contact.backend = \"{}\": expected \"penalty\" or \"ipopt\"", backend);
+    return false;
+  }
+  if (!(friction >= 0.0 && friction <= 10.0)) {
+    if (why) *why = fmt::format("contact.friction = {}: expected 0 <= mu <= 10", friction);
+    return false;
+  }
+  return penalty.is_valid(why) && ipopt.is_valid(why);
+}
+
+std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options,
+                                                     const NewtonOptions& newton) {
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError(why);
+  if (options.backend == "ipopt") return std::make_unique<IpoptBackend>(options);
+  return std::make_unique<PenaltyBackend>(options, newton);
+}
+
+}  // namespace roller

@@ -1,0 +1,69 @@
+#include "roller/contact/contact_set.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace roller {
+
+namespace {
+
+// Surface length each node of an ordered surface chain represents: half of each adjacent edge.
+std::vector<Real> tributary_lengths(const std::vector<Vec2>& x, const std::vector<Index>& nodes) {
+  std::vector<Real> l(nodes.size(), 0.0);
+  for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
+    const Real edge = (x[nodes[k + 1]] - x[nodes[k]]).norm();
+    l[k] += 0.5 * edge;
+    l[k + 1] += 0.5 * edge;
+  }
+  return l;
+}
+
+// Depth of the surface element under each node: distance to the nearest other node of the
+// elements that contain it, measured along y (the strip's thickness direction).
+std::vector<Real> element_depths(const StripModel& model, const std::vector<Index>& nodes) {
+  const auto& x = model.reference_coordinates();
+  std::vector<Real> depth(model.mesh().n_nodes(), std::numeric_limits<Real>::infinity());
+  for (const auto& element : model.mesh().elements)
+    for (Index a : element)
+      for (Index b : element) {
+        const Real dy = std::abs(x[a].y() - x[b].y());
+        if (dy > 1e-12 * (1.0 + std::abs(x[a].y()))) depth[a] = std::min(depth[a], dy);
+      }
+  std::vector<Real> out;
+  for (Index n : nodes) out.push_back(depth[n]);
+  return out;
+}
+
+}  // namespace
+
+std::vector<ContactCandidate> make_contact_candidates(const StripModel& model,
+                                                      const std::vector<Index>& nodes,
+                                                      const VecX& prescribed, const VecX& predictor,
+                                                      const Vec2& roller_end_centre, Real radius,
+                                                      Real reach) {
+  const std::vector<Vec2> x = model.current_coordinates();
+  const std::vector<Real> lengths = tributary_lengths(x, nodes);
+  const std::vector<Real> depths = element_depths(model, nodes);
+  const DofMap& dofs = model.dof_map();
+  std::vector<ContactCandidate> out;
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const Index n = nodes[k];
+    if ((x[n] - roller_end_centre).norm() - radius > reach) continue;
+    ContactCandidate c;
+    c.node = n;
+    c.position = x[n];
+    for (int i = 0; i < 2; ++i) {
+      c.free_dof[i] = dofs.free_index(2 * n + i);
+      if (c.free_dof[i] < 0) c.prescribed(i) = prescribed(2 * n + i);
+    }
+    const Vec2 predicted = x[n] + Vec2(predictor(2 * n), predictor(2 * n + 1));
+    const Vec2 normal = (predicted - roller_end_centre).normalized();
+    c.tangent = Vec2(-normal.y(), normal.x());
+    c.tributary_length = lengths[k];
+    c.element_size = depths[k];
+    out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace roller

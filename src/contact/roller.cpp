@@ -1,0 +1,54 @@
+#include "roller/contact/roller.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace roller {
+
+bool RollerSpec::is_valid(std::string* why) const {
+  auto bad = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(radius > 0.0)) return bad(fmt::format("roller.radius = {}: must be > 0", radius));
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const PathSegment& s = path[i];
+    const std::string at = fmt::format("roller.path[{}]", i);
+    if (s.first_step < 1 || s.last_step < s.first_step)
+      return bad(fmt::format("{}.steps = [{}, {}]: expected 1 <= first <= last", at, s.first_step, s.last_step));
+    if (i > 0 && s.first_step <= path[i - 1].last_step)
+      return bad(fmt::format("{}.steps = [{}, {}]: overlaps the previous segment (ends at step {})", at,
+                             s.first_step, s.last_step, path[i - 1].last_step));
+    for (Real slip : {s.slip_start, s.slip_end})
+      if (!(slip > -1.0 && slip < 1.0))
+        return bad(fmt::format("{}.slip = {}: expected -1 < slip < 1", at, slip));
+    if (s.harmonic_wavelength < 0.0)
+      return bad(fmt::format("{}.harmonic.wavelength = {}: must be > 0", at, s.harmonic_wavelength));
+  }
+  return true;
+}
+
+RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s) {
+  RollerPose pose;
+  pose.centre = start_centre;
+  pose.angle = spec.start_angle;
+  for (const PathSegment& seg : spec.path) {
+    const Real begin = seg.first_step - 1;
+    const Real length = seg.last_step - begin;
+    if (s <= begin) break;
+    const Real f = std::min(1.0, (s - begin) / length);  // fraction of the segment done
+    const Real dx = f * seg.dx;
+    pose.centre.x() += dx;
+    pose.centre.y() += f * seg.dy;
+    // d(phi) = -dx (1 - slip)/R with the slip varying linearly over the segment: integrate.
+    const Real slip_mean = seg.slip_start + 0.5 * f * (seg.slip_end - seg.slip_start);
+    pose.angle += -dx * (1.0 - slip_mean) / spec.radius;
+    // The harmonic offset follows the travel within the segment and is held after it.
+    if (seg.harmonic_wavelength > 0.0)
+      pose.centre.y() += seg.harmonic_amplitude * std::sin(2.0 * M_PI * dx / seg.harmonic_wavelength);
+  }
+  return pose;
+}
+
+}  // namespace roller
