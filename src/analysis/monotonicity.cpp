@@ -115,7 +115,9 @@ Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_s
   switch (options.tangent) {
     case TangentKind::Elastic: tangent = elastic_matrix(material); break;
     case TangentKind::Continuum: tangent = continuum_tangent(material, stress, yield_stress); break;
-    case TangentKind::PlasticBranch: tangent = plastic_tangent(material, stress, yield_stress); break;
+    case TangentKind::PlasticBranch:
+      tangent = plastic_tangent(material, stress, yield_stress);
+      break;
   }
   Mat4 a = gradient_tangent(tangent, material.shear_modulus(), options.layout);
   if (options.initial_stress) a += initial_stress_matrix(stress);
@@ -149,8 +151,7 @@ Definiteness definiteness(const Mat4& a) {
 // ---- Dynamics --------------------------------------------------------------------------------
 
 Real mass_scale(Real density, Real h, Real dt) {
-  require(density >= 0.0 && h >= 0.0 && dt >= 0.0,
-          "mass_scale: density, h and dt must be >= 0");
+  require(density >= 0.0 && h >= 0.0 && dt >= 0.0, "mass_scale: density, h and dt must be >= 0");
   if (dt == 0.0) return 0.0;
   return density * h * h / (dt * dt);
 }
@@ -172,8 +173,7 @@ Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordina
   MatX mass(n, n);
   for (Index a = 0; a < n; ++a)
     for (Index b = 0; b < n; ++b) mass(a, b) = vector_mass(2 * a, 2 * b);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eig(laplacian, mass,
-                                                           Eigen::EigenvaluesOnly);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eig(laplacian, mass, Eigen::EigenvaluesOnly);
   if (eig.info() != Eigen::Success) {
     throw NumericalError("inverse_estimate_length: generalised eigenproblem failed");
   }
@@ -185,9 +185,10 @@ Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordina
 std::string StripMonotonicity::brief_report() const {
   const std::string mode = dt > 0.0 ? fmt::format("dt = {:.3e} s", dt) : std::string("quasistatic");
   if (n_not_pd == 0) {
-    return fmt::format("monotonicity ({}): A positive definite at all {} integration points, "
-                       "min lambda = {:.4g} MPa (element {}, point {})",
-                       mode, n_points, lambda_min, worst.element, worst.point);
+    return fmt::format(
+        "monotonicity ({}): A positive definite at all {} integration points, "
+        "min lambda = {:.4g} MPa (element {}, point {})",
+        mode, n_points, lambda_min, worst.element, worst.point);
   }
   std::string remedy;
   if (dt_restore_all > 0.0) {
@@ -196,9 +197,10 @@ std::string StripMonotonicity::brief_report() const {
   } else {
     remedy = "; no time step restores it (zero density)";
   }
-  return fmt::format("monotonicity ({}): A not positive definite at {} of {} integration points, "
-                     "min lambda = {:.4g} MPa at element {}, point {}{}",
-                     mode, n_not_pd, n_points, lambda_min, worst.element, worst.point, remedy);
+  return fmt::format(
+      "monotonicity ({}): A not positive definite at {} of {} integration points, "
+      "min lambda = {:.4g} MPa at element {}, point {}{}",
+      mode, n_not_pd, n_points, lambda_min, worst.element, worst.point, remedy);
 }
 
 StripMonotonicity check_strip(const StripModel& model, Real dt,
@@ -216,7 +218,9 @@ StripMonotonicity check_strip(const StripModel& model, Real dt,
     case InitialStressTerm::Always: op.initial_stress = true; break;
     case InitialStressTerm::Never: op.initial_stress = false; break;
   }
-  const Real rho = material.density;
+  require(options.mass_factor > 0.0, "check_strip: mass_factor must be > 0");
+  // The mass term c M/dt^2 acts as a density c rho in (3.15)-(3.18).
+  const Real rho = options.mass_factor * material.density;
 
   StripMonotonicity out;
   out.dt = dt;
@@ -249,7 +253,8 @@ StripMonotonicity check_strip(const StripModel& model, Real dt,
       }
     }
   }
-  if (out.n_not_pd > 0) out.dt_restore_worst = restoring_time_step(rho, h_worst, lambda_static_worst);
+  if (out.n_not_pd > 0)
+    out.dt_restore_worst = restoring_time_step(rho, h_worst, lambda_static_worst);
   return out;
 }
 

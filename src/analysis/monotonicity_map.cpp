@@ -94,12 +94,10 @@ std::string MapSlice::describe() const {
 }
 
 std::vector<MapSlice> thesis_slices() {
-  return {{"a", SlicePlane::AB, 0.0},    {"b", SlicePlane::AB, -5.0},
-          {"c", SlicePlane::AB, -10.0},  {"d", SlicePlane::AB, -15.0},
-          {"e", SlicePlane::AB, -20.0},  {"f", SlicePlane::AB, 10.0},
-          {"g", SlicePlane::CA, 0.0},    {"h", SlicePlane::CA, -75.0},
-          {"i", SlicePlane::CA, -105.0}, {"j", SlicePlane::CA, 105.0},
-          {"k", SlicePlane::CB, 0.0},    {"l", SlicePlane::CB, -75.0}};
+  return {{"a", SlicePlane::AB, 0.0},   {"b", SlicePlane::AB, -5.0},  {"c", SlicePlane::AB, -10.0},
+          {"d", SlicePlane::AB, -15.0}, {"e", SlicePlane::AB, -20.0}, {"f", SlicePlane::AB, 10.0},
+          {"g", SlicePlane::CA, 0.0},   {"h", SlicePlane::CA, -75.0}, {"i", SlicePlane::CA, -105.0},
+          {"j", SlicePlane::CA, 105.0}, {"k", SlicePlane::CB, 0.0},   {"l", SlicePlane::CB, -75.0}};
 }
 
 std::vector<MapPoint> sweep_slice(const MonotonicityMapOptions& options, const MapSlice& slice,
@@ -107,8 +105,8 @@ std::vector<MapPoint> sweep_slice(const MonotonicityMapOptions& options, const M
   std::string why;
   if (!options.is_valid(&why)) throw InputError("monotonicity map: " + why);
   if (n_first < 2 || n_second < 2) {
-    throw InputError(fmt::format("monotonicity slice: {} x {} points, needs >= 2 per axis",
-                                 n_first, n_second));
+    throw InputError(
+        fmt::format("monotonicity slice: {} x {} points, needs >= 2 per axis", n_first, n_second));
   }
   if (!(sigma_pl > 0.0)) {
     throw InputError(fmt::format("monotonicity slice: sigma_pl = {}, needs > 0", sigma_pl));

@@ -71,9 +71,9 @@ MonotonicityMapOptions map_options(const MonotonicityArgs& args) {
   }
   const int n_dynamic = (args.density > 0.0) + (args.dt > 0.0) + (args.h > 0.0);
   if (n_dynamic != 0 && n_dynamic != 3) {
-    throw InputError(fmt::format(
-        "--density {} --dt {} --h {}: the dynamic term needs all three > 0 (or none)",
-        args.density, args.dt, args.h));
+    throw InputError(
+        fmt::format("--density {} --dt {} --h {}: the dynamic term needs all three > 0 (or none)",
+                    args.density, args.dt, args.h));
   }
   o.mass_scale = n_dynamic == 3 ? mass_scale(args.density, args.h, args.dt) : 0.0;
   std::string why;
@@ -90,9 +90,9 @@ MonotonicityMapOptions map_options(const MonotonicityArgs& args) {
 std::string flag(bool b) { return b ? "1" : "0"; }
 
 void write_point(std::ostream& out, const MapPoint& m) {
-  out << fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", m.sigma_pl, m.p.a,
-                     m.p.b, m.p.c, m.d.lambda_min, flag(m.d.by_eigenvalue),
-                     flag(m.d.by_cholesky), flag(m.d.by_minors));
+  out << fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", m.sigma_pl, m.p.a, m.p.b,
+                     m.p.c, m.d.lambda_min, flag(m.d.by_eigenvalue), flag(m.d.by_cholesky),
+                     flag(m.d.by_minors));
 }
 
 std::ofstream open_output(const fs::path& path) {
@@ -165,29 +165,28 @@ int run_monotonicity(const MonotonicityArgs& args) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const MaterialParams material = options.material();
-  nlohmann::json meta = {
-      {"E", options.youngs_modulus},
-      {"nu", options.poisson_ratio},
-      {"E_T", options.tangent_modulus},
-      {"G", material.shear_modulus()},
-      {"H_prime", material.plastic_modulus()},
-      {"layout", to_string(options.layout)},
-      {"tau33", args.tau33},
-      {"mass_scale", options.mass_scale},
-      {"density", args.density},
-      {"dt", args.dt},
-      {"h", args.h},
-      {"sigma_range", {options.sigma.lo, options.sigma.hi}},
-      {"ab_range", {options.a.lo, options.a.hi}},
-      {"c_range", {options.c.lo, options.c.hi}},
-      {"grid", args.grid},
-      {"slice_sigma", args.slice_sigma},
-      {"slice_grid", args.slice_grid},
-      {"grid_points", grid.size()},
-      {"grid_pd", n_pd},
-      {"grid_tests_disagree", n_disagree},
-      {"seconds", seconds},
-      {"panels", panels}};
+  nlohmann::json meta = {{"E", options.youngs_modulus},
+                         {"nu", options.poisson_ratio},
+                         {"E_T", options.tangent_modulus},
+                         {"G", material.shear_modulus()},
+                         {"H_prime", material.plastic_modulus()},
+                         {"layout", to_string(options.layout)},
+                         {"tau33", args.tau33},
+                         {"mass_scale", options.mass_scale},
+                         {"density", args.density},
+                         {"dt", args.dt},
+                         {"h", args.h},
+                         {"sigma_range", {options.sigma.lo, options.sigma.hi}},
+                         {"ab_range", {options.a.lo, options.a.hi}},
+                         {"c_range", {options.c.lo, options.c.hi}},
+                         {"grid", args.grid},
+                         {"slice_sigma", args.slice_sigma},
+                         {"slice_grid", args.slice_grid},
+                         {"grid_points", grid.size()},
+                         {"grid_pd", n_pd},
+                         {"grid_tests_disagree", n_disagree},
+                         {"seconds", seconds},
+                         {"panels", panels}};
   open_output(dir / "monotonicity.json") << meta.dump(2) << "\n";
 
   std::cout << fmt::format(
@@ -229,24 +228,34 @@ Command add_monotonicity_command(CLI::App& app) {
   cmd->add_option("--nu", args->poisson_ratio, "Poisson's ratio")->capture_default_str();
   cmd->add_option("--Et", args->tangent_modulus, "tangent modulus E_T [MPa] (default E/3)");
   cmd->add_option("--sigma-range", args->sigma_range, "yield stress range lo,hi [MPa]")
-      ->delimiter(',')->expected(2)->capture_default_str();
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
   cmd->add_option("--ab-range", args->ab_range, "range lo,hi of a and b [MPa]")
-      ->delimiter(',')->expected(2)->capture_default_str();
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
   cmd->add_option("--c-range", args->c_range, "range lo,hi of c [MPa]")
-      ->delimiter(',')->expected(2)->capture_default_str();
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
   cmd->add_option("--grid", args->grid, "points per axis of the 4-D grid")
-      ->check(CLI::Range(2, 201))->capture_default_str();
+      ->check(CLI::Range(2, 201))
+      ->capture_default_str();
   cmd->add_option("--slice-sigma", args->slice_sigma,
                   "yield stress of the twelve Fig. 3.1 slices [MPa] (the thesis's s = 40)")
       ->capture_default_str();
   cmd->add_option("--slice-grid", args->slice_grid, "points per axis of the fine slices")
-      ->check(CLI::Range(2, 2001))->capture_default_str();
+      ->check(CLI::Range(2, 2001))
+      ->capture_default_str();
   cmd->add_option("--layout", args->layout,
                   "4x4 layout of C: thesis (3.4), navier (null-Lagrangian shifted), gradient (K_L)")
-      ->check(CLI::IsMember({"thesis", "navier", "gradient"}))->capture_default_str();
+      ->check(CLI::IsMember({"thesis", "navier", "gradient"}))
+      ->capture_default_str();
   cmd->add_option("--tau33", args->tau33,
                   "out-of-plane stress: zero (a = 3 s11, the thesis) or elastic (nu (t11 + t22))")
-      ->check(CLI::IsMember({"zero", "elastic"}))->capture_default_str();
+      ->check(CLI::IsMember({"zero", "elastic"}))
+      ->capture_default_str();
   cmd->add_option("--density", args->density, "rho [t/mm^3] of the dynamic term (with --dt, --h)");
   cmd->add_option("--dt", args->dt, "time step [s] of the dynamic term rho h^2/dt^2");
   cmd->add_option("--h", args->h, "inverse-estimate length h [mm] of the dynamic term");

@@ -34,11 +34,31 @@
 // So contact.ipopt.tol is a relative equilibrium tolerance (dual infeasibility / F_ref), and a
 // length tolerance in mm for gaps and complementarity (constraints are not scaled: mm).
 //
-// Status per candidate. F_tol = 1e-6 max(F_ref, max F_N) and slip_tol = 1e-6 l_step:
-//   open  if F_N <= F_tol and g > 0; otherwise stick if |slip| <= slip_tol, else slip.
+// Ipopt options (beyond contact.ipopt.*): linear_solver mumps with MUMPS's default ordering (on
+// this strip matrix it beat SCOTCH, mumps_pivot_order 3, by ~25 % in CPU at 1.3e4 and 5.2e4
+// unknowns — the opposite of the membrane prototype in notes/ipopt-on-debian.md);
+// hessian_approximation exact; bound_relax_factor 0 and honor_original_bounds yes (no
+// constraint violation left by relaxed bounds); obj_scaling_factor 1/F_ref; dual_inf_tol and
+// compl_inf_tol (Ipopt's unscaled safety checks) raised to 100 tol F_ref so that they never bind
+// before tol does; sb yes (no banner); Initialize("") so that a stray ./ipopt.opt is ignored.
+// Warm start (warm_start_init_point, mu_init and pushes 1e-6): pass 1 only when
+// contact.ipopt.warm_start (multipliers from normal_force_guess / tangential_force), every later
+// fixed-point pass always (from the previous pass; this cut the friction tests' iterations ~3x).
+// Solved_To_Acceptable_Level counts as converged and is flagged in stats["acceptable_level"].
+//
+// Status per candidate, with F_tol = 1e-6 max(F_ref, max F_N):
+//   open   if F_N <= F_tol and g > 0;
+//   stick  if |slip| <= l_step (1 - |F_T| / (mu Fbar))   (candidates with a friction term)
+//          or |slip| <= 1e-6 l_step                        (frictionless candidates);
+//   slip   otherwise.
 // Interior-point multipliers of inactive constraints are small but not zero (~ barrier / gap);
 // F_tol separates them from real contact forces, and only candidates with Fbar > F_tol carry
-// friction in the next pass. Candidates whose dofs are all prescribed get no constraint (their
+// friction in the next pass. Likewise a sticking node keeps an interior-point slip
+// ~ barrier / (mu Fbar - |F_T|) (measured ~1e-9 mm, ~1e-6 of the step, on the Cattaneo scene),
+// so a fixed slip tolerance would misread it: the slip is weighed against the step's length
+// scale times the node's distance from the Coulomb bound. A node at the bound (|F_T| = mu Fbar)
+// slips for any non-zero slip; at a converged solution |slip| (mu Fbar - |F_T|) ~ barrier, so
+// the two cases separate by many orders of magnitude. Candidates whose dofs are all prescribed get no constraint (their
 // gap cannot change); they are reported with F_N = 0 and their gap.
 //
 // strip_energy may throw NumericalError (inverted element at a trial point): eval_f/eval_grad_f
@@ -590,6 +610,15 @@ void set(Ipopt::IpoptApplication& app, const std::string& name, int value) {
     throw std::logic_error(fmt::format("ipopt backend: Ipopt rejected option {} = {}", name, value));
 }
 
+// Ipopt's warm start from a primal-dual point (notes/ipopt-on-debian.md, item 9).
+void set_warm_start(Ipopt::IpoptApplication& app, bool on) {
+  set(app, "warm_start_init_point", std::string(on ? "yes" : "no"));
+  set(app, "mu_init", on ? 1e-6 : 0.1);
+  for (const char* name : {"warm_start_bound_push", "warm_start_bound_frac", "warm_start_slack_bound_push",
+                           "warm_start_slack_bound_frac", "warm_start_mult_bound_push"})
+    set(app, name, on ? 1e-6 : 1e-3);
+}
+
 // Scales of one increment (see the header comment).
 struct Scales {
   Real force = 1.0;   // F_ref [N/mm]
@@ -638,7 +667,6 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   set(*app, "sb", std::string("yes"));
   set(*app, "print_level", o.print_level);
   set(*app, "linear_solver", std::string("mumps"));
-  set(*app, "mumps_pivot_order", 3);  // SCOTCH: fastest measured (notes/ipopt-on-debian.md)
   set(*app, "hessian_approximation", std::string("exact"));
   set(*app, "tol", o.tol);
   set(*app, "max_iter", o.max_iter);
@@ -650,17 +678,11 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   set(*app, "compl_inf_tol", std::max(1e-4, 100.0 * o.tol * scales.force));
   set(*app, "bound_relax_factor", 0.0);
   set(*app, "honor_original_bounds", std::string("yes"));
-  if (o.warm_start) {
-    set(*app, "warm_start_init_point", std::string("yes"));
-    set(*app, "mu_init", 1e-6);
-    for (const char* name : {"warm_start_bound_push", "warm_start_bound_frac", "warm_start_slack_bound_push",
-                             "warm_start_slack_bound_frac", "warm_start_mult_bound_push"})
-      set(*app, name, 1e-6);
-  }
   if (hooks.derivative_test) {
     set(*app, "derivative_test", std::string("second-order"));
     set(*app, "derivative_test_print_all", std::string("no"));
     set(*app, "derivative_test_perturbation", hooks.derivative_perturbation);
+    set(*app, "point_perturbation_radius", 0.0);  // check at x0 itself, not at a random point
     set(*app, "max_iter", 0);
   }
   if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": never read ./ipopt.opt
@@ -669,7 +691,7 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
     return result;
   }
   if (hooks.journal) {
-    Ipopt::SmartPtr<Ipopt::Journal> j = new StringJournal(hooks.journal, Ipopt::J_SUMMARY);
+    Ipopt::SmartPtr<Ipopt::Journal> j = new StringJournal(hooks.journal, Ipopt::J_WARNING);
     app->Jnlst()->AddJournal(j);
   }
 
@@ -694,6 +716,9 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
     Real fb = 0.0;
     for (Real f : fbar) fb = std::max(fb, f);
     setup = make_setup(problem, options, fbar, 1e-6 * std::max(scales.force, fb));
+    // Pass 1 warm-starts only on request (its guesses may be poor); later passes always start
+    // from the previous pass's primal-dual solution, which is close.
+    set_warm_start(*app, pass > 1 || o.warm_start);
     Ipopt::SmartPtr<ContactNlp> nlp = new ContactNlp(problem, setup, pattern, start);
     const auto t0 = std::chrono::steady_clock::now();
     const Ipopt::ApplicationReturnStatus status = app->OptimizeTNLP(GetRawPtr(nlp));
@@ -752,8 +777,7 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   Real force_scale = scales.force;
   try {
     problem.strip_energy(x, &gradient, nullptr);
-    const Real fs = problem.force_scale(x);
-    if (fs > 0.0) force_scale = fs;
+    force_scale = std::max(problem.force_scale(x), scales.force);
   } catch (const NumericalError& error) {
     result.status = NewtonStatus::Failure;
     result.message = fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", error.what());
@@ -763,6 +787,8 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   for (std::size_t i = 0; i < n_c; ++i) fn_max = std::max(fn_max, last.normal[i]);
   const Real force_tol = 1e-6 * std::max(scales.force, fn_max);
   const Real slip_tol = 1e-6 * scales.length;
+  std::vector<bool> has_friction(n_c, false);
+  for (const int i : setup.friction) has_friction[i] = true;
   Real complementarity = 0.0, violation = 0.0;
   VecX r = gradient;
   for (std::size_t i = 0; i < n_c; ++i) {
@@ -772,8 +798,16 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
     nc.tangential_force = last.tangential[i];
     nc.gap = problem.gap(c, x);
     nc.slip = problem.slip(c, x);
-    if (nc.normal_force <= force_tol && nc.gap > 0.0) nc.status = ContactStatus::Open;
-    else nc.status = std::abs(nc.slip) <= slip_tol ? ContactStatus::Stick : ContactStatus::Slip;
+    if (nc.normal_force <= force_tol && nc.gap > 0.0) {
+      nc.status = ContactStatus::Open;
+    } else {
+      Real tol = slip_tol;
+      if (has_friction[i]) {
+        const Real bound = mu * setup.fbar[i];
+        tol = scales.length * std::max(0.0, 1.0 - std::abs(nc.tangential_force) / bound);
+      }
+      nc.status = std::abs(nc.slip) <= tol ? ContactStatus::Stick : ContactStatus::Slip;
+    }
     const Vec2 f = nc.normal_force * problem.normal(c, x) + nc.tangential_force * c.tangent;
     for (int k = 0; k < 2; ++k)
       if (c.free_dof[k] >= 0) r(c.free_dof[k]) -= f(k);

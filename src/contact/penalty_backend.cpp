@@ -1,5 +1,6 @@
 #include "roller/contact/penalty_backend.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,9 +14,7 @@ namespace roller {
 
 namespace {
 
-struct Stiffness {
-  Real normal, tangential;
-};
+using Stiffness = PenaltyBackend::Stiffness;
 
 // Contact forces of candidate c at x and, optionally, the 2x2 tangent block d(-f)/du of the
 // force f = F_N n + F_T t acting on the node.
@@ -117,16 +116,14 @@ bool solve_linear(const Evaluation& e, VecX& d) {
 PenaltyBackend::PenaltyBackend(ContactOptions options, NewtonOptions newton)
     : options_(std::move(options)), newton_(newton) {}
 
-BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0) {
+// One Newton solve at fixed penalty stiffnesses, from x (updated in place).
+BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k,
+                                           VecX& x, Real tolerance) const {
   BackendResult result;
-  std::vector<Stiffness> k;
-  const Real e_star = problem.plane_strain_modulus();
-  for (const auto& c : problem.candidates()) {
-    const Real kn = options_.penalty.factor * e_star * c.tributary_length / c.element_size;
-    k.push_back({kn, options_.penalty.tangential_factor * kn});
-  }
-  VecX x = x0, d, x_trial;
+  VecX d, x_trial;
   Evaluation e, trial;
+  int full_steps = 0;  // consecutive full steps taken without a residual decrease
+  constexpr int kMaxFullSteps = 5;
   try {
     evaluate(problem, k, x, true, e);
   } catch (const NumericalError& err) {
@@ -135,14 +132,13 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   }
   for (int it = 0;; ++it) {
     const Real rnorm = e.residual.norm();
-    if (std::getenv("ROLLER_DEBUG")) { int nc = 0; for (auto& c : e.contact) nc += c.status != ContactStatus::Open; fmt::print("  it {} r {:.3e} scale {:.3e} contact {}\n", it, rnorm, e.scale, nc); }
     result.iterations = it;
     result.residual = rnorm / std::max(e.scale, 1e-300);
     if (!std::isfinite(rnorm)) {
       result.message = "the residual is not finite: the increment diverged; use smaller steps";
       return result;
     }
-    if (result.residual <= newton_.residual_tolerance || rnorm <= e.roundoff_floor) {
+    if (result.residual <= tolerance || rnorm <= e.roundoff_floor) {
       result.status = NewtonStatus::Converged;
       break;
     }
@@ -160,26 +156,33 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
                        "mechanism); check the boundary conditions";
       return result;
     }
-    // Backtracking on ||r||; the contact set can change along the step, so no energy exists
-    // to backtrack on once friction slips.
+    // Backtracking on ||r||: once friction slips no energy exists to backtrack on.
     Real alpha = 1.0;
     bool accepted = false;
-    for (int ls = 0; ls < 12; ++ls, alpha *= 0.5) {
+    for (int ls = 0; ls < 20 && !accepted; ++ls, alpha *= 0.5) {
       x_trial = x + alpha * d;
       try {
         evaluate(problem, k, x_trial, false, trial);
       } catch (const NumericalError&) {
         continue;
       }
-      if (!newton_.line_search || trial.residual.norm() <= (1.0 - 1e-4 * alpha) * rnorm) {
-        accepted = true;
-        break;
-      }
+      accepted = !newton_.line_search || trial.residual.norm() <= (1.0 - 1e-4 * alpha) * rnorm;
     }
     if (!accepted) {
-      // No decrease along the Newton direction: take a short step anyway; the iteration limit
-      // bounds the cost and the failure is reported if it never recovers.
-      x_trial = x + 1e-2 * d;
+      // No decrease of ||r|| along d: the contact/stick/slip state changes along the step and
+      // ||r|| is not a reliable merit there. Take the full Newton step (a semismooth Newton
+      // step), at most a few times in a row; the iteration limit bounds the rest.
+      if (++full_steps > kMaxFullSteps) {
+        result.status = NewtonStatus::NotConverged;
+        result.message = fmt::format(
+            "penalty Newton: the line search found no decrease of the residual (|r|/F = {:.2e}); "
+            "use smaller steps, a smaller contact.penalty.factor, or the ipopt backend",
+            result.residual);
+        break;
+      }
+      x_trial = x + d;
+    } else {
+      full_steps = 0;
     }
     x = x_trial;
     try {
@@ -192,6 +195,40 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   result.x = x;
   result.contact = e.contact;
   return result;
+}
+
+BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0) {
+  // Penalty staging (measured: a Newton at a high penalty chatters between contact/stick/slip
+  // states): solve at a soft penalty first and raise it by 100 per stage up to the target, each
+  // stage starting from the previous solution. Intermediate stages stop at a looser tolerance.
+  const Real e_star = problem.plane_strain_modulus();
+  const Real target = options_.penalty.factor;
+  std::vector<Real> factors{target};
+  while (factors.back() > 10.0 * kFirstStageFactor) factors.push_back(factors.back() / 100.0);
+  std::reverse(factors.begin(), factors.end());
+
+  VecX x = x0;
+  BackendResult total;
+  for (std::size_t stage = 0; stage < factors.size(); ++stage) {
+    std::vector<Stiffness> k;
+    for (const auto& c : problem.candidates()) {
+      const Real kn = factors[stage] * e_star * c.tributary_length / c.element_size;
+      k.push_back({kn, options_.penalty.tangential_factor * kn});
+    }
+    const bool last = stage + 1 == factors.size();
+    BackendResult r = newton_stage(problem, k, x, last ? newton_.residual_tolerance
+                                                      : std::max(1e-6, newton_.residual_tolerance));
+    r.iterations += total.iterations;
+    r.factorizations += total.factorizations;
+    r.stats["penalty_stages"] = static_cast<Real>(stage + 1);
+    total = std::move(r);
+    if (!total.converged()) {
+      total.message = fmt::format("stage {} of {} (penalty factor {:.3g}): {}", stage + 1, factors.size(),
+                                  factors[stage], total.message);
+      return total;
+    }
+  }
+  return total;
 }
 
 }  // namespace roller

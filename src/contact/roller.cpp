@@ -21,8 +21,9 @@ bool RollerSpec::is_valid(std::string* why) const {
       return bad(fmt::format("{}.steps = [{}, {}]: overlaps the previous segment (ends at step {})", at,
                              s.first_step, s.last_step, path[i - 1].last_step));
     for (Real slip : {s.slip_start, s.slip_end})
-      if (!(slip > -1.0 && slip < 1.0))
-        return bad(fmt::format("{}.slip = {}: expected -1 < slip < 1", at, slip));
+      if (!(slip >= -1.0 && slip <= 1.0))
+        return bad(fmt::format("{}.slip = {}: expected -1 <= slip <= 1 (1: the roller slides "
+                               "without turning)", at, slip));
     if (s.harmonic_wavelength < 0.0)
       return bad(fmt::format("{}.harmonic.wavelength = {}: must be > 0", at, s.harmonic_wavelength));
   }

@@ -125,6 +125,7 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
       rec.position = c.position + Vec2(u(2 * c.node), u(2 * c.node + 1));
       rec.contact = nc;
       rec.tributary_length = c.tributary_length;
+      rec.element_size = c.element_size;
       const Vec2 n = (rec.position - pose_.centre).normalized();
       rec.force = nc.normal_force * n + nc.tangential_force * c.tangent;
       contact_.push_back(rec);
@@ -132,6 +133,33 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     }
   }
   return inc;
+}
+
+Simulation::StepResult Simulation::advance_step(int step) {
+  StepResult res;
+  // Sub-increments of 1/2^cuts of the step; a failed sub-increment is halved again.
+  Real s = step - 1;
+  Real ds = 1.0;
+  while (s < step - 1e-12) {
+    Increment inc = advance(s, s + ds);
+    res.iterations += inc.iterations;
+    res.factorizations += inc.factorizations;
+    res.last = inc;
+    if (inc.converged) {
+      s += ds;
+      res.max_penetration = std::max(res.max_penetration, inc.max_penetration);
+      continue;
+    }
+    if (res.cuts >= scene_.steps.max_cuts) {
+      res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}", step,
+                                res.cuts, ds, inc.message);
+      return res;
+    }
+    ++res.cuts;
+    ds *= 0.5;
+  }
+  res.converged = true;
+  return res;
 }
 
 RunSummary Simulation::run(const RunOptions& options) {
@@ -169,34 +197,12 @@ RunSummary Simulation::run(const RunOptions& options) {
   summary.converged = true;
   for (int step = 1; step <= scene_.steps.n_steps; ++step) {
     const auto t_step = Clock::now();
-    int cuts = 0, iterations = 0, factorizations = 0;
-    Increment last;
-    bool ok = true;
-    std::string failure;
-    Real penetration = 0.0;
-    // Sub-increments of 1/2^cuts of the step; a failed sub-increment is halved again.
-    Real s = step - 1;
-    Real ds = 1.0;
-    while (s < step - 1e-12) {
-      Increment inc = advance(s, s + ds);
-      iterations += inc.iterations;
-      factorizations += inc.factorizations;
-      if (inc.converged) {
-        s += ds;
-        penetration = std::max(penetration, inc.max_penetration);
-        last = inc;
-        continue;
-      }
-      if (cuts >= scene_.steps.max_cuts) {
-        ok = false;
-        failure = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}",
-                              step, cuts, ds, inc.message);
-        last = inc;
-        break;
-      }
-      ++cuts;
-      ds *= 0.5;
-    }
+    const StepResult res = advance_step(step);
+    const Increment& last = res.last;
+    const bool ok = res.converged;
+    const int cuts = res.cuts, iterations = res.iterations, factorizations = res.factorizations;
+    const Real penetration = res.max_penetration;
+    const std::string& failure = res.message;
     const double wall = seconds_since(t_step);
     summary.iterations_total += iterations;
     summary.cuts_total += cuts;

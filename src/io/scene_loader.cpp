@@ -149,6 +149,11 @@ NodeSelector read_selector(TomlSection& s) {
   if (!n) s.fail("nodes", "required: a node set name (\"top\", \"left\", ...) or thesis node numbers [5, 101]");
   if (auto name = n->value_exact<std::string>()) {
     sel.set_name = *name;
+  } else if (auto t = s.table("nodes")) {
+    const auto p = t->real_array("near");
+    if (!p || p->size() != 2) t->fail("near", "expected { near = [x, y] }: the node nearest to that point");
+    sel.near = Vec2((*p)[0], (*p)[1]);
+    t->finish();
   } else if (const toml::array* arr = n->as_array()) {
     for (const auto& item : *arr) {
       auto i = item.value_exact<int64_t>();
@@ -157,7 +162,7 @@ NodeSelector read_selector(TomlSection& s) {
     }
     if (sel.numbers.empty()) s.fail("nodes", "the node list is empty");
   } else {
-    s.fail("nodes", "expected a node set name or an array of node numbers");
+    s.fail("nodes", "expected a node set name, an array of node numbers, or { near = [x, y] }");
   }
   return sel;
 }
@@ -355,6 +360,12 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<SceneOverr
 
 std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
                                  const std::string& context) {
+  if (selector.near) {
+    Index best = 0;
+    for (Index a = 1; a < mesh.n_nodes(); ++a)
+      if ((mesh.nodes[a] - *selector.near).norm() < (mesh.nodes[best] - *selector.near).norm()) best = a;
+    return {best};
+  }
   if (selector.numbers.empty()) {
     try {
       return mesh.node_set(selector.set_name);
@@ -374,6 +385,7 @@ std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
 }
 
 std::string NodeSelector::describe() const {
+  if (near) return fmt::format("the node nearest to ({}, {})", near->x(), near->y());
   if (numbers.empty()) return fmt::format("set '{}'", set_name);
   return fmt::format("nodes [{}]", fmt::join(numbers, ", "));
 }

@@ -21,7 +21,9 @@ toml::table ramp_table(const Ramp& r) {
 }
 
 void put_selector(toml::table& t, const NodeSelector& s) {
-  if (s.numbers.empty()) {
+  if (s.near) {
+    t.insert("nodes", toml::table{{"near", toml::array{s.near->x(), s.near->y()}}});
+  } else if (s.numbers.empty()) {
     t.insert("nodes", s.set_name);
   } else {
     toml::array a;

@@ -75,8 +75,8 @@ NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOp
                        "of monotonicity); check the boundary conditions or use smaller steps";
       return report;
     }
-    // Backtracking on Pi (Armijo); the full step is also accepted when it lowers the residual,
-    // because near the solution Pi changes only at round-off level.
+    // Backtracking on Pi (Armijo). Near the solution Pi changes only at round-off level, so a
+    // full step that halves the residual without raising Pi beyond round-off is accepted too.
     Real alpha = 1.0;
     const Real slope = g.dot(d);
     bool accepted = false;
@@ -85,7 +85,8 @@ NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOp
       try {
         const Real pi_trial = objective.evaluate(x_trial, &g_trial, nullptr);
         const bool armijo = pi_trial <= pi + 1e-4 * alpha * slope;
-        const bool residual_drop = alpha == 1.0 && g_trial.norm() < gnorm;
+        const bool residual_drop = alpha == 1.0 && g_trial.norm() < 0.5 * gnorm &&
+                                   pi_trial <= pi + 1e-12 * std::abs(pi);
         accepted = !options.line_search || armijo || residual_drop;
         if (accepted) pi = pi_trial;
       } catch (const NumericalError&) {

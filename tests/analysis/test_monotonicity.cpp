@@ -111,8 +111,8 @@ TEST_CASE("C in the thesis layout is E/(1+nu) [S_nu - beta D S* D], D = diag(a, 
     const Mat4 d = Vec4(t.a, t.b, t.c, t.c).asDiagonal();
     const Mat4 expected =
         2.0 * g * (thesis_elastic_split(p.poisson_ratio) - beta * d * thesis_plastic_pattern() * d);
-    const Mat4 c = operator_a(p, stress, sigma,
-                              layout_only(GradientLayout::Thesis, TangentKind::PlasticBranch, false));
+    const Mat4 c = operator_a(
+        p, stress, sigma, layout_only(GradientLayout::Thesis, TangentKind::PlasticBranch, false));
     CHECK((c - expected).norm() < 1e-10 * expected.norm());
   }
 }
@@ -122,7 +122,8 @@ TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenv
   const MaterialParams p = elastic_steel();
   const Real g = p.shear_modulus(), lambda = p.lame_lambda(), nu = p.poisson_ratio;
   const auto eig = [&](GradientLayout layout, const Vec4& stress) {
-    return sorted_eigenvalues(operator_a(p, stress, 0.0, layout_only(layout, TangentKind::Continuum)));
+    return sorted_eigenvalues(
+        operator_a(p, stress, 0.0, layout_only(layout, TangentKind::Continuum)));
   };
   const Vec4 zero = Vec4::Zero();
   SECTION("thesis (3.10): 2G {1/2, 1/2, 1, 1/(1-2nu)}, positive definite") {
@@ -145,7 +146,8 @@ TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenv
     CHECK(ev(1) == Approx(2 * g));
     CHECK(ev(2) == Approx(2 * g));
     CHECK(ev(3) == Approx(2 * g / (1 - 2 * nu)));
-    const Mat4 c = operator_a(p, zero, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
+    const Mat4 c =
+        operator_a(p, zero, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
     CHECK((c * Vec4(0, 0, 1, -1)).norm() < 1e-10 * g);
     CHECK_FALSE(definiteness(c).positive_definite());
   }
@@ -153,8 +155,8 @@ TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenv
     for (Real pr : {-500.0, 300.0}) {
       const Vec4 stress(pr, pr, 0.6 * pr, 0.0);
       CHECK(eig(GradientLayout::Thesis, stress)(0) == Approx(g + pr));
-      CHECK(definiteness(operator_a(p, stress, 0.0, layout_only(GradientLayout::Thesis,
-                                                                 TangentKind::Elastic)))
+      CHECK(definiteness(operator_a(p, stress, 0.0,
+                                    layout_only(GradientLayout::Thesis, TangentKind::Elastic)))
                 .positive_definite());
     }
   }
@@ -205,20 +207,21 @@ TEST_CASE("the gradient layout of A is the integrand of the element stiffness K_
     bg(2, 2 * a) = dn(a, 1);      // u1,2
     bg(3, 2 * a + 1) = dn(a, 0);  // u2,1
   }
-  const Mat4 a = operator_a(p, state.stress, 0.0,
-                            layout_only(GradientLayout::Gradient, TangentKind::Elastic));
+  const Mat4 a =
+      operator_a(p, state.stress, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
   const Eigen::Matrix<Real, 6, 6> expected = geometry[0].weight * bg.transpose() * a * bg;
   CHECK((out.tangent - expected).norm() < 1e-10 * expected.norm());
   // The thesis layout is not: it differs in the shear block.
-  const Mat4 a_thesis = operator_a(p, state.stress, 0.0,
-                                   layout_only(GradientLayout::Thesis, TangentKind::Elastic));
+  const Mat4 a_thesis =
+      operator_a(p, state.stress, 0.0, layout_only(GradientLayout::Thesis, TangentKind::Elastic));
   CHECK((out.tangent - geometry[0].weight * bg.transpose() * a_thesis * bg).norm() >
         1e-3 * expected.norm());
 }
 
-TEST_CASE("the navier layout integrates to the gradient layout for displacements vanishing on "
-          "the boundary (a null Lagrangian)",
-          "[monotonicity]") {
+TEST_CASE(
+    "the navier layout integrates to the gradient layout for displacements vanishing on "
+    "the boundary (a null Lagrangian)",
+    "[monotonicity]") {
   StripMeshSpec spec;
   spec.element = ElementType::T3;
   spec.length = 3.0;
@@ -270,8 +273,8 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
     for (int k = 0; k < 200; ++k) {
       const Real sigma = sig(rng);
       const Vec4 stress = on_yield_surface(mean(rng), Vec4(u(rng), u(rng), u(rng), u(rng)), sigma);
-      const Mat4 c = operator_a(p, stress, sigma,
-                                layout_only(GradientLayout::Gradient, TangentKind::Continuum, false));
+      const Mat4 c = operator_a(
+          p, stress, sigma, layout_only(GradientLayout::Gradient, TangentKind::Continuum, false));
       CHECK((c * rotation).norm() < 1e-9 * c.norm());
       CHECK(definiteness(c + g * rotation * rotation.transpose()).positive_definite());
     }
@@ -284,8 +287,8 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
       const Vec4 stress = on_yield_surface(mean(rng), Vec4(u(rng), u(rng), u(rng), u(rng)), sigma);
       const Vec4 s = deviator(stress);
       const Real beta = 1.5 / (sigma * sigma * alpha);
-      const Real q = beta * ((1 - nu) * (s(0) * s(0) + s(1) * s(1)) - 2 * nu * s(0) * s(1) +
-                             4 * s(3) * s(3));
+      const Real q =
+          beta * ((1 - nu) * (s(0) * s(0) + s(1) * s(1)) - 2 * nu * s(0) * s(1) + 4 * s(3) * s(3));
       if (std::abs(q - 1.0) < 1e-6) continue;
       const Mat4 c = operator_a(p, stress, sigma,
                                 layout_only(GradientLayout::Thesis, TangentKind::Continuum, false));
@@ -295,8 +298,8 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
       Vec4 normal = stress;
       normal(3) = 0.0;
       normal = on_yield_surface(mean(rng), normal, sigma);
-      CHECK(definiteness(operator_a(p, normal, sigma, layout_only(GradientLayout::Thesis,
-                                                                  TangentKind::Continuum)))
+      CHECK(definiteness(operator_a(p, normal, sigma,
+                                    layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
                 .positive_definite());
     }
     CHECK(n_pd > 50);
@@ -305,8 +308,8 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
   SECTION("the thesis layout at pure shear on the surface: PD iff H' > 3G (alpha > 2)") {
     const Vec4 shear = on_yield_surface(0.0, Vec4(0, 0, 0, 1), 40.0);
     const auto pd = [&](const MaterialParams& m) {
-      return definiteness(operator_a(m, shear, 40.0, layout_only(GradientLayout::Thesis,
-                                                                  TangentKind::Continuum)))
+      return definiteness(operator_a(m, shear, 40.0,
+                                     layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
           .positive_definite();
     };
     CHECK_FALSE(pd(steel(1.0 / 3.0)));  // H'/3G = 0.43
@@ -314,9 +317,10 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
   }
 }
 
-TEST_CASE("E_T = 0: singular in the flow direction, made PD by rho h^2/dt^2 below the (3.18) "
-          "time step",
-          "[monotonicity]") {
+TEST_CASE(
+    "E_T = 0: singular in the flow direction, made PD by rho h^2/dt^2 below the (3.18) "
+    "time step",
+    "[monotonicity]") {
   const MaterialParams perfect = steel(0.0);
   const Real sigma = 50.0;
   // Deviator along [1, -1, 0, 0] (s12 = 0), in-plane mean stress -100 MPa.
@@ -326,7 +330,8 @@ TEST_CASE("E_T = 0: singular in the flow direction, made PD by rho h^2/dt^2 belo
   // layout's null Lagrangian gives it -G (see "frame" below).
   for (GradientLayout layout : {GradientLayout::Thesis, GradientLayout::Gradient}) {
     INFO("layout " << to_string(layout));
-    const Mat4 c = operator_a(perfect, stress, sigma, layout_only(layout, TangentKind::Continuum, false));
+    const Mat4 c =
+        operator_a(perfect, stress, sigma, layout_only(layout, TangentKind::Continuum, false));
     CHECK((c * flow).norm() < 1e-9 * c.norm());
     const Mat4 a = operator_a(perfect, stress, sigma, layout_only(layout, TangentKind::Continuum));
     const Definiteness d = definiteness(a);
@@ -384,9 +389,10 @@ TEST_CASE("inverse-estimate length: d/sqrt(24) for a square Q4, d/6 for a right 
   }
 }
 
-TEST_CASE("frame: the navier and gradient layouts are invariant under a rotation of the axes, "
-          "the thesis layout is not",
-          "[monotonicity]") {
+TEST_CASE(
+    "frame: the navier and gradient layouts are invariant under a rotation of the axes, "
+    "the thesis layout is not",
+    "[monotonicity]") {
   const MaterialParams p = steel();
   std::mt19937 rng(17);
   std::uniform_real_distribution<Real> u(-1, 1), angle(0.1, 3.0);
@@ -550,7 +556,9 @@ TEST_CASE("check_strip flags a large compressive initial stress; a small dt rest
   CHECK(second.not_pd.size() == static_cast<std::size_t>(second.n_points));
   // T = t11 I: lambda_min = G + t11 in the thesis layout.
   CHECK(second.lambda_min == Approx(g + s(0)).epsilon(1e-8));
-  CHECK(second.dt_restore_worst > 0.0);
+  // (3.18) with Houbolt's 2M/dt^2 on the squeezed unit squares (side 0.8^2 mm, h = side/sqrt(24)).
+  CHECK(second.dt_restore_worst ==
+        Approx(0.64 / std::sqrt(24.0) * std::sqrt(2.0 * 7.8e-9 / -(g + s(0)))).epsilon(1e-8));
   CHECK(second.dt_restore_all <= second.dt_restore_worst);
   CHECK(second.brief_report().find("not positive definite") != std::string::npos);
 
@@ -608,7 +616,8 @@ TEST_CASE("is_positive_definite: sparse LDL^T, inertia from the pivots", "[monot
   CHECK_FALSE(is_positive_definite(SparseMatrix(-1.0 * hessian)));
 }
 
-TEST_CASE("roller monotonicity writes the grid, the slices and the summary", "[monotonicity][cli]") {
+TEST_CASE("roller monotonicity writes the grid, the slices and the summary",
+          "[monotonicity][cli]") {
   namespace fs = std::filesystem;
   const fs::path out = fs::temp_directory_path() / "roller_test_monotonicity";
   fs::remove_all(out);

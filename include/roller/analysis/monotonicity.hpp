@@ -110,11 +110,11 @@ Mat4 operator_a_algorithmic(const MaterialParams& material, const MaterialState&
 // ---- Positive definiteness -----------------------------------------------------------------
 
 struct Definiteness {
-  Real lambda_min = 0.0;           // smallest eigenvalue
+  Real lambda_min = 0.0;               // smallest eigenvalue
   Vec4 leading_minors = Vec4::Zero();  // det of the leading k x k blocks, k = 1..4
-  bool by_eigenvalue = false;      // lambda_min > 0
-  bool by_cholesky = false;        // LLT succeeds
-  bool by_minors = false;          // Sylvester (Theorem 3.1): every leading minor > 0
+  bool by_eigenvalue = false;          // lambda_min > 0
+  bool by_cholesky = false;            // LLT succeeds
+  bool by_minors = false;              // Sylvester (Theorem 3.1): every leading minor > 0
   bool positive_definite() const { return by_eigenvalue; }
   bool consistent() const { return by_eigenvalue == by_cholesky && by_eigenvalue == by_minors; }
 };
@@ -138,7 +138,8 @@ Real restoring_time_step(Real density, Real h, Real lambda_min);
 // the element's shape-function space (v scalar; the same h serves each displacement component),
 // h = lambda_max(K_lap, M)^(-1/2) with K_lap the Laplacian matrix under the element's stiffness
 // quadrature and M its consistent (or row-sum lumped) mass. Square Q4 of side d: d/sqrt(24)
-// (lumped: d/2); right T3 with legs d: d/6 (lumped: d/3). Throws NumericalError for inverted elements.
+// (lumped: d/2); right T3 with legs d: d/6 (lumped: d/3). Throws NumericalError for inverted
+// elements.
 Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates,
                              bool lumped_mass);
 
@@ -159,15 +160,18 @@ struct StripMonotonicityOptions {
   GradientLayout layout = GradientLayout::Thesis;
   InitialStressTerm initial_stress = InitialStressTerm::FollowKinematics;
   bool lumped_mass = false;  // the mass matrix the time integrator uses (sets h)
+  // c in K_eff = K + c M/dt^2: Houbolt's effective stiffness (4.17) has c = 2 (SPEC §2.6); the
+  // thesis's (3.1) writes c = 1.
+  Real mass_factor = 2.0;
 };
 
 struct StripMonotonicity {
-  Real dt = 0.0;                  // the time step checked (0 = quasistatic)
-  Index n_points = 0;             // integration points checked
-  Index n_not_pd = 0;             // points where A (+ rho h^2/dt^2 I) is not positive definite
+  Real dt = 0.0;                   // the time step checked (0 = quasistatic)
+  Index n_points = 0;              // integration points checked
+  Index n_not_pd = 0;              // points where A (+ rho h^2/dt^2 I) is not positive definite
   std::vector<PointIndex> not_pd;  // their (element, point) indices
   Real lambda_min = std::numeric_limits<Real>::infinity();  // smallest eigenvalue [MPa]
-  PointIndex worst;               // where lambda_min occurs
+  PointIndex worst;                                         // where lambda_min occurs
   // (3.18) from the static lambda_min (without the mass term): the time step below which the
   // worst point, resp. every flagged point, becomes positive definite. +inf when nothing is
   // flagged; 0 when the density is 0 (no time step helps: quasistatic strip).
@@ -179,7 +183,8 @@ struct StripMonotonicity {
 
 // Checks A at every integration point of the committed state: stress and yield stress of the
 // state, continuum tangent, h per element from the start-of-increment configuration, density
-// from the material. dt = 0 checks the quasistatic operator. Q4 B-bar replaces the volumetric
+// from the material; the dynamic term is mass_factor rho h^2/dt^2 and the restoring time steps
+// are h sqrt(mass_factor rho / -lambda_min). dt = 0 checks the quasistatic operator. Q4 B-bar replaces the volumetric
 // strain by its element average; the pointwise A ignores that (a standard-Q4 view).
 StripMonotonicity check_strip(const StripModel& model, Real dt,
                               const StripMonotonicityOptions& options = {});

@@ -23,16 +23,16 @@ struct GridAxis {
 };
 
 struct MonotonicityMapOptions {
-  Real youngs_modulus = 2.1e5;               // E [MPa]
-  Real poisson_ratio = 0.3;                  // nu
-  Real tangent_modulus = 2.1e5 / 3.0;        // E_T [MPa], 0 <= E_T < E
-  GridAxis sigma{5.0, 105.0, 21};            // sigma_pl [MPa], > 0
-  GridAxis a{-150.0, 150.0, 21};             // a = 2 t11 - t22 [MPa]
-  GridAxis b{-150.0, 150.0, 21};             // b = 2 t22 - t11 [MPa]
-  GridAxis c{-50.0, 50.0, 21};               // c = t12 [MPa]
+  Real youngs_modulus = 2.1e5;         // E [MPa]
+  Real poisson_ratio = 0.3;            // nu
+  Real tangent_modulus = 2.1e5 / 3.0;  // E_T [MPa], 0 <= E_T < E
+  GridAxis sigma{5.0, 105.0, 21};      // sigma_pl [MPa], > 0
+  GridAxis a{-150.0, 150.0, 21};       // a = 2 t11 - t22 [MPa]
+  GridAxis b{-150.0, 150.0, 21};       // b = 2 t22 - t11 [MPa]
+  GridAxis c{-50.0, 50.0, 21};         // c = t12 [MPa]
   GradientLayout layout = GradientLayout::Thesis;
   OutOfPlaneStress out_of_plane = OutOfPlaneStress::Zero;
-  Real mass_scale = 0.0;                     // rho h^2/dt^2 [MPa]; 0 = quasistatic
+  Real mass_scale = 0.0;  // rho h^2/dt^2 [MPa]; 0 = quasistatic
 
   // The material of the study (plastic, yield stress sigma.lo; the sweep sets sigma_pl itself).
   MaterialParams material() const;
@@ -61,7 +61,7 @@ enum class SlicePlane { AB, CA, CB };
 struct MapSlice {
   std::string id;  // thesis panel letter, "a" ... "l"
   SlicePlane plane;
-  Real fixed;      // value of the third parameter [MPa]
+  Real fixed;                    // value of the third parameter [MPa]
   std::string describe() const;  // e.g. "(a,b) plane, c = -5 MPa"
 };
 

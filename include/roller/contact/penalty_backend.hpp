@@ -9,6 +9,8 @@
 //   stick if |F_T^trial| <= mu F_N: F_T = F_T^trial; else slip: F_T = mu F_N sign(F_T^trial)
 // so a node in contact penetrates by exactly F_N / kN = p_N h_i / (factor E*): with the default
 // factor 1e3 the penetration is 1e-3 of the elastic compression p_N h / E* of the element.
+// The penalty is raised in stages (factor 10, 1e3, 1e5, ... up to the target, each stage started
+// from the previous solution), which keeps Newton from chattering between contact states.
 #include "roller/contact/backend.hpp"
 
 namespace roller {
@@ -18,7 +20,14 @@ class PenaltyBackend : public ContactBackend {
   PenaltyBackend(ContactOptions options, NewtonOptions newton);
   std::string name() const override { return "penalty"; }
 
+  struct Stiffness {
+    Real normal, tangential;  // kN, kT of one candidate [N/mm per mm width]
+  };
+  static constexpr Real kFirstStageFactor = 10.0;  // softest penalty factor of the staging
+
  private:
+  BackendResult newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
+                             Real tolerance) const;
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
   ContactOptions options_;
   NewtonOptions newton_;

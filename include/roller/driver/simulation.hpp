@@ -36,6 +36,7 @@ struct NodeContactRecord {
   Vec2 position = Vec2::Zero();
   NodeContact contact;
   Real tributary_length = 0.0;
+  Real element_size = 0.0;    // depth of the surface element under the node (penalty scale)
   Vec2 force = Vec2::Zero();  // force of the roller on the node [N per mm width]
 };
 
@@ -66,6 +67,19 @@ class Simulation {
     std::string message;
   };
   Increment advance(Real s_from, Real s_to);
+
+  // Advances through scene step `step` (1-based), cutting it into 2, 4, ... sub-increments when
+  // an increment fails, up to steps.max_cuts times.
+  struct StepResult {
+    bool converged = false;
+    int cuts = 0;
+    int iterations = 0;
+    int factorizations = 0;
+    Real max_penetration = 0.0;
+    Increment last;       // the last increment tried
+    std::string message;  // why the step failed
+  };
+  StepResult advance_step(int step);
 
  private:
   Vec2 start_centre() const;

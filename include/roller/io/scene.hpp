@@ -16,8 +16,10 @@ namespace roller {
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
 struct NodeSelector {
-  std::string set_name;            // used when numbers is empty
+  std::string set_name;            // used when numbers is empty and near is absent
   std::vector<Index> numbers;      // thesis node numbers (1-based)
+  std::optional<Vec2> near;        // the node nearest to this point of the initial mesh [mm]
+                                   // (stays valid under refinement, unlike a node number)
   std::string describe() const;    // for messages: "set 'left'" or "nodes [5, 101]"
 };
 

@@ -1,0 +1,40 @@
+#pragma once
+// Hertz line contact of a rigid cylinder on an elastic half-plane (SPEC §5):
+//   E* = E/(1 - nu^2),  a = sqrt(4 P R / (pi E*)),  p0 = 2P/(pi a),  p(x) = p0 sqrt(1 - x^2/a^2)
+// and the comparison of a computed pressure profile with it.
+#include <vector>
+
+#include "roller/core/types.hpp"
+
+namespace roller {
+
+struct HertzSolution {
+  Real load = 0.0;        // P [N per mm width]
+  Real half_width = 0.0;  // a [mm]
+  Real peak = 0.0;        // p0 [MPa]
+  Real pressure(Real x) const;  // p at distance x from the centre (0 outside the contact)
+};
+
+HertzSolution hertz_line_contact(Real load, Real radius, Real plane_strain_modulus);
+
+// A pressure sample at surface position x (mm from the contact centre).
+struct PressureSample {
+  Real x = 0.0;
+  Real p = 0.0;
+};
+
+struct HertzComparison {
+  HertzSolution analytic;
+  Real half_width = 0.0;  // a fitted to the computed profile: least squares of p^2 = p0^2 - (p0/a)^2 x^2
+                          // over the samples with p > 0
+  Real peak = 0.0;        // largest computed pressure
+  Real half_width_error = 0.0;  // (a_h - a)/a
+  Real peak_error = 0.0;        // (p0_h - p0)/p0
+  Real l2_error = 0.0;          // ||p_h - p||_L2 / ||p||_L2 over the samples (trapezoidal)
+};
+
+// Samples sorted by x; `load` is the computed total normal load.
+HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load,
+                                   Real radius, Real plane_strain_modulus);
+
+}  // namespace roller

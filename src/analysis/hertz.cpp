@@ -1,0 +1,62 @@
+#include "roller/analysis/hertz.hpp"
+
+#include <cmath>
+
+namespace roller {
+
+Real HertzSolution::pressure(Real x) const {
+  const Real r = x / half_width;
+  return std::abs(r) < 1.0 ? peak * std::sqrt(1.0 - r * r) : 0.0;
+}
+
+HertzSolution hertz_line_contact(Real load, Real radius, Real plane_strain_modulus) {
+  HertzSolution h;
+  h.load = load;
+  h.half_width = std::sqrt(4.0 * load * radius / (M_PI * plane_strain_modulus));
+  h.peak = 2.0 * load / (M_PI * h.half_width);
+  return h;
+}
+
+HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load,
+                                   Real radius, Real plane_strain_modulus) {
+  HertzComparison c;
+  c.analytic = hertz_line_contact(load, radius, plane_strain_modulus);
+  // Fit p^2 = A - B x^2 (linear least squares in A, B) over the loaded samples.
+  Real s1 = 0, sx2 = 0, sx4 = 0, sp2 = 0, sx2p2 = 0;
+  for (const auto& s : samples) {
+    c.peak = std::max(c.peak, s.p);
+    if (s.p <= 0.0) continue;
+    const Real x2 = s.x * s.x, p2 = s.p * s.p;
+    s1 += 1;
+    sx2 += x2;
+    sx4 += x2 * x2;
+    sp2 += p2;
+    sx2p2 += x2 * p2;
+  }
+  const Real det = s1 * sx4 - sx2 * sx2;
+  if (s1 >= 3 && det > 0.0) {
+    const Real a_coef = (sp2 * sx4 - sx2 * sx2p2) / det;
+    const Real b_coef = (sp2 * sx2 - s1 * sx2p2) / det;  // = B (positive for a cap)
+    if (a_coef > 0.0 && b_coef > 0.0) c.half_width = std::sqrt(a_coef / b_coef);
+  }
+  c.half_width_error = (c.half_width - c.analytic.half_width) / c.analytic.half_width;
+  c.peak_error = (c.peak - c.analytic.peak) / c.analytic.peak;
+  Real num = 0, den = 0;
+  for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
+    const Real dx = samples[i + 1].x - samples[i].x;
+    auto sq_err = [&](const PressureSample& s) {
+      const Real e = s.p - c.analytic.pressure(s.x);
+      return e * e;
+    };
+    auto sq_ref = [&](const PressureSample& s) {
+      const Real r = c.analytic.pressure(s.x);
+      return r * r;
+    };
+    num += 0.5 * dx * (sq_err(samples[i]) + sq_err(samples[i + 1]));
+    den += 0.5 * dx * (sq_ref(samples[i]) + sq_ref(samples[i + 1]));
+  }
+  c.l2_error = den > 0.0 ? std::sqrt(num / den) : 0.0;
+  return c;
+}
+
+}  // namespace roller
