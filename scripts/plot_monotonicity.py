@@ -111,8 +111,12 @@ def draw_panel(ax, meta, panel, slices, small=False):
     ax.set_xlabel(AXIS_LABEL[h], fontsize=fs)
     ax.set_ylabel(AXIS_LABEL[v], fontsize=fs)
     ax.tick_params(labelsize=fs - 1)
-    ax.set_title(f"Fig. 3.1{pid}: {panel['title']}, σ_pl = {meta['slice_sigma']:g} "
-                 f"({panel['coarse_pd']}/{panel['coarse_points']} PD)", fontsize=fs + 1)
+    counts = f"{panel['coarse_pd']}/{panel['coarse_points']} PD"
+    if small:
+        ax.set_title(f"3.1{pid}: {fixed} = {panel['fixed']:g} MPa ({counts})", fontsize=fs + 1)
+    else:
+        ax.set_title(f"Fig. 3.1{pid}: {panel['title']}, σ_pl = {meta['slice_sigma']:g} MPa "
+                     f"({counts})", fontsize=fs + 1)
     return mesh
 
 

@@ -30,7 +30,11 @@ bool RollerSpec::is_valid(std::string* why) const {
   return true;
 }
 
-RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s) {
+namespace {
+
+// Pose at the end of integer step n.
+RollerPose pose_at_step(const RollerSpec& spec, const Vec2& start_centre, int n) {
+  const Real s = n;
   RollerPose pose;
   pose.centre = start_centre;
   pose.angle = spec.start_angle;
@@ -45,11 +49,26 @@ RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s)
     // d(phi) = -dx (1 - slip)/R with the slip varying linearly over the segment: integrate.
     const Real slip_mean = seg.slip_start + 0.5 * f * (seg.slip_end - seg.slip_start);
     pose.angle += -dx * (1.0 - slip_mean) / spec.radius;
-    // The harmonic offset follows the travel within the segment and is held after it.
+    // The harmonic offset follows the distance rolled within the segment (|dx|, thesis: u_x is
+    // the distance travelled) and is held after it.
     if (seg.harmonic_wavelength > 0.0)
-      pose.centre.y() += seg.harmonic_amplitude * std::sin(2.0 * M_PI * dx / seg.harmonic_wavelength);
+      pose.centre.y() += seg.harmonic_amplitude * std::sin(2.0 * M_PI * std::abs(dx) / seg.harmonic_wavelength);
   }
   return pose;
+}
+
+}  // namespace
+
+RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s) {
+  // The path is defined at step ends (the thesis moves the roller once per step); within a
+  // step (sub-increments after a cut) the pose is interpolated linearly, so cutting a step
+  // never changes the path.
+  const int lo = static_cast<int>(std::floor(s));
+  const Real f = s - lo;
+  const RollerPose a = pose_at_step(spec, start_centre, lo);
+  if (f == 0.0) return a;
+  const RollerPose b = pose_at_step(spec, start_centre, lo + 1);
+  return {a.centre + f * (b.centre - a.centre), a.angle + f * (b.angle - a.angle)};
 }
 
 }  // namespace roller

@@ -184,8 +184,9 @@ struct StripMonotonicity {
 // Checks A at every integration point of the committed state: stress and yield stress of the
 // state, continuum tangent, h per element from the start-of-increment configuration, density
 // from the material; the dynamic term is mass_factor rho h^2/dt^2 and the restoring time steps
-// are h sqrt(mass_factor rho / -lambda_min). dt = 0 checks the quasistatic operator. Q4 B-bar replaces the volumetric
-// strain by its element average; the pointwise A ignores that (a standard-Q4 view).
+// are h sqrt(mass_factor rho / -lambda_min). dt = 0 checks the quasistatic operator. Q4 B-bar
+// replaces the volumetric strain by its element average; the pointwise A ignores that (a
+// standard-Q4 view).
 StripMonotonicity check_strip(const StripModel& model, Real dt,
                               const StripMonotonicityOptions& options = {});
 

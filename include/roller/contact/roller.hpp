@@ -3,8 +3,9 @@
 // (counter-clockwise positive, radians), SPEC §2.4–§2.5.
 //
 // Prescribed paths are lists of segments over scene steps. Within a segment the centre moves
-// linearly by (dx, dy); an optional harmonic adds A sin(2 pi (x_c - x_segment_start) / L) to y
-// (thesis Z1); the angle follows the rolling kinematics with creep,
+// linearly by (dx, dy); an optional harmonic adds A sin(2 pi |x_c - x_segment_start| / L) to y
+// (thesis Z1: the argument is the distance rolled); the angle follows the rolling kinematics
+// with creep,
 //   slip ratio s = (v_x - |omega| R) / v_x   =>   d(phi) = -dx (1 - s) / R,
 // so s = 0 is rolling without slip to +x (clockwise rotation), s > 0 a roller that lags.
 #include <optional>
@@ -39,7 +40,8 @@ struct RollerSpec {
   bool is_valid(std::string* why) const;
 };
 
-// Pose at (fractional) step s: s = 0 is the start, s = 2.5 halfway through step 3.
+// Pose at (fractional) step s: s = 0 is the start, s = 2.5 halfway through step 3. The path is
+// sampled at step ends and interpolated linearly within a step.
 RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s);
 
 }  // namespace roller
