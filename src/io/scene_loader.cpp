@@ -149,7 +149,8 @@ NodeSelector read_selector(TomlSection& s) {
   if (!n) s.fail("nodes", "required: a node set name (\"top\", \"left\", ...) or thesis node numbers [5, 101]");
   if (auto name = n->value_exact<std::string>()) {
     sel.set_name = *name;
-  } else if (auto t = s.table("nodes")) {
+  } else if (n->is_table()) {
+    auto t = s.table("nodes");
     const auto p = t->real_array("near");
     if (!p || p->size() != 2) t->fail("near", "expected { near = [x, y] }: the node nearest to that point");
     sel.near = Vec2((*p)[0], (*p)[1]);

@@ -133,3 +133,15 @@ TEST_CASE("node selectors are checked against the mesh", "[io][scene][errors]") 
   by_name.set_name = "top";
   CHECK(resolve_nodes(by_name, mesh, "x").size() == 3);
 }
+
+TEST_CASE("a node can be selected as the one nearest to a point", "[io][scene]") {
+  const Scene s = parse_scene(replace(kGood, "nodes = [1, 2]", "nodes = { near = [5.2, 0.1] }"), "near.toml");
+  REQUIRE(s.displacements[1].nodes.near.has_value());
+  const Mesh mesh = make_strip_mesh(s.mesh);
+  const auto nodes = resolve_nodes(s.displacements[1].nodes, mesh, "displacement[1].nodes");
+  REQUIRE(nodes.size() == 1);
+  CHECK(mesh.nodes[nodes[0]].x() == Approx(5.0));
+  CHECK(mesh.nodes[nodes[0]].y() == Approx(0.0));
+  CHECK_THAT(error_of(replace(kGood, "nodes = [1, 2]", "nodes = { near = [5.2] }")),
+             Catch::Contains("displacement[1].nodes.near"));
+}
