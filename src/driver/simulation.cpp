@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "roller/analysis/monotonicity.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/core/error.hpp"
@@ -172,7 +173,8 @@ RunSummary Simulation::run(const RunOptions& options) {
   CsvTable solver_csv(options.out_dir / "solver.csv",
                       {"step", "time", "iterations", "residual", "max_penetration", "wall_s", "cuts",
                        "yielded_points", "factorizations", "complementarity", "constraint_violation",
-                       "fixed_point_iterations", "contact_nodes", "status"});
+                       "fixed_point_iterations", "contact_nodes", "a_not_pd_points", "a_lambda_min",
+                       "k_eff_positive_definite", "k_eff_negative_pivots", "dt_restore", "status"});
   std::unique_ptr<CsvTable> contact_csv, roller_csv;
   if (scene_.roller) {
     contact_csv = std::make_unique<CsvTable>(
@@ -213,10 +215,29 @@ RunSummary Simulation::run(const RunOptions& options) {
     };
     Index n_contact = 0;
     for (const auto& c : contact_) n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
+    const Index n_yielded = model_->n_yielded_last();  // before the monitor re-evaluates the strip
+    // Run-time monotonicity monitor (SPEC §3): operator A at the integration points and the
+    // definiteness of the assembled strip tangent (contact terms excluded) at the new state.
+    const Real dt_dynamic = 0.0;  // quasistatic strip: no rho/dt^2 term (dynamics: issue 5)
+    const StripMonotonicity mono = check_strip(*model_, dt_dynamic);
+    SparseMatrix k_eff;
+    model_->evaluate(VecX::Zero(model_->n_dofs()), nullptr, &k_eff);
+    const SparseDefiniteness kdef = sparse_definiteness(k_eff);
+    if (!kdef.positive_definite() && options.progress)
+      *options.progress << fmt::format(
+          "warning: step {}: the assembled tangent stiffness is not positive definite ({} negative, {} zero "
+          "pivots): operator A lost monotonicity ({}); {}\n",
+          step, kdef.n_negative, kdef.n_zero, mono.brief_report(),
+          mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
+              ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
+              : "in a quasistatic strip no time step restores it: use smaller steps or check the supports");
     solver_csv.add_row({static_cast<Index>(step), step * scene_.steps.dt, static_cast<Index>(iterations),
-                        last.residual, penetration, wall, static_cast<Index>(cuts), model_->n_yielded_last(),
+                        last.residual, penetration, wall, static_cast<Index>(cuts), n_yielded,
                         static_cast<Index>(factorizations), stat("complementarity"),
                         stat("constraint_violation"), stat("fixed_point_iterations"), n_contact,
+                        mono.n_not_pd, std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0,
+                        static_cast<Index>(kdef.positive_definite() ? 1 : 0), kdef.n_negative,
+                        std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0,
                         std::string(ok ? "converged" : "failed")});
     if (!ok) {
       summary.converged = false;
@@ -244,7 +265,7 @@ RunSummary Simulation::run(const RunOptions& options) {
       *options.progress << fmt::format(
                                "step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
                                step, scene_.steps.n_steps, step * scene_.steps.dt, iterations, last.residual,
-                               cuts, model_->n_yielded_last(), contact_text, wall)
+                               cuts, n_yielded, contact_text, wall)
                         << std::flush;
     }
   }

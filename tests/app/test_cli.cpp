@@ -1,0 +1,83 @@
+// The roller command line as a user runs it: the default scene end to end (files written, exit
+// code 0), bad input (exit code 2 with file/key/value in the message), failed steps (exit code 1,
+// completed steps kept on disk).
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code;
+  std::string output;
+};
+
+Run run_roller(const std::string& args) {
+  const fs::path log = fs::temp_directory_path() / fs::path("roller_cli_test_" + std::to_string(std::rand()) + ".log");
+  const std::string cmd = std::string(ROLLER_ROLLER_EXE) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  std::stringstream s;
+  s << in.rdbuf();
+  fs::remove(log);
+  return {WEXITSTATUS(status), s.str()};
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("roller run: the default scene runs end to end and writes its results", "[app]") {
+  const fs::path out = fs::temp_directory_path() / "roller_cli_block";
+  fs::remove_all(out);
+  const Run r = run_roller("run problems/block_compression.toml --out " + out.string() + " --steps 3");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("step    3/3"));
+  for (const char* f : {"fields.pvd", "step_0000.vtu", "step_0003.vtu", "solver.csv", "summary.json",
+                        "scene.resolved.toml"})
+    CHECK(fs::exists(out / f));
+  const std::string csv = read(out / "solver.csv");
+  CHECK_THAT(csv, Catch::StartsWith("step,time,iterations,residual,max_penetration,wall_s"));
+  CHECK_THAT(csv, Catch::Contains("k_eff_positive_definite"));
+  CHECK_THAT(read(out / "summary.json"), Catch::Contains("\"converged\": true"));
+  fs::remove_all(out);
+}
+
+TEST_CASE("roller run: bad input exits with code 2 and a precise message", "[app]") {
+  const Run bad_set = run_roller("run problems/block_compression.toml --out /tmp/roller_cli_bad --set material.nu=0.6");
+  CHECK(bad_set.exit_code == 2);
+  CHECK_THAT(bad_set.output, Catch::Contains("material.nu = 0.6") && Catch::Contains("0 <= nu < 0.5"));
+  const Run missing = run_roller("run problems/does_not_exist.toml");
+  CHECK(missing.exit_code != 0);
+  CHECK_THAT(missing.output, Catch::Contains("does_not_exist.toml"));
+  const Run bad_flag = run_roller("run problems/block_compression.toml --refine 0");
+  CHECK(bad_flag.exit_code != 0);
+  CHECK_THAT(bad_flag.output, Catch::Contains("--refine"));
+}
+
+TEST_CASE("roller run: a step that cannot converge stops the run with code 1, completed steps kept",
+          "[app]") {
+  // One Newton iteration per increment and no cuts cannot converge the plastic block.
+  const fs::path out = fs::temp_directory_path() / "roller_cli_fail";
+  fs::remove_all(out);
+  const Run r = run_roller("run problems/block_compression.toml --out " + out.string() +
+                           " --set newton.max_iterations=1 --set steps.max_cuts=0");
+  CHECK(r.exit_code == 1);
+  CHECK_THAT(r.output, Catch::Contains("step 1 failed"));
+  CHECK(fs::exists(out / "step_0000.vtu"));
+  CHECK_THAT(read(out / "summary.json"), Catch::Contains("\"converged\": false"));
+  CHECK_THAT(read(out / "solver.csv"), Catch::Contains("failed"));
+  fs::remove_all(out);
+}
