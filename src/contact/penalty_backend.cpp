@@ -116,6 +116,18 @@ bool solve_linear(const Evaluation& e, VecX& d) {
 PenaltyBackend::PenaltyBackend(ContactOptions options, NewtonOptions newton)
     : options_(std::move(options)), newton_(newton) {}
 
+void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r, SparseMatrix* jacobian) const {
+  std::vector<Stiffness> k;
+  for (const auto& c : problem.candidates()) {
+    const Real kn = options_.penalty.factor * problem.plane_strain_modulus() * c.tributary_length / c.element_size;
+    k.push_back({kn, options_.penalty.tangential_factor * kn});
+  }
+  Evaluation e;
+  evaluate(problem, k, x, jacobian != nullptr, e);
+  r = e.residual;
+  if (jacobian) *jacobian = e.jacobian;
+}
+
 // One Newton solve at fixed penalty stiffnesses, from x (updated in place).
 BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k,
                                            VecX& x, Real tolerance) const {

@@ -25,6 +25,10 @@ class PenaltyBackend : public ContactBackend {
   };
   static constexpr Real kFirstStageFactor = 10.0;  // softest penalty factor of the staging
 
+  // The residual (strip forces minus contact forces, free dofs) at the target penalty and its
+  // consistent Jacobian; exposed for finite-difference tests of the linearisation.
+  void residual(IncrementProblem& problem, const VecX& x, VecX& r, SparseMatrix* jacobian) const;
+
  private:
   BackendResult newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
                              Real tolerance) const;
