@@ -39,7 +39,7 @@ int run_scene(const RunArgs& args) {
   options.out_dir = out;
   options.progress = &std::cout;
   const roller::RunSummary summary = sim.run(options);
-  std::cout << fmt::format("roller: {} in {:.2f} s ({} Newton iterations); results in {}\n",
+  std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations); results in {}\n",
                            summary.message, summary.wall_s, summary.iterations_total, out);
   return summary.converged ? 0 : 1;
 }

@@ -98,6 +98,13 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus,
                              scene_.material.poisson_ratio);
     contact_result = backend_->solve(problem, x);
+    // The extrapolated predictor misleads when the roller path turns (press -> roll, the
+    // harmonic's crests): retry once from the start-of-step configuration before giving up.
+    if (!contact_result.converged() && x.squaredNorm() > 0.0) {
+      const int spent = contact_result.iterations;
+      contact_result = backend_->solve(problem, VecX::Zero(x.size()));
+      contact_result.iterations += spent;
+    }
     inc.converged = contact_result.converged();
     inc.iterations = contact_result.iterations;
     inc.factorizations = contact_result.factorizations;
