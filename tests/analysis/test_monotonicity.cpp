@@ -475,7 +475,7 @@ TEST_CASE("the algorithmic operator uses the consistent tangent and tends to the
   CHECK(previous < 1e-3);
 }
 
-TEST_CASE("maps: symmetric under c <-> -c and a <-> b; the thesis's c-slices at sigma_pl = 40",
+TEST_CASE("maps: symmetric under c <-> -c and a <-> b, the thesis's c-slices at sigma_pl = 40",
           "[monotonicity]") {
   MonotonicityMapOptions o;
   o.sigma = {20.0, 60.0, 3};
@@ -526,7 +526,7 @@ TEST_CASE("maps: symmetric under c <-> -c and a <-> b; the thesis's c-slices at 
   CHECK(why.find("sigma_pl") != std::string::npos);
 }
 
-TEST_CASE("check_strip flags a large compressive initial stress; a small dt restores PD",
+TEST_CASE("check_strip flags a large compressive initial stress and a small dt restores PD",
           "[monotonicity]") {
   StripMeshSpec spec;
   spec.element = ElementType::Q4;

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -19,7 +21,10 @@ struct Run {
 };
 
 Run run_roller(const std::string& args) {
-  const fs::path log = fs::temp_directory_path() / fs::path("roller_cli_test_" + std::to_string(std::rand()) + ".log");
+  // Unique per process and call: CTest runs test cases in parallel processes.
+  static int calls = 0;
+  const fs::path log = fs::temp_directory_path() /
+                       fs::path("roller_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".log");
   const std::string cmd = std::string(ROLLER_ROLLER_EXE) + " " + args + " > " + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   std::ifstream in(log);

@@ -39,7 +39,7 @@ TEST_CASE("Hertz line contact (penalty): a and p0 within 2 % of the analytic sol
   CHECK(c.l2_error < 0.05);
 }
 
-TEST_CASE("Hertz (penalty): contact force equals the support reaction; penetration within the penalty bound",
+TEST_CASE("Hertz (penalty): contact force equals the support reaction, penetration within the penalty bound",
           "[contact][hertz]") {
   Simulation sim = run_hertz(1, "penalty");
   // Support reaction: internal forces at the constrained dofs of the bottom edge.

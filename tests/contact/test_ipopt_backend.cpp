@@ -253,7 +253,7 @@ const Vec2 kPressed(20.0, 10.0 + kRadius - 0.05);
 
 }  // namespace
 
-TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium; F_N = -lambda", "[ipopt]") {
+TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium, F_N = -lambda", "[ipopt]") {
   auto model = make_strip(40.0, 10.0, 40, 10, false);
   Increment inc(*model, roller_motion(kTouching, kPressed, kRadius, 0.0));
   IpoptBackend backend(ipopt_options());
@@ -313,7 +313,7 @@ TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium; F_
   }
 }
 
-TEST_CASE("ipopt: a lifted roller gives zero contact forces; a small reach gives no contact variables", "[ipopt]") {
+TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gives no contact variables", "[ipopt]") {
   auto model = make_strip(40.0, 10.0, 40, 10, false);
   const Vec2 lifted = kTouching + Vec2(0.0, 0.1);
   IpoptBackend backend(ipopt_options());

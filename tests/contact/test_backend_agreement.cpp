@@ -1,0 +1,70 @@
+// The two contact backends on the same scenes: the interior-point solution (exact constraints)
+// and the penalty solution at a high penalty factor agree (issue 4's acceptance).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "roller/driver/simulation.hpp"
+#include "roller/io/scene_loader.hpp"
+
+using namespace roller;
+
+namespace {
+
+Simulation run(const std::string& scene_name, const std::string& backend, const std::string& factor) {
+  Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene_name + ".toml",
+                           {{"contact.backend", "\"" + backend + "\""}, {"contact.penalty.factor", factor}});
+  Simulation sim(std::move(scene));
+  for (int step = 1; step <= sim.scene().steps.n_steps; ++step) REQUIRE(sim.advance_step(step).converged);
+  return sim;
+}
+
+// Relative L2 difference of the nodal pressures of two runs on the same mesh.
+Real pressure_difference(const Simulation& a, const Simulation& b) {
+  REQUIRE(a.contact().size() == b.contact().size());
+  Real num = 0.0, den = 0.0;
+  for (std::size_t i = 0; i < a.contact().size(); ++i) {
+    REQUIRE(a.contact()[i].node == b.contact()[i].node);
+    const Real pa = a.contact()[i].contact.normal_force / a.contact()[i].tributary_length;
+    const Real pb = b.contact()[i].contact.normal_force / b.contact()[i].tributary_length;
+    num += (pa - pb) * (pa - pb) * a.contact()[i].tributary_length;
+    den += pb * pb * b.contact()[i].tributary_length;
+  }
+  return std::sqrt(num / den);
+}
+
+}  // namespace
+
+TEST_CASE("Hertz: ipopt and penalty (factor 1e5) agree on force and pressure", "[contact][ipopt][agreement]") {
+  const Simulation ip = run("hertz", "ipopt", "1e5");
+  const Simulation pe = run("hertz", "penalty", "1e5");
+  CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
+  CHECK(pressure_difference(ip, pe) < 0.02);
+  for (const auto& c : ip.contact()) {
+    CHECK(c.contact.gap >= -1e-8 * ip.scene().roller->radius);  // constraint violation
+    CHECK(c.contact.normal_force >= 0.0);
+  }
+}
+
+TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip zones",
+          "[contact][ipopt][agreement][slow]") {
+  const Simulation ip = run("cattaneo", "ipopt", "1e3");
+  const Simulation pe = run("cattaneo", "penalty", "1e3");
+  CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
+  CHECK(ip.roller_force().x() == Approx(pe.roller_force().x()).epsilon(0.02));
+  CHECK(pressure_difference(ip, pe) < 0.02);
+  // Stick/slip agree except at nodes next to a change of status (zone boundaries).
+  const auto& a = ip.contact();
+  const auto& b = pe.contact();
+  int disagreements = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].contact.status == b[i].contact.status) continue;
+    const bool boundary = (i > 0 && b[i - 1].contact.status != b[i].contact.status) ||
+                          (i + 1 < b.size() && b[i + 1].contact.status != b[i].contact.status);
+    INFO("node " << a[i].node + 1 << " ipopt " << to_string(a[i].contact.status) << " penalty "
+                 << to_string(b[i].contact.status));
+    CHECK(boundary);
+    ++disagreements;
+  }
+  CHECK(disagreements <= 2);
+}
