@@ -53,8 +53,11 @@ int main(int argc, char** argv) {
         std::vector<PressureSample> samples;
         n_contact = 0;
         for (const auto& rec : sim.contact()) {
-          samples.push_back({rec.position.x() - sim.pose().centre.x(), rec.contact.normal_force / rec.tributary_length});
-          n_contact += rec.contact.status != ContactStatus::Open;
+          // Open nodes count as unloaded (an interior-point solution leaves barrier-size forces).
+          const bool loaded = rec.contact.status != ContactStatus::Open;
+          samples.push_back({rec.position.x() - sim.pose().centre.x(),
+                             loaded ? rec.contact.normal_force / rec.tributary_length : 0.0});
+          n_contact += rec.contact.status != ContactStatus::Open ? 1 : 0;
         }
         const MaterialParams& m = sim.scene().material;
         load = sim.roller_force().y();

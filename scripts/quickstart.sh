@@ -4,4 +4,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-./build/roller run problems/block_compression.toml "$@"
+./build/roller run problems/z1_outf05.toml "$@"

@@ -26,7 +26,7 @@ struct PressureSample {
 struct HertzComparison {
   HertzSolution analytic;
   Real half_width = 0.0;  // a fitted to the computed profile: least squares of p^2 = p0^2 - (p0/a)^2 x^2
-                          // over the samples with p > 0
+                          // over the samples with p > 1e-6 of the largest
   Real peak = 0.0;        // largest computed pressure
   Real half_width_error = 0.0;  // (a_h - a)/a
   Real peak_error = 0.0;        // (p0_h - p0)/p0
