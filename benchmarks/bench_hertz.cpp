@@ -50,18 +50,11 @@ int main(int argc, char** argv) {
           penetration = std::max(penetration, res.max_penetration);
         }
         walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        std::vector<PressureSample> samples;
         n_contact = 0;
-        for (const auto& rec : sim.contact()) {
-          // Open nodes count as unloaded (an interior-point solution leaves barrier-size forces).
-          const bool loaded = rec.contact.status != ContactStatus::Open;
-          samples.push_back({rec.position.x() - sim.pose().centre.x(),
-                             loaded ? rec.contact.normal_force / rec.tributary_length : 0.0});
-          n_contact += rec.contact.status != ContactStatus::Open ? 1 : 0;
-        }
+        for (const auto& rec : sim.contact()) n_contact += rec.contact.status != ContactStatus::Open ? 1 : 0;
         const MaterialParams& m = sim.scene().material;
         load = sim.roller_force().y();
-        c = compare_with_hertz(samples, load, sim.scene().roller->radius,
+        c = compare_with_hertz(sim.pressure_profile(), load, sim.scene().roller->radius,
                                m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio));
         dofs = sim.model().n_dofs();
       }

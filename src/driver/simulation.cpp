@@ -55,6 +55,15 @@ Vec2 Simulation::roller_force() const {
   return f;
 }
 
+std::vector<PressureSample> Simulation::pressure_profile() const {
+  std::vector<PressureSample> out;
+  for (const auto& c : contact_) {
+    const bool loaded = c.contact.status != ContactStatus::Open;
+    out.push_back({c.position.x() - pose_.centre.x(), loaded ? c.contact.normal_force / c.tributary_length : 0.0});
+  }
+  return out;
+}
+
 Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
   Increment inc;
   // Prescribed increments: target total minus what the dof already has, so sub-increments

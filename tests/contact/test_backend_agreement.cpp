@@ -4,19 +4,14 @@
 
 #include <cmath>
 
-#include "roller/driver/simulation.hpp"
-#include "roller/io/scene_loader.hpp"
+#include "../support/run_scene.hpp"
 
 using namespace roller;
 
 namespace {
 
 Simulation run(const std::string& scene_name, const std::string& backend, const std::string& factor) {
-  Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene_name + ".toml",
-                           {{"contact.backend", "\"" + backend + "\""}, {"contact.penalty.factor", factor}});
-  Simulation sim(std::move(scene));
-  for (int step = 1; step <= sim.scene().steps.n_steps; ++step) REQUIRE(sim.advance_step(step).converged);
-  return sim;
+  return test::run_scene(scene_name, {{"contact.backend", "\"" + backend + "\""}, {"contact.penalty.factor", factor}});
 }
 
 // Relative L2 difference of the nodal pressures of two runs on the same mesh.

@@ -5,16 +5,13 @@
 #include <cmath>
 
 #include "roller/analysis/contact_zones.hpp"
-#include "roller/driver/simulation.hpp"
-#include "roller/io/scene_loader.hpp"
+#include "../support/run_scene.hpp"
 
 using namespace roller;
 
 TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P)), Coulomb bound at every node",
           "[contact][cattaneo][slow]") {
-  Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/cattaneo.toml", {});
-  Simulation sim(std::move(scene));
-  for (int step = 1; step <= sim.scene().steps.n_steps; ++step) REQUIRE(sim.advance_step(step).converged);
+  const Simulation sim = test::run_scene("cattaneo");
   const Real mu = sim.scene().contact.friction;
   std::vector<Real> x;
   std::vector<bool> in_contact, stick;

@@ -3,35 +3,23 @@
 #include <catch2/catch.hpp>
 
 #include "roller/analysis/hertz.hpp"
-#include "roller/driver/simulation.hpp"
-#include "roller/io/scene_loader.hpp"
+#include "../support/run_scene.hpp"
 
 using namespace roller;
 
 namespace {
 
-std::vector<PressureSample> pressure_samples(const Simulation& sim) {
-  std::vector<PressureSample> out;
-  for (const auto& c : sim.contact())
-    out.push_back({c.position.x() - sim.pose().centre.x(), c.contact.normal_force / c.tributary_length});
-  return out;
-}
-
-Simulation run_hertz(int refine, const std::string& backend) {
-  Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml",
-                           {{"mesh.refine", std::to_string(refine)}, {"contact.backend", "\"" + backend + "\""}});
-  Simulation sim(std::move(scene));
-  for (int step = 1; step <= sim.scene().steps.n_steps; ++step) REQUIRE(sim.advance_step(step).converged);
-  return sim;
+Simulation run_hertz(int refine) {
+  return test::run_scene("hertz", {{"mesh.refine", std::to_string(refine)}, {"contact.backend", "\"penalty\""}});
 }
 
 }  // namespace
 
 TEST_CASE("Hertz line contact (penalty): a and p0 within 2 % of the analytic solution", "[contact][hertz]") {
-  const Simulation sim = run_hertz(2, "penalty");
+  const Simulation sim = run_hertz(2);
   const Real e_star = sim.scene().material.youngs_modulus / (1 - std::pow(sim.scene().material.poisson_ratio, 2));
   const Real load = sim.roller_force().y();
-  const HertzComparison c = compare_with_hertz(pressure_samples(sim), load, sim.scene().roller->radius, e_star);
+  const HertzComparison c = compare_with_hertz(sim.pressure_profile(), load, sim.scene().roller->radius, e_star);
   INFO("P = " << load << " a = " << c.half_width << " (analytic " << c.analytic.half_width << "), p0 = " << c.peak
               << " (analytic " << c.analytic.peak << "), L2 " << c.l2_error);
   CHECK(std::abs(c.half_width_error) < 0.02);
@@ -41,7 +29,7 @@ TEST_CASE("Hertz line contact (penalty): a and p0 within 2 % of the analytic sol
 
 TEST_CASE("Hertz (penalty): contact force equals the support reaction, penetration within the penalty bound",
           "[contact][hertz]") {
-  Simulation sim = run_hertz(1, "penalty");
+  Simulation sim = run_hertz(1);
   // Support reaction: internal forces at the constrained dofs of the bottom edge.
   VecX g;
   sim.model().evaluate(VecX::Zero(sim.model().n_dofs()), &g, nullptr);

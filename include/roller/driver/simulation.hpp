@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "roller/analysis/hertz.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/driver/load_program.hpp"
@@ -54,6 +55,9 @@ class Simulation {
   const RollerPose& pose() const { return pose_; }
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
   Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
+  // Nodal contact pressures of the last increment against x measured from the roller centre;
+  // open nodes count as unloaded (an interior-point solution leaves barrier-size forces there).
+  std::vector<PressureSample> pressure_profile() const;
 
   // Advances the state from s_from to s_to (scene steps, fractional) with one increment;
   // commits and returns true on success, leaves the state untouched on failure.
