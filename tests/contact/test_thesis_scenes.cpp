@@ -1,0 +1,26 @@
+// The thesis's quasistatic scenes run end to end with their default (interior-point) backend:
+// every step converges, the roller stays in contact while pressed, nothing penetrates.
+#include <catch2/catch.hpp>
+
+#include "../support/run_scene.hpp"
+
+using namespace roller;
+
+TEST_CASE("thesis scenes Z1 and Z2 run end to end (ipopt, refine 1)", "[contact][scenes][slow]") {
+  for (const char* name : {"z1_outf05", "z1_outf10", "z2_infini", "z2_large"}) {
+    SECTION(name) {
+      const Simulation sim = test::run_scene(name);
+      CHECK(sim.scene().contact.backend == "ipopt");
+      int in_contact = 0;
+      for (const auto& c : sim.contact()) {
+        in_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
+        CHECK(c.contact.gap >= -1e-8 * sim.scene().roller->radius);
+        CHECK(std::abs(c.contact.tangential_force) <=
+              sim.scene().contact.friction * c.contact.normal_force * (1 + 1e-4) + 1e-6);
+      }
+      CHECK(in_contact >= 2);
+      CHECK(sim.roller_force().y() > 0.0);
+      CHECK(sim.model().total_displacement().allFinite());
+    }
+  }
+}
