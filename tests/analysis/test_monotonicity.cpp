@@ -10,6 +10,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "../support/impose_field.hpp"
 #include "roller/analysis/monotonicity.hpp"
 #include "roller/analysis/monotonicity_map.hpp"
 #include "roller/assembly/increment_energy.hpp"
@@ -61,23 +62,7 @@ OperatorOptions layout_only(GradientLayout layout, TangentKind tangent, bool wit
   return o;
 }
 
-template <class Field>
-NewtonReport impose(StripModel& model, const Field& field) {
-  VecX prescribed = VecX::Zero(model.n_dofs());
-  const auto& x = model.reference_coordinates();
-  for (Index a = 0; a < model.mesh().n_nodes(); ++a) {
-    const Vec2 u = field(x[a]);
-    prescribed(2 * a) = u.x();
-    prescribed(2 * a + 1) = u.y();
-  }
-  IncrementEnergy energy(model, prescribed, VecX::Zero(model.n_dofs()));
-  VecX free = VecX::Zero(model.dof_map().n_free());
-  NewtonOptions opt;
-  opt.residual_tolerance = 1e-12;
-  const NewtonReport report = minimise_newton(energy, free, opt);
-  if (report.converged()) model.commit(energy.full_increment(free));
-  return report;
-}
+using test::impose_field;
 
 }  // namespace
 
@@ -540,13 +525,13 @@ TEST_CASE("check_strip flags a large compressive initial stress and a small dt r
   const Real g = model.material().shear_modulus();
   const auto squeeze = [](const Vec2& x) -> Vec2 { return -0.2 * x; };  // F = 0.8 I
 
-  REQUIRE(impose(model, squeeze).converged());
+  REQUIRE(impose_field(model, squeeze).converged());
   const StripMonotonicity first = check_strip(model, 0.0);
   INFO(first.brief_report());
   CHECK(first.monotone());
   CHECK(first.n_points == 8 * 4);
 
-  REQUIRE(impose(model, squeeze).converged());
+  REQUIRE(impose_field(model, squeeze).converged());
   const Vec4 s = model.state(0, 0).stress;
   REQUIRE(s(0) == Approx(s(1)));
   REQUIRE(s(0) < -g);  // in-plane hydrostatic compression beyond G

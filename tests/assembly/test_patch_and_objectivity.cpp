@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "../support/impose_field.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
@@ -54,23 +55,7 @@ std::vector<bool> boundary_dofs(const Mesh& mesh) {
 
 // Solves one increment with the boundary dofs prescribed to `field(X)`, commits it, returns
 // the Newton report.
-template <class Field>
-NewtonReport impose(StripModel& model, const Field& field) {
-  VecX prescribed = VecX::Zero(model.n_dofs());
-  const auto& x = model.reference_coordinates();
-  for (Index a = 0; a < model.mesh().n_nodes(); ++a) {
-    const Vec2 u = field(x[a]);
-    prescribed(2 * a) = u.x();
-    prescribed(2 * a + 1) = u.y();
-  }
-  IncrementEnergy energy(model, prescribed, VecX::Zero(model.n_dofs()));
-  VecX free = VecX::Zero(model.dof_map().n_free());
-  NewtonOptions opt;
-  opt.residual_tolerance = 1e-12;
-  const NewtonReport report = minimise_newton(energy, free, opt);
-  if (report.converged()) model.commit(energy.full_increment(free));
-  return report;
-}
+using test::impose_field;
 
 }  // namespace
 
@@ -97,7 +82,7 @@ TEST_CASE("patch test: a linear displacement field is reproduced exactly", "[ass
     SECTION(v.name) {
       StripModel model(distorted_patch(v.type), elastic(), ElementOptions{v.kin, v.q4});
       model.set_dof_map(DofMap(boundary_dofs(model.mesh())));
-      const auto report = impose(model, [&](const Vec2& x) -> Vec2 { return shift + grad * x; });
+      const auto report = impose_field(model, [&](const Vec2& x) -> Vec2 { return shift + grad * x; });
       REQUIRE(report.converged());
       Real err = 0.0;
       for (Index a = 0; a < model.mesh().n_nodes(); ++a) {
@@ -126,14 +111,14 @@ TEST_CASE("a pre-stressed strip rotated rigidly by 90 degrees keeps its stress i
     // Pre-stress: a homogeneous stretch.
     Mat2 stretch;
     stretch << 1e-3, 4e-4, 4e-4, -5e-4;
-    REQUIRE(impose(model, [&](const Vec2& x) -> Vec2 { return stretch * x; }).converged());
+    REQUIRE(impose_field(model, [&](const Vec2& x) -> Vec2 { return stretch * x; }).converged());
     const Vec4 s0 = model.state(0, 0).stress;
     // Rigid rotation in 9 steps of 10 degrees about the origin of the current configuration.
     const Real step = M_PI / 18.0;
     Mat2 r;
     r << std::cos(step), -std::sin(step), std::sin(step), std::cos(step);
     for (int i = 0; i < 9; ++i)
-      REQUIRE(impose(model, [&](const Vec2& x) -> Vec2 { return r * x - x; }).converged());
+      REQUIRE(impose_field(model, [&](const Vec2& x) -> Vec2 { return r * x - x; }).converged());
     const Vec4 s1 = model.state(0, 0).stress;
     // After 90 degrees: sigma_xx <-> sigma_yy, sigma_xy -> -sigma_xy, sigma_zz unchanged.
     const Vec4 expected(s0(1), s0(0), s0(2), -s0(3));
