@@ -17,9 +17,11 @@ namespace {
 using Stiffness = PenaltyBackend::Stiffness;
 
 // Contact forces of candidate c at x and, optionally, the 2x2 tangent block d(-f)/du of the
-// force f = F_N n + F_T t acting on the node.
+// force f = F_N n + F_T t acting on the node. With `frozen`, the node keeps that status (and slip
+// direction) whatever x: open nodes carry no force, closed ones a bilateral normal penalty (also
+// in tension), so the system is smooth for Newton; the caller updates the statuses between solves.
 NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, const Stiffness& k,
-                          const VecX& x, Mat2* block) {
+                          const VecX& x, Mat2* block, const NodeContact* frozen = nullptr) {
   NodeContact s;
   const Vec2 d = p.position(c, x) - p.roller().end.centre;
   const Real rho = d.norm();
@@ -27,7 +29,7 @@ NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, 
   s.gap = rho - p.roller().radius;
   s.slip = p.slip(c, x);
   if (block) block->setZero();
-  if (s.gap >= 0.0) return s;  // open: no force, and the history is lost
+  if (frozen ? frozen->status == ContactStatus::Open : s.gap >= 0.0) return s;  // open: no force
   s.normal_force = -k.normal * s.gap;
   const Real mu = p.roller().friction;
   const Vec2& t = c.tangent;
@@ -39,6 +41,19 @@ NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, 
   }
   const Real trial = c.tangential_force - k.tangential * s.slip;
   const Real bound = mu * s.normal_force;
+  if (frozen) {
+    if (frozen->status == ContactStatus::Stick) {
+      s.tangential_force = trial;
+      s.status = ContactStatus::Stick;
+      if (block) *block += k.tangential * t * t.transpose();
+    } else {
+      const Real sign = frozen->tangential_force >= 0.0 ? 1.0 : -1.0;
+      s.tangential_force = sign * bound;
+      s.status = ContactStatus::Slip;
+      if (block) *block += mu * k.normal * sign * t * n.transpose();
+    }
+    return s;
+  }
   if (std::abs(trial) <= bound) {
     s.tangential_force = trial;
     s.status = ContactStatus::Stick;
@@ -66,7 +81,7 @@ struct Evaluation {
 
 // Residual r = dPi/dx - (contact forces) on the free dofs, and its Jacobian when asked.
 void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian,
-              Evaluation& e) {
+              Evaluation& e, const std::vector<NodeContact>* frozen = nullptr) {
   p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr);
   e.contact.assign(p.candidates().size(), NodeContact{});
   e.symmetric = true;
@@ -75,7 +90,7 @@ void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
   for (std::size_t i = 0; i < p.candidates().size(); ++i) {
     const ContactCandidate& c = p.candidates()[i];
     NodeContact& s = e.contact[i];
-    s = contact_state(p, c, k[i], x, want_jacobian ? &block : nullptr);
+    s = contact_state(p, c, k[i], x, want_jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
     if (s.status == ContactStatus::Open) continue;
     const Real floor_i = 10.0 * std::numeric_limits<Real>::epsilon() * k[i].normal *
                          (p.position(c, x) - p.roller().end.centre).norm();
@@ -130,14 +145,15 @@ void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r,
 
 // One Newton solve at fixed penalty stiffnesses, from x (updated in place).
 BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k,
-                                           VecX& x, Real tolerance) const {
+                                           VecX& x, Real tolerance,
+                                           const std::vector<NodeContact>* frozen) const {
   BackendResult result;
   VecX d, x_trial;
   Evaluation e, trial;
   int full_steps = 0;  // consecutive full steps taken without a residual decrease
   constexpr int kMaxFullSteps = 5;
   try {
-    evaluate(problem, k, x, true, e);
+    evaluate(problem, k, x, true, e, frozen);
   } catch (const NumericalError& err) {
     result.message = fmt::format("cannot evaluate the start of the increment: {}", err.what());
     return result;
@@ -174,7 +190,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
     for (int ls = 0; ls < 20 && !accepted; ++ls, alpha *= 0.5) {
       x_trial = x + alpha * d;
       try {
-        evaluate(problem, k, x_trial, false, trial);
+        evaluate(problem, k, x_trial, false, trial, frozen);
       } catch (const NumericalError&) {
         continue;
       }
@@ -198,7 +214,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
     }
     x = x_trial;
     try {
-      evaluate(problem, k, x, true, e);
+      evaluate(problem, k, x, true, e, frozen);
     } catch (const NumericalError& err) {
       result.message = err.what();
       return result;
@@ -218,16 +234,59 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   // Intermediate stages stop at a looser tolerance.
   const Real e_star = problem.plane_strain_modulus();
   const Real target = options_.penalty.factor;
+  std::vector<Stiffness> k_target;
+  for (const auto& c : problem.candidates()) {
+    const Real kn = target * e_star * c.tributary_length / c.element_size;
+    k_target.push_back({kn, options_.penalty.tangential_factor * kn});
+  }
+  int spent = 0, spent_factorizations = 0;
   {
-    std::vector<Stiffness> k;
-    for (const auto& c : problem.candidates()) {
-      const Real kn = target * e_star * c.tributary_length / c.element_size;
-      k.push_back({kn, options_.penalty.tangential_factor * kn});
-    }
+    // Active-set passes: Newton on the smooth system with every node's status (open, stick,
+    // slip and its direction) frozen, then the statuses are updated from the converged state;
+    // done when no status changes (then the frozen and the true Coulomb residuals coincide).
     VecX x = x0;
-    BackendResult direct = newton_stage(problem, k, x, newton_.residual_tolerance);
+    Evaluation natural;
+    evaluate(problem, k_target, x, false, natural);
+    std::vector<NodeContact> status = natural.contact;
+    for (int pass = 1; pass <= kMaxActiveSetPasses; ++pass) {
+      BackendResult r = newton_stage(problem, k_target, x, newton_.residual_tolerance, &status);
+      spent += r.iterations;
+      spent_factorizations += r.factorizations;
+      if (!r.converged()) break;
+      evaluate(problem, k_target, x, false, natural);
+      bool same = true;
+      for (std::size_t i = 0; i < status.size() && same; ++i)
+        same = natural.contact[i].status == status[i].status &&
+               (natural.contact[i].status != ContactStatus::Slip ||
+                (natural.contact[i].tangential_force >= 0.0) == (status[i].tangential_force >= 0.0));
+      if (same) {
+        r.iterations = spent;
+        r.factorizations = spent_factorizations;
+        r.contact = natural.contact;
+        r.residual = natural.residual.norm() / std::max(natural.scale, 1e-300);
+        r.stats["active_set_passes"] = pass;
+        return r;
+      }
+      // Update; a slip that reverses its direction goes through stick first (otherwise two
+      // nodes near the no-slip point can flip back and forth for ever).
+      for (std::size_t i = 0; i < status.size(); ++i) {
+        const bool reversed = status[i].status == ContactStatus::Slip &&
+                              natural.contact[i].status == ContactStatus::Slip && problem.roller().friction > 0.0 &&
+                              (natural.contact[i].tangential_force >= 0.0) != (status[i].tangential_force >= 0.0);
+        status[i] = natural.contact[i];
+        if (reversed) status[i].status = ContactStatus::Stick;
+      }
+    }
+  }
+  {
+    VecX x = x0;
+    BackendResult direct = newton_stage(problem, k_target, x, newton_.residual_tolerance);
+    direct.iterations += spent;
+    direct.factorizations += spent_factorizations;
     direct.stats["penalty_stages"] = 1.0;
     if (direct.converged() || target <= 10.0 * kFirstStageFactor) return direct;
+    spent = direct.iterations;
+    spent_factorizations = direct.factorizations;
   }
   std::vector<Real> factors{target};
   while (factors.back() > 10.0 * kFirstStageFactor) factors.push_back(factors.back() / 100.0);
@@ -235,6 +294,8 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
 
   VecX x = x0;
   BackendResult total;
+  total.iterations = spent;
+  total.factorizations = spent_factorizations;
   for (std::size_t stage = 0; stage < factors.size(); ++stage) {
     std::vector<Stiffness> k;
     for (const auto& c : problem.candidates()) {

@@ -24,3 +24,23 @@ TEST_CASE("thesis scenes Z1 and Z2 run end to end (ipopt, refine 1)", "[contact]
     }
   }
 }
+
+TEST_CASE("thesis scenes Z1 and Z2 run end to end with the penalty backend (refine 1; Z2 also refine 2)",
+          "[contact][scenes][slow]") {
+  const std::vector<std::pair<std::string, int>> runs{
+      {"z1_outf05", 1}, {"z1_outf10", 1}, {"z2_infini", 1}, {"z2_large", 1}, {"z2_infini", 2}, {"z2_large", 2}};
+  for (const auto& [name, refine] : runs) {
+    SECTION(name + " refine " + std::to_string(refine)) {
+      const Simulation sim =
+          test::run_scene(name, {{"contact.backend", "\"penalty\""}, {"mesh.refine", std::to_string(refine)}});
+      int in_contact = 0;
+      for (const auto& c : sim.contact()) {
+        in_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
+        CHECK(std::abs(c.contact.tangential_force) <=
+              sim.scene().contact.friction * c.contact.normal_force * (1 + 1e-9) + 1e-12);
+      }
+      CHECK(in_contact >= 2);
+      CHECK(sim.roller_force().y() > 0.0);
+    }
+  }
+}

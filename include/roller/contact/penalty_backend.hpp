@@ -9,8 +9,10 @@
 //   stick if |F_T^trial| <= mu F_N: F_T = F_T^trial; else slip: F_T = mu F_N sign(F_T^trial)
 // so a node in contact penetrates by exactly F_N / kN = p_N h_i / (factor E*): with the default
 // factor 1e3 the penetration is 1e-3 of the elastic compression p_N h / E* of the element.
-// The penalty is raised in stages (factor 10, 1e3, 1e5, ... up to the target, each stage started
-// from the previous solution), which keeps Newton from chattering between contact states.
+// Solution strategy: (1) active-set passes — Newton with every node's status frozen (smooth),
+// statuses updated between passes until none changes; (2) if that fails, Newton on the full
+// law; (3) if that fails too, the penalty is raised in stages (factor 10, 1e3, 1e5, ... up to the
+// target, each stage started from the previous solution).
 #include "roller/contact/backend.hpp"
 
 namespace roller {
@@ -30,8 +32,11 @@ class PenaltyBackend : public ContactBackend {
   void residual(IncrementProblem& problem, const VecX& x, VecX& r, SparseMatrix* jacobian) const;
 
  private:
+  // Newton at fixed penalties from x (updated in place); with `frozen`, every node keeps the
+  // given status (see contact_state in the .cpp).
   BackendResult newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
-                             Real tolerance) const;
+                             Real tolerance, const std::vector<NodeContact>* frozen = nullptr) const;
+  static constexpr int kMaxActiveSetPasses = 20;
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
   ContactOptions options_;
   NewtonOptions newton_;
