@@ -63,3 +63,15 @@ TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip z
   }
   CHECK(disagreements <= 2);
 }
+
+TEST_CASE("Z2 (INFINI and LARGE): ipopt and penalty agree on the roller force and the pressure",
+          "[contact][ipopt][agreement][slow]") {
+  for (const char* name : {"z2_infini", "z2_large"}) {
+    SECTION(name) {
+      const Simulation ip = run(name, "ipopt", "1e3");
+      const Simulation pe = run(name, "penalty", "1e3");
+      CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
+      CHECK(pressure_difference(ip, pe) < 0.02);
+    }
+  }
+}
