@@ -25,7 +25,7 @@ TEST_CASE("thesis scenes Z1 and Z2 run end to end (ipopt, refine 1)", "[contact]
   }
 }
 
-TEST_CASE("thesis scenes Z1 and Z2 run end to end with the penalty backend (refine 1; Z2 also refine 2)",
+TEST_CASE("thesis scenes Z1 and Z2 run end to end with the penalty backend (refine 1, Z2 also refine 2)",
           "[contact][scenes][slow]") {
   const std::vector<std::pair<std::string, int>> runs{
       {"z1_outf05", 1}, {"z1_outf10", 1}, {"z2_infini", 1}, {"z2_large", 1}, {"z2_infini", 2}, {"z2_large", 2}};
