@@ -20,18 +20,19 @@ StripModel::StripModel(Mesh mesh, MaterialParams material, ElementOptions option
   if (!material_.is_valid(&why)) throw InputError(why);
   committed_.assign(mesh_.n_elements() * n_points_, initial_state(material_));
   trial_ = committed_;
-  update_geometry();
+  geometry_ = geometry_for(reference_);
   set_dof_map(DofMap(std::vector<bool>(mesh_.n_dofs(), false)));
 }
 
-void StripModel::update_geometry() {
-  geometry_.resize(mesh_.n_elements());
+std::vector<std::vector<PointGeometry>> StripModel::geometry_for(const std::vector<Vec2>& coordinates) const {
+  std::vector<std::vector<PointGeometry>> geometry(mesh_.n_elements());
   std::vector<Vec2> xe;
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     xe.clear();
-    for (Index a : mesh_.elements[e]) xe.push_back(reference_[a]);
-    geometry_[e] = element_geometry(mesh_.element_type, xe, e);
+    for (Index a : mesh_.elements[e]) xe.push_back(coordinates[a]);
+    geometry[e] = element_geometry(mesh_.element_type, xe, e);
   }
+  return geometry;
 }
 
 void StripModel::set_dof_map(DofMap dofs) {
@@ -126,18 +127,26 @@ Real StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_f
 void StripModel::commit(const VecX& u) {
   evaluate(u, nullptr, nullptr);  // the trial states at exactly this u
   const bool finite = options_.kinematics == Kinematics::Finite;
-  for (Index e = 0; e < mesh_.n_elements(); ++e) {
-    const auto f = finite ? deformation_gradients(geometry_[e], element_values(e, u)) : std::vector<Mat2>{};
-    for (int q = 0; q < n_points_; ++q) {
-      MaterialState& s = trial_[e * n_points_ + q];
-      if (finite) s.stress = push_forward(f[q], s.stress);
+  // Everything that can fail (an element inverted in the new configuration) is computed before
+  // any member changes, so a throw leaves the committed state as it was.
+  std::vector<Vec2> reference = reference_;
+  std::vector<std::vector<PointGeometry>> geometry;
+  if (finite) {
+    for (Index a = 0; a < mesh_.n_nodes(); ++a) reference[a] += Vec2(u(2 * a), u(2 * a + 1));
+    geometry = geometry_for(reference);
+    for (Index e = 0; e < mesh_.n_elements(); ++e) {
+      const auto f = deformation_gradients(geometry_[e], element_values(e, u));
+      for (int q = 0; q < n_points_; ++q) {
+        MaterialState& s = trial_[e * n_points_ + q];
+        s.stress = push_forward(f[q], s.stress);
+      }
     }
   }
   committed_ = trial_;
   total_displacement_ += u;
   if (finite) {
-    for (Index a = 0; a < mesh_.n_nodes(); ++a) reference_[a] += Vec2(u(2 * a), u(2 * a + 1));
-    update_geometry();
+    reference_ = std::move(reference);
+    geometry_ = std::move(geometry);
   }
 }
 

@@ -128,7 +128,15 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
   }
   if (!inc.converged) return inc;
 
-  model_->commit(u);
+  try {
+    model_->commit(u);
+  } catch (const NumericalError& e) {
+    // A solver reported success at a state the strip cannot take (e.g. an inverted element):
+    // treat it as a failed increment so the step is cut; nothing was committed.
+    inc.converged = false;
+    inc.message = fmt::format("the increment's solution is not admissible: {}", e.what());
+    return inc;
+  }
   last_increment_ = u;
   last_length_ = s_to - s_from;
   if (scene_.roller) {

@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "roller/core/error.hpp"
+
 namespace roller {
 
 namespace {
@@ -30,6 +32,9 @@ void strain_and_jacobian(const PointGeometry& g, const ElementVector& u, bool fi
   if (finite) {
     strain += 0.5 * h.transpose() * h;
     f += h;
+    // Green-Lagrange strain cannot tell an inverted element (det F < 0) from a valid one.
+    if (!(f.determinant() > 0.0))
+      throw NumericalError("an element inverts within the increment (det F <= 0); use smaller steps");
   }
   e << strain(0, 0), strain(1, 1), 0.0, 2.0 * strain(0, 1);
   const Index n = g.gradients.rows();

@@ -34,7 +34,8 @@ class StripModel {
 
   // Accepts the converged increment: material states become the trial states at `u` (stress
   // pushed forward for finite kinematics), the total displacement grows by u, and for finite
-  // kinematics the reference configuration moves to the new one.
+  // kinematics the reference configuration moves to the new one. Throws NumericalError (and
+  // changes nothing) when an element would be inverted in the new configuration.
   void commit(const VecX& u);
 
   // Start-of-increment coordinates of each node (the reference of the next increment).
@@ -61,7 +62,9 @@ class StripModel {
   Real volume() const;
 
  private:
-  void update_geometry();
+  // Integration-point geometry of every element in the given configuration (throws
+  // NumericalError naming an inverted element).
+  std::vector<std::vector<PointGeometry>> geometry_for(const std::vector<Vec2>& coordinates) const;
   ElementVector element_values(Index e, const VecX& u) const;
 
   Mesh mesh_;
