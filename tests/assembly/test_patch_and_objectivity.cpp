@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "../support/impose_field.hpp"
+#include "roller/core/error.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
@@ -170,4 +171,23 @@ TEST_CASE("Newton converges quadratically on an elastoplastic compression", "[as
   const Real order = std::log(r[k + 1] / r[k]) / std::log(r[k] / r[k - 1]);
   INFO("residual history: " << Catch::Detail::stringify(r) << " last " << r.back());
   CHECK(order > 1.7);
+}
+
+TEST_CASE("an increment that inverts an element is rejected and changes nothing", "[assembly][robustness]") {
+  StripMeshSpec spec;
+  spec.length = 2.0;
+  spec.height = 1.0;
+  spec.nx = 2;
+  spec.ny = 1;
+  StripModel model(make_strip_mesh(spec), elastic(), ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
+  // Push the top-left node through the bottom edge: the first element turns inside out.
+  VecX u = VecX::Zero(model.n_dofs());
+  const Index corner = model.mesh().node_set("top_left").front();
+  u(2 * corner + 1) = -2.0;
+  VecX g;
+  CHECK_THROWS_AS(model.evaluate(u, &g, nullptr), NumericalError);
+  CHECK_THROWS_AS(model.commit(u), NumericalError);
+  CHECK(model.total_displacement().norm() == 0.0);
+  CHECK((model.reference_coordinates()[corner] - model.mesh().nodes[corner]).norm() == 0.0);
+  for (const auto& s : model.states()) CHECK(s.stress.norm() == 0.0);
 }
