@@ -111,6 +111,16 @@ void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
   e.roundoff_floor = std::sqrt(floor2);
 }
 
+// The documented penalty rule: kN = factor E* l_i / h_i per candidate, kT = tangential_factor kN.
+std::vector<Stiffness> penalty_stiffnesses(const IncrementProblem& p, Real factor, Real tangential_factor) {
+  std::vector<Stiffness> k;
+  for (const auto& c : p.candidates()) {
+    const Real kn = factor * p.plane_strain_modulus() * c.tributary_length / c.element_size;
+    k.push_back({kn, tangential_factor * kn});
+  }
+  return k;
+}
+
 bool solve_linear(const Evaluation& e, VecX& d) {
   if (e.symmetric) {
     Eigen::SimplicialLDLT<SparseMatrix> ldlt(e.jacobian);
@@ -132,11 +142,7 @@ PenaltyBackend::PenaltyBackend(ContactOptions options, NewtonOptions newton)
     : options_(std::move(options)), newton_(newton) {}
 
 void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r, SparseMatrix* jacobian) const {
-  std::vector<Stiffness> k;
-  for (const auto& c : problem.candidates()) {
-    const Real kn = options_.penalty.factor * problem.plane_strain_modulus() * c.tributary_length / c.element_size;
-    k.push_back({kn, options_.penalty.tangential_factor * kn});
-  }
+  const auto k = penalty_stiffnesses(problem, options_.penalty.factor, options_.penalty.tangential_factor);
   Evaluation e;
   evaluate(problem, k, x, jacobian != nullptr, e);
   r = e.residual;
@@ -232,13 +238,8 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   // states when the contact set changes much): solve at a soft penalty first and raise it by
   // 100 per stage up to the target, each stage starting from the previous solution.
   // Intermediate stages stop at a looser tolerance.
-  const Real e_star = problem.plane_strain_modulus();
   const Real target = options_.penalty.factor;
-  std::vector<Stiffness> k_target;
-  for (const auto& c : problem.candidates()) {
-    const Real kn = target * e_star * c.tributary_length / c.element_size;
-    k_target.push_back({kn, options_.penalty.tangential_factor * kn});
-  }
+  const auto k_target = penalty_stiffnesses(problem, target, options_.penalty.tangential_factor);
   int spent = 0, spent_factorizations = 0;
   {
     // Active-set passes: Newton on the smooth system with every node's status (open, stick,
@@ -297,11 +298,7 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   total.iterations = spent;
   total.factorizations = spent_factorizations;
   for (std::size_t stage = 0; stage < factors.size(); ++stage) {
-    std::vector<Stiffness> k;
-    for (const auto& c : problem.candidates()) {
-      const Real kn = factors[stage] * e_star * c.tributary_length / c.element_size;
-      k.push_back({kn, options_.penalty.tangential_factor * kn});
-    }
+    const auto k = penalty_stiffnesses(problem, factors[stage], options_.penalty.tangential_factor);
     const bool last = stage + 1 == factors.size();
     BackendResult r = newton_stage(problem, k, x, last ? newton_.residual_tolerance
                                                       : std::max(1e-6, newton_.residual_tolerance));

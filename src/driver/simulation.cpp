@@ -225,18 +225,13 @@ RunSummary Simulation::run(const RunOptions& options) {
   for (int step = 1; step <= scene_.steps.n_steps; ++step) {
     const auto t_step = Clock::now();
     const StepResult res = advance_step(step);
-    const Increment& last = res.last;
-    const bool ok = res.converged;
-    const int cuts = res.cuts, iterations = res.iterations, factorizations = res.factorizations;
-    const Real penetration = res.max_penetration;
-    const std::string& failure = res.message;
     const double wall = seconds_since(t_step);
-    summary.iterations_total += iterations;
-    summary.cuts_total += cuts;
-    summary.max_penetration = std::max(summary.max_penetration, penetration);
+    summary.iterations_total += res.iterations;
+    summary.cuts_total += res.cuts;
+    summary.max_penetration = std::max(summary.max_penetration, res.max_penetration);
     auto stat = [&](const char* key) {
-      const auto it = last.stats.find(key);
-      return it == last.stats.end() ? 0.0 : it->second;
+      const auto it = res.last.stats.find(key);
+      return it == res.last.stats.end() ? 0.0 : it->second;
     };
     Index n_contact = 0;
     for (const auto& c : contact_) n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
@@ -272,18 +267,18 @@ RunSummary Simulation::run(const RunOptions& options) {
           mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
               ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
               : "in a quasistatic strip no time step restores it: use smaller steps or check the supports");
-    solver_csv.add_row({static_cast<Index>(step), step * scene_.steps.dt, static_cast<Index>(iterations),
-                        last.residual, penetration, wall, static_cast<Index>(cuts), n_yielded,
-                        static_cast<Index>(factorizations), stat("complementarity"),
+    solver_csv.add_row({static_cast<Index>(step), step * scene_.steps.dt, static_cast<Index>(res.iterations),
+                        res.last.residual, res.max_penetration, wall, static_cast<Index>(res.cuts), n_yielded,
+                        static_cast<Index>(res.factorizations), stat("complementarity"),
                         stat("constraint_violation"), stat("fixed_point_iterations"), n_contact,
                         mono.n_not_pd, std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0,
                         static_cast<Index>(kdef.positive_definite() ? 1 : 0), kdef.n_negative,
                         std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0,
-                        std::string(ok ? "converged" : "failed")});
-    if (!ok) {
+                        std::string(res.converged ? "converged" : "failed")});
+    if (!res.converged) {
       summary.converged = false;
-      summary.message = failure;
-      if (options.progress) *options.progress << "error: " << failure << "\n";
+      summary.message = res.message;
+      if (options.progress) *options.progress << "error: " << res.message << "\n";
       break;
     }
     summary.steps_done = step;
@@ -301,12 +296,12 @@ RunSummary Simulation::run(const RunOptions& options) {
     if (options.progress) {
       std::string contact_text;
       if (scene_.roller)
-        contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", n_contact, penetration,
+        contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", n_contact, res.max_penetration,
                                    roller_force().y());
       *options.progress << fmt::format(
                                "step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
-                               step, scene_.steps.n_steps, step * scene_.steps.dt, iterations, last.residual,
-                               cuts, n_yielded, contact_text, wall)
+                               step, scene_.steps.n_steps, step * scene_.steps.dt, res.iterations, res.last.residual,
+                               res.cuts, n_yielded, contact_text, wall)
                         << std::flush;
     }
   }

@@ -60,7 +60,7 @@ class Simulation {
   std::vector<PressureSample> pressure_profile() const;
 
   // Advances the state from s_from to s_to (scene steps, fractional) with one increment;
-  // commits and returns true on success, leaves the state untouched on failure.
+  // commits on success (converged = true) and leaves the state untouched on failure.
   struct Increment {
     bool converged = false;
     int iterations = 0;
