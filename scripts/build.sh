@@ -4,7 +4,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 generator=()
 command -v ninja >/dev/null 2>&1 && generator=(-G Ninja)
-if [ ! -f build/CMakeCache.txt ]; then
+# Configure unless a previous configure completed (a failed one leaves a cache but no build file).
+if [ ! -f build/build.ninja ] && [ ! -f build/Makefile ]; then
+  rm -f build/CMakeCache.txt
   cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "$@"
 fi
 cmake --build build -j "$(nproc)"
