@@ -18,6 +18,8 @@ struct RunArgs {
   int refine = 0;
   int steps = 0;
   std::string contact;
+  std::string initial_state;
+  bool resume = false;
   std::vector<std::string> sets;
 };
 
@@ -28,6 +30,7 @@ int run_scene(const RunArgs& args) {
   if (args.steps > 0) overrides.push_back({"steps.count", std::to_string(args.steps)});
   if (!args.contact.empty()) overrides.push_back({"contact.backend", "\"" + args.contact + "\""});
   roller::Scene scene = roller::load_scene(args.scene, overrides);
+  if (!args.initial_state.empty()) scene.initial_state = std::filesystem::absolute(args.initial_state);
   roller::Simulation sim(std::move(scene));
   const std::string out = args.out.empty() ? "out/" + sim.scene().name : args.out;
   std::cout << fmt::format("roller: scene '{}' ({}), {} elements {}, {} dofs ({} free), {} steps -> {}\n",
@@ -38,6 +41,7 @@ int run_scene(const RunArgs& args) {
   roller::RunOptions options;
   options.out_dir = out;
   options.progress = &std::cout;
+  options.resume = args.resume;
   const roller::RunSummary summary = sim.run(options);
   std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations); results in {}\n",
                            summary.message, summary.wall_s, summary.iterations_total, out);
@@ -60,6 +64,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000000));
   run->add_option("--contact", run_args.contact, "contact backend (overrides contact.backend)")
       ->check(CLI::IsMember({"penalty", "ipopt"}));
+  run->add_flag("--resume", run_args.resume,
+                "continue the run in the output folder from its checkpoint.cbor (a killed or shortened run)");
+  run->add_option("--initial-state", run_args.initial_state,
+                  "start from the strip state saved by another run (overrides restart.from)")
+      ->check(CLI::ExistingFile);
   run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")
       ->type_name("KEY=VALUE");
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);

@@ -1,14 +1,20 @@
 #include "roller/assembly/increment_energy.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace roller {
 
-IncrementEnergy::IncrementEnergy(StripModel& model, VecX prescribed, VecX external_force)
-    : model_(model), prescribed_(std::move(prescribed)), external_(std::move(external_force)) {
+IncrementEnergy::IncrementEnergy(StripModel& model, VecX prescribed, VecX external_force,
+                                 std::optional<InertiaTerm> inertia)
+    : model_(model), prescribed_(std::move(prescribed)), external_(std::move(external_force)),
+      inertia_(std::move(inertia)) {
   // Internal forces at the start of the increment balance the previous loads; their size is a
   // force scale that exists even for purely displacement-driven or unloaded steps.
   VecX g;
   model_.evaluate(VecX::Zero(model_.n_dofs()), &g, nullptr);
   start_scale_ = g.norm();
+  if (inertia_) start_scale_ = std::max(start_scale_, inertia_->start_force.norm());
 }
 
 VecX IncrementEnergy::full_increment(const VecX& x) const {
@@ -21,8 +27,20 @@ VecX IncrementEnergy::full_increment(const VecX& x) const {
 
 Real IncrementEnergy::evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
   const VecX u = full_increment(x);
-  const Real energy = model_.evaluate(u, &full_gradient_, hessian);
+  Real energy = model_.evaluate(u, &full_gradient_, hessian);
   full_gradient_ -= external_;
+  if (inertia_) {
+    const VecX mu = *inertia_->mass * u;
+    energy += 0.5 * inertia_->coefficient * u.dot(mu) + u.dot(inertia_->start_force);
+    full_gradient_ += inertia_->coefficient * mu + inertia_->start_force;
+    if (hessian) {
+      // The strip's pattern covers the element connectivity, hence every entry of M.
+      const SparseMatrix& m = *inertia_->mass_free;
+      for (int k = 0; k < m.outerSize(); ++k)
+        for (SparseMatrix::InnerIterator it(m, k); it; ++it)
+          hessian->coeffRef(it.row(), it.col()) += inertia_->coefficient * it.value();
+    }
+  }
   if (gradient) *gradient = model_.dof_map().restrict_to_free(full_gradient_);
   return energy - external_.dot(u);
 }

@@ -150,6 +150,20 @@ void StripModel::commit(const VecX& u) {
   }
 }
 
+void StripModel::restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states) {
+  if (static_cast<Index>(reference.size()) != mesh_.n_nodes() || total_displacement.size() != n_dofs() ||
+      states.size() != committed_.size())
+    throw InputError(fmt::format("the saved state does not fit this mesh: it has {} nodes and {} integration "
+                                 "points, the mesh {} and {} (same [mesh] and refine needed)",
+                                 reference.size(), states.size(), mesh_.n_nodes(), committed_.size()));
+  auto geometry = geometry_for(reference);
+  reference_ = std::move(reference);
+  geometry_ = std::move(geometry);
+  total_displacement_ = std::move(total_displacement);
+  committed_ = std::move(states);
+  trial_ = committed_;
+}
+
 std::vector<Vec2> StripModel::current_coordinates() const {
   std::vector<Vec2> x(mesh_.nodes);
   for (Index a = 0; a < mesh_.n_nodes(); ++a)

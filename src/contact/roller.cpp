@@ -12,6 +12,15 @@ bool RollerSpec::is_valid(std::string* why) const {
     return false;
   };
   if (!(radius > 0.0)) return bad(fmt::format("roller.radius = {}: must be > 0", radius));
+  if (suspension) {
+    const SuspensionSpec& q = *suspension;
+    for (auto [name, v] : {std::pair{"mass", q.mass}, {"damping", q.damping}, {"stiffness", q.stiffness}})
+      if (!(v >= 0.0 && std::isfinite(v)))
+        return bad(fmt::format("roller.suspension.{} = {}: must be a finite value >= 0", name, v));
+    if (!(q.stiffness > 0.0 || q.mass > 0.0))
+      return bad(fmt::format("roller.suspension.stiffness = {}: a suspension needs stiffness > 0 or mass > 0",
+                             q.stiffness));
+  }
   for (std::size_t i = 0; i < path.size(); ++i) {
     const PathSegment& s = path[i];
     const std::string at = fmt::format("roller.path[{}]", i);

@@ -7,6 +7,8 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <stdexcept>
 #include <utility>
 
@@ -51,17 +53,41 @@ CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> c
         "cannot open CSV file '{}' for writing (does the folder exist and is it writable?)",
         path_.string()));
   }
+  out_ << header_line() << std::flush;
+  if (!out_) {
+    throw std::runtime_error(
+        fmt::format("cannot write the header of CSV file '{}' (disk full?)", path_.string()));
+  }
+}
+
+CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> columns, Index keep_through)
+    : columns_(std::move(columns)), path_(path) {
+  std::ifstream in(path_, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("cannot resume CSV file '{}': it does not exist", path_.string()));
+  std::string line, kept;
+  std::getline(in, line);
+  if (line + '\n' != header_line())
+    throw std::runtime_error(fmt::format("cannot resume CSV file '{}': its header '{}' differs from '{}'",
+                                         path_.string(), line, header_line().substr(0, header_line().size() - 1)));
+  kept = line + '\n';
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const Index step = std::strtoll(line.c_str(), nullptr, 10);
+    if (step <= keep_through) kept += line + '\n';
+  }
+  in.close();
+  out_.open(path_, std::ios::out | std::ios::trunc | std::ios::binary);
+  out_ << kept << std::flush;
+  if (!out_) throw std::runtime_error(fmt::format("cannot rewrite CSV file '{}' (disk full?)", path_.string()));
+}
+
+std::string CsvTable::header_line() const {
   std::string line;
   for (std::size_t i = 0; i < columns_.size(); ++i) {
     if (i > 0) line += ',';
     line += quote_if_needed(columns_[i]);
   }
-  line += '\n';
-  out_ << line << std::flush;
-  if (!out_) {
-    throw std::runtime_error(
-        fmt::format("cannot write the header of CSV file '{}' (disk full?)", path_.string()));
-  }
+  return line + '\n';
 }
 
 void CsvTable::add_row(const std::vector<Cell>& cells) {

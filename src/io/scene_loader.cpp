@@ -1,5 +1,6 @@
 #include "roller/io/scene_loader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -198,7 +199,43 @@ void read_output(TomlSection& root, Scene& scene) {
   if (!s) return;
   scene.output.every = static_cast<int>(s->integer_or("every", scene.output.every));
   scene.output.vtu = s->boolean("vtu").value_or(scene.output.vtu);
+  scene.output.checkpoint_every =
+      static_cast<int>(s->integer_or("checkpoint_every", scene.output.checkpoint_every));
   if (scene.output.every < 1) s->fail("every", "expected an integer >= 1");
+  if (scene.output.checkpoint_every < 0)
+    s->fail("checkpoint_every", "expected an integer >= 0 (0: no checkpoint)");
+  if (auto steps = s->real_array("save_states")) {
+    for (Real v : *steps) {
+      if (v != std::floor(v) || v < 1 || v > scene.steps.n_steps)
+        s->fail("save_states", fmt::format("expected step numbers in 1..{} (steps.count)", scene.steps.n_steps));
+      scene.output.save_states.push_back(static_cast<int>(v));
+    }
+  }
+  s->finish();
+}
+
+void read_dynamics(TomlSection& root, Scene& scene) {
+  auto s = root.table("dynamics");
+  if (!s) return;
+  DynamicsOptions& d = scene.dynamics;
+  d.strip_inertia = s->boolean("strip_inertia").value_or(d.strip_inertia);
+  d.lumped_mass = s->choice_or("mass", {"consistent", "lumped"}, d.lumped_mass ? "lumped" : "consistent") == "lumped";
+  if (d.strip_inertia && !(scene.material.density > 0.0))
+    s->fail("strip_inertia", fmt::format("strip inertia needs material.density > 0 [t/mm^3] (it is {}); "
+                                         "steel: 7.8e-9",
+                                         scene.material.density));
+  s->finish();
+}
+
+void read_restart(TomlSection& root, Scene& scene) {
+  auto s = root.table("restart");
+  if (!s) return;
+  const auto from = s->string("from");
+  if (!from || from->empty()) s->fail("from", "expected the path of a state file (state_final.cbor of a run)");
+  std::filesystem::path p(*from);
+  // Relative to the scene file, so that a scene and its predecessor's output travel together.
+  if (p.is_relative() && !scene.file.empty()) p = scene.file.parent_path() / p;
+  scene.initial_state = p;
   s->finish();
 }
 
@@ -238,6 +275,14 @@ void read_roller(TomlSection& root, Scene& scene) {
     r.start_centre = Vec2((*c)[0], (*c)[1]);
   }
   r.start_angle = s->real_or("angle", 0.0);
+  if (auto q = s->table("suspension")) {
+    SuspensionSpec sp;
+    sp.mass = q->real_or("mass", 0.0);
+    sp.damping = q->real_or("damping", 0.0);
+    sp.stiffness = q->real_or("stiffness", 0.0);
+    q->finish();
+    r.suspension = sp;
+  }
   for (auto& seg : s->table_array("path")) {
     PathSegment p;
     const auto steps = seg.real_array("steps");
@@ -311,7 +356,7 @@ Scene scene_from_table(const toml::table& table, const std::filesystem::path& fi
   scene.file = file;
   TomlSection root(table, "", file);
   root.allow({"name", "title", "kinematics", "mesh", "material", "steps", "newton", "output",
-              "displacement", "load", "roller", "contact"});
+              "displacement", "load", "roller", "contact", "dynamics", "restart"});
   root.finish();
   scene.name = root.string("name").value_or(file.stem().string());
   scene.title = root.string("title").value_or("");
@@ -322,6 +367,8 @@ Scene scene_from_table(const toml::table& table, const std::filesystem::path& fi
   read_steps(root, scene);
   read_newton(root, scene);
   read_output(root, scene);
+  read_dynamics(root, scene);
+  read_restart(root, scene);
   read_conditions(root, scene);
   read_roller(root, scene);
   read_contact(root, scene);
@@ -368,11 +415,18 @@ std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
     return {best};
   }
   if (selector.numbers.empty()) {
-    try {
-      return mesh.node_set(selector.set_name);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: {}", context, e.what()));
+    // "top+right": the union of named sets, in order, each node once.
+    std::vector<Index> out;
+    std::stringstream names(selector.set_name);
+    for (std::string name; std::getline(names, name, '+');) {
+      try {
+        for (Index a : mesh.node_set(name))
+          if (std::find(out.begin(), out.end(), a) == out.end()) out.push_back(a);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: {}", context, e.what()));
+      }
     }
+    return out;
   }
   std::vector<Index> out;
   for (Index number : selector.numbers) {

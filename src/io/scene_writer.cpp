@@ -78,8 +78,15 @@ std::string scene_to_toml(const Scene& scene) {
   root.insert("newton", toml::table{{"max_iterations", static_cast<int64_t>(scene.newton.max_iterations)},
                                     {"residual_tolerance", scene.newton.residual_tolerance},
                                     {"line_search", scene.newton.line_search}});
+  toml::array save_states;
+  for (int step : scene.output.save_states) save_states.push_back(static_cast<int64_t>(step));
   root.insert("output", toml::table{{"every", static_cast<int64_t>(scene.output.every)},
-                                    {"vtu", scene.output.vtu}});
+                                    {"vtu", scene.output.vtu},
+                                    {"checkpoint_every", static_cast<int64_t>(scene.output.checkpoint_every)},
+                                    {"save_states", save_states}});
+  root.insert("dynamics", toml::table{{"strip_inertia", scene.dynamics.strip_inertia},
+                                      {"mass", scene.dynamics.lumped_mass ? "lumped" : "consistent"}});
+  if (!scene.initial_state.empty()) root.insert("restart", toml::table{{"from", scene.initial_state.string()}});
 
   toml::array displacements;
   for (const auto& bc : scene.displacements) {
@@ -105,13 +112,18 @@ std::string scene_to_toml(const Scene& scene) {
     toml::table roller{{"radius", r.radius}, {"angle", r.start_angle}};
     if (r.start_centre) roller.insert("centre", toml::array{r.start_centre->x(), r.start_centre->y()});
     toml::array path;
-    for (const PathSegment& p : r.path) {
-      toml::table t{{"steps", toml::array{static_cast<int64_t>(p.first_step), static_cast<int64_t>(p.last_step)}},
-                    {"dx", p.dx},
-                    {"dy", p.dy},
-                    {"slip", toml::array{p.slip_start, p.slip_end}}};
-      if (p.harmonic_wavelength > 0.0)
-        t.insert("harmonic", toml::table{{"amplitude", p.harmonic_amplitude}, {"wavelength", p.harmonic_wavelength}});
+    if (r.suspension)
+      roller.insert("suspension", toml::table{{"mass", r.suspension->mass},
+                                              {"damping", r.suspension->damping},
+                                              {"stiffness", r.suspension->stiffness}});
+    for (const PathSegment& seg : r.path) {
+      toml::table t{{"steps", toml::array{static_cast<int64_t>(seg.first_step), static_cast<int64_t>(seg.last_step)}},
+                    {"dx", seg.dx},
+                    {"dy", seg.dy},
+                    {"slip", toml::array{seg.slip_start, seg.slip_end}}};
+      if (seg.harmonic_wavelength > 0.0)
+        t.insert("harmonic",
+                 toml::table{{"amplitude", seg.harmonic_amplitude}, {"wavelength", seg.harmonic_wavelength}});
       path.push_back(t);
     }
     if (!path.empty()) roller.insert("path", path);

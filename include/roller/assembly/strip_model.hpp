@@ -38,6 +38,11 @@ class StripModel {
   // changes nothing) when an element would be inverted in the new configuration.
   void commit(const VecX& u);
 
+  // Replaces the committed state by one saved earlier (state files): start-of-increment
+  // coordinates, total displacement and the integration-point states. Throws InputError when the
+  // sizes do not fit this mesh, NumericalError when an element is inverted.
+  void restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states);
+
   // Start-of-increment coordinates of each node (the reference of the next increment).
   const std::vector<Vec2>& reference_coordinates() const { return reference_; }
   // Current coordinates X0 + total displacement (equal to reference_coordinates() for finite

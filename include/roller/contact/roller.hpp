@@ -32,11 +32,21 @@ struct PathSegment {
   Real harmonic_wavelength = 0.0;  // L_p [mm]; 0 = no harmonic
 };
 
+// Viscoelastic vertical suspension of the roller (thesis (4.20), SPEC §2.5), per mm of roller
+// length: the centre is the prescribed path (the anchor, i.e. the bearing housing) plus a
+// deflection w with  m w'' + c w' + k w = F_y  (F_y: the strip's vertical force on the roller).
+struct SuspensionSpec {
+  Real mass = 0.0;       // m [t per mm]
+  Real damping = 0.0;    // c [N s/mm per mm]
+  Real stiffness = 0.0;  // k [N/mm per mm]
+};
+
 struct RollerSpec {
   Real radius = 300.0;                 // R [mm]
   std::optional<Vec2> start_centre;    // default: above the strip's top at x = length/2, touching
   Real start_angle = 0.0;
   std::vector<PathSegment> path;       // steps not covered by a segment keep the roller still
+  std::optional<SuspensionSpec> suspension;  // absent: the centre follows the path exactly
   bool is_valid(std::string* why) const;
 };
 

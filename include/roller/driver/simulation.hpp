@@ -12,6 +12,8 @@
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/driver/load_program.hpp"
+#include "roller/dynamics/houbolt.hpp"
+#include "roller/dynamics/suspension.hpp"
 #include "roller/io/scene.hpp"
 
 namespace roller {
@@ -19,6 +21,9 @@ namespace roller {
 struct RunOptions {
   std::filesystem::path out_dir = "out";
   std::ostream* progress = nullptr;  // one line per step; nullptr = silent
+  // Continue a run in out_dir from its checkpoint.cbor: the output of the steps after the
+  // checkpoint is dropped and recomputed, the rest is kept.
+  bool resume = false;
 };
 
 struct RunSummary {
@@ -55,6 +60,24 @@ class Simulation {
   const RollerPose& pose() const { return pose_; }
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
   Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
+  int steps_done() const { return steps_done_; }
+  // Strip inertia: the Houbolt velocity and acceleration of all dofs at the end of the last
+  // step (empty for a quasistatic strip), and the kinetic energy 1/2 v.M v [N mm per mm].
+  const VecX& velocity() const { return velocity_; }
+  const VecX& acceleration() const { return acceleration_; }
+  Real kinetic_energy() const;
+  // Suspended roller: the deflection from the anchor, its velocity and acceleration.
+  const std::optional<Suspension>& suspension() const { return suspension_; }
+  Real suspension_velocity() const { return suspension_velocity_; }
+  Real suspension_acceleration() const { return suspension_acceleration_; }
+  // Roller centre velocity over the last step (backward difference) [mm/s].
+  Vec2 roller_velocity() const { return roller_velocity_; }
+
+  // State files (CBOR): everything the next step needs, so that a run continued from a saved
+  // state gives the same results as an uninterrupted one. load_state() restores the strip and,
+  // unless strip_only, the roller, the friction history, the predictor and the step counter.
+  void save_state(const std::filesystem::path& file) const;
+  void load_state(const std::filesystem::path& file, bool strip_only);
   // Nodal contact pressures of the last increment against x measured from the roller centre;
   // open nodes count as unloaded (an interior-point solution leaves barrier-size forces there).
   std::vector<PressureSample> pressure_profile() const;
@@ -87,6 +110,11 @@ class Simulation {
 
  private:
   Vec2 start_centre() const;
+  void start_dynamics();
+  BackendResult solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
+                              RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates);
+  void record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result, const VecX& u);
+  void finish_step();
 
   Scene scene_;
   std::unique_ptr<StripModel> model_;
@@ -98,6 +126,16 @@ class Simulation {
   RollerPose pose_;
   std::vector<NodeContactRecord> contact_;
   std::map<Index, NodeContact> history_;  // committed contact per node (friction history)
+  int steps_done_ = 0;
+
+  // Dynamics. The step-level Houbolt histories advance once per scene step; the working ones
+  // are resampled when a step is cut into sub-increments (houbolt.hpp).
+  SparseMatrix mass_, mass_free_;        // strip inertia only
+  HouboltHistory strip_step_history_, strip_history_;
+  std::optional<Suspension> suspension_step_, suspension_;
+  VecX velocity_, acceleration_;
+  Real suspension_velocity_ = 0.0, suspension_acceleration_ = 0.0;
+  Vec2 roller_velocity_ = Vec2::Zero();
 };
 
 }  // namespace roller

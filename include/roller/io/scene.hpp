@@ -57,6 +57,16 @@ struct StepControl {
 struct OutputOptions {
   int every = 1;          // write fields every N steps (and always the last step)
   bool vtu = true;
+  int checkpoint_every = 1;      // write checkpoint.cbor (the full state, for --resume) every N
+                                 // steps; 0 = never
+  std::vector<int> save_states;  // steps whose full state is kept as state_NNNN.cbor
+                                 // (state_final.cbor is always written at the end)
+};
+
+// Strip inertia (SPEC §2.6). The roller's suspension is switched on by [roller.suspension].
+struct DynamicsOptions {
+  bool strip_inertia = false;  // Houbolt inertia of the strip (needs material.density > 0)
+  bool lumped_mass = false;    // row-sum lumped instead of consistent mass
 };
 
 struct Scene {
@@ -71,8 +81,12 @@ struct Scene {
   OutputOptions output;
   std::vector<DisplacementBC> displacements;
   std::vector<NodalLoad> loads;
+  DynamicsOptions dynamics;
   std::optional<RollerSpec> roller;  // absent: no contact
   ContactOptions contact;
+  // Start from the strip state saved by another run (state file; roller and friction history
+  // start afresh): [restart] from = "...", resolved against the scene file's folder.
+  std::filesystem::path initial_state;
 };
 
 }  // namespace roller

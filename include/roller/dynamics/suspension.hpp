@@ -1,0 +1,57 @@
+#pragma once
+// The roller's vertical suspension (thesis (4.20)-(4.21), SPEC §2.5), per mm of roller length:
+//   m w'' + c w' + k w = F_y,
+// w the deflection of the centre from the prescribed anchor (positive up), F_y the vertical
+// force of the strip on the roller. Houbolt in time, like the strip (houbolt.hpp), so with
+// w = w_{n+1} the equation at the end of the increment is linear in w:
+//   r(w) = k_eff w + h - F_y(w),  k_eff = m c_a + c c_v + k,  h = m a_off + c v_off.
+// The strip's force depends on w through the contact solve; couple_suspension() converges the
+// two in the same increment.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "roller/contact/roller.hpp"
+#include "roller/dynamics/houbolt.hpp"
+
+namespace roller {
+
+class Suspension {
+ public:
+  Suspension() = default;
+  Suspension(SuspensionSpec spec, HouboltHistory history) : spec_(spec), history_(std::move(history)) {}
+
+  const SuspensionSpec& spec() const { return spec_; }
+  HouboltHistory& history() { return history_; }
+  const HouboltHistory& history() const { return history_; }
+  Real deflection() const { return history_.u_n()(0); }
+
+  Real effective_stiffness() const;
+  Real history_force() const;  // h above
+  Real residual(Real w, Real force) const { return effective_stiffness() * w + history_force() - force; }
+  Real velocity(Real w) const;
+  Real acceleration(Real w) const;
+
+ private:
+  SuspensionSpec spec_;
+  HouboltHistory history_;  // 1-vectors
+};
+
+struct CouplingResult {
+  bool converged = false;
+  int iterations = 0;  // contact solves
+  Real deflection = 0.0;
+  Real force = 0.0;    // F_y at the final deflection
+  std::string message;
+};
+
+// Finds w with r(w) = 0. `contact_force(w)` solves the strip's contact increment with the roller
+// at anchor + w and returns F_y, or nullopt when that solve fails. The first update is the fixed
+// point w1 = (F_y(w0) - h)/k_eff; later ones take the secant slope of r (k_eff plus the contact
+// stiffness), which converges superlinearly. Converged when the change of w is below
+// `w_tolerance` [mm].
+CouplingResult couple_suspension(const Suspension& suspension, Real w0,
+                                 const std::function<std::optional<Real>(Real)>& contact_force, Real w_tolerance,
+                                 int max_iterations);
+
+}  // namespace roller
