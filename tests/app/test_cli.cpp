@@ -86,3 +86,31 @@ TEST_CASE("roller run: a step that cannot converge stops the run with code 1, co
   CHECK_THAT(read(out / "solver.csv"), Catch::Contains("failed"));
   fs::remove_all(out);
 }
+
+TEST_CASE("roller run --resume continues a shortened run to the same results as an uninterrupted one", "[app][restart]") {
+  // Z4 has strip inertia and a suspended roller: the Houbolt histories must survive the break.
+  const fs::path whole = fs::temp_directory_path() / ("roller_cli_whole_" + std::to_string(::getpid()));
+  const fs::path split = fs::temp_directory_path() / ("roller_cli_split_" + std::to_string(::getpid()));
+  fs::remove_all(whole);
+  fs::remove_all(split);
+  const std::string scene = "run problems/z4_v25.toml --steps 10 --out ";
+  REQUIRE(run_roller(scene + whole.string()).exit_code == 0);
+  REQUIRE(run_roller("run problems/z4_v25.toml --steps 6 --out " + split.string()).exit_code == 0);
+  // A killed run leaves rows after its last checkpoint; they must be replaced, not duplicated.
+  { std::ofstream(split / "roller.csv", std::ios::app) << "7,junk\n"; }
+  const Run resumed = run_roller(scene + split.string() + " --resume");
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK_THAT(resumed.output, Catch::Contains("resuming after step 6"));
+  CHECK(read(split / "roller.csv") == read(whole / "roller.csv"));
+  CHECK(read(split / "contact.csv") == read(whole / "contact.csv"));
+  CHECK(read(split / "step_0010.vtu") == read(whole / "step_0010.vtu"));
+  CHECK(read(split / "fields.pvd") == read(whole / "fields.pvd"));
+  // Without a checkpoint there is nothing to resume: a clear input error.
+  const fs::path empty = fs::temp_directory_path() / ("roller_cli_empty_" + std::to_string(::getpid()));
+  fs::create_directories(empty);
+  const Run none = run_roller(scene + empty.string() + " --resume");
+  CHECK(none.exit_code == 2);
+  CHECK_THAT(none.output, Catch::Contains("checkpoint.cbor does not exist"));
+  for (const auto& d : {whole, split, empty}) fs::remove_all(d);
+}
