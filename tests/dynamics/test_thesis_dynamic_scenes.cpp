@@ -1,0 +1,79 @@
+// Thesis scenes Z3 (suspended roller, two passes) and Z4 (impact with strip inertia) run end to
+// end at refine 1 with both backends; the suspension obeys its equation of motion at every
+// step, and DATA02 starts from DATA01's final state.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+#include <unistd.h>
+
+#include "../support/run_scene.hpp"
+
+using namespace roller;
+
+namespace {
+
+// m a + c v + k w = F_y at the end of the step (Houbolt's v and a of the deflection). The
+// coupling stops when the deflection changes by less than 1e-10 R, i.e. the balance holds to
+// (k_eff + contact stiffness) x 1e-10 R, about 1e-6 of the scene's force scale.
+Real suspension_imbalance(const Simulation& sim) {
+  const SuspensionSpec& s = *sim.scene().roller->suspension;
+  const Real w = sim.suspension()->deflection();
+  return s.mass * sim.suspension_acceleration() + s.damping * sim.suspension_velocity() + s.stiffness * w -
+         sim.roller_force().y();
+}
+
+}  // namespace
+
+TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every step", "[dynamics][thesis]") {
+  for (const char* name : {"z4_v6_25", "z4_v25", "z4_v50"}) {
+    INFO(name);
+    Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml"));
+    Simulation penalty(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml",
+                                  {{"contact.backend", "\"penalty\""}}));
+    for (int step = 1; step <= sim.scene().steps.n_steps; ++step) {
+      INFO("step " << step);
+      REQUIRE(sim.advance_step(step).converged);
+      REQUIRE(penalty.advance_step(step).converged);
+      const Real fy = sim.roller_force().y();
+      CHECK(std::abs(suspension_imbalance(sim)) <= 1e-5 * std::abs(fy));
+      // The roller is pushed up by the strip from the first step (it touches the corner at t = 0).
+      CHECK(fy > 0.0);
+      CHECK(sim.suspension()->deflection() > 0.0);
+      CHECK(penalty.roller_force().y() == Approx(fy).epsilon(0.01));
+    }
+    // Strip inertia is on: the strip moves.
+    CHECK(sim.kinetic_energy() > 0.0);
+  }
+}
+
+TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "[dynamics][thesis]") {
+  Simulation first(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z3_data01.toml"));
+  const Real force_scale = 1e5;  // N/mm: the largest roller force of the pass (measured 9.6e4)
+  bool touched_at_step_1 = false;
+  for (int step = 1; step <= first.scene().steps.n_steps; ++step) {
+    INFO("DATA01 step " << step);
+    REQUIRE(first.advance_step(step).converged);
+    CHECK(std::abs(suspension_imbalance(first)) <= 1e-5 * force_scale);
+    if (step == 1) touched_at_step_1 = first.roller_force().y() > 0.0;
+  }
+  CHECK(touched_at_step_1);
+  const std::filesystem::path state =
+      std::filesystem::temp_directory_path() / ("roller_z3_state_" + std::to_string(::getpid()) + ".cbor");
+  first.save_state(state);
+
+  Simulation second(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z3_data02.toml",
+                               {{"restart.from", "\"" + state.string() + "\""}}));
+  // The second pass starts on the deformed strip with its residual stresses.
+  CHECK((second.model().total_displacement() - first.model().total_displacement()).norm() == 0.0);
+  CHECK(second.model().state(0, 0).stress == first.model().state(0, 0).stress);
+  for (int step = 1; step <= second.scene().steps.n_steps; ++step) {
+    INFO("DATA02 step " << step);
+    REQUIRE(second.advance_step(step).converged);
+    // The groove left by pass 1 is deeper than the first lowering step (0.2 mm): no contact yet.
+    if (step == 1) CHECK(second.roller_force().norm() < 1e-3);  // barrier-size forces only
+    CHECK(std::abs(suspension_imbalance(second)) <= 1e-5 * force_scale);
+  }
+  std::filesystem::remove(state);
+}
