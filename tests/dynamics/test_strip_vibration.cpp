@@ -17,7 +17,7 @@ using namespace roller;
 
 namespace {
 
-Scene cantilever(Real dt, int steps) {
+Scene cantilever(Real dt, int steps, bool lumped) {
   Scene s;
   s.name = "cantilever";
   s.mesh.element = ElementType::Q4;
@@ -32,6 +32,7 @@ Scene cantilever(Real dt, int steps) {
   s.steps.n_steps = steps;
   s.steps.dt = dt;
   s.dynamics.strip_inertia = true;
+  s.dynamics.lumped_mass = lumped;
   DisplacementBC clamp;
   clamp.nodes.set_name = "left";
   clamp.x = Ramp{0.0, 1, 1};
@@ -50,14 +51,16 @@ Eigen::MatrixXd free_block(const SparseMatrix& m, const DofMap& dofs) {
 }  // namespace
 
 TEST_CASE("Elastic strip in its first mode decays exactly by Houbolt's dissipation", "[dynamics][strip]") {
+  const bool lumped = GENERATE(false, true);
+  INFO((lumped ? "lumped" : "consistent") << " mass");
   // Modes of the clamped strip.
-  Simulation probe(cantilever(1.0, 1));
+  Simulation probe(cantilever(1.0, 1, lumped));
   StripModel& model = probe.model();
   const DofMap& dofs = model.dof_map();
   SparseMatrix k_free;
   model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k_free);
   const Eigen::MatrixXd K = Eigen::MatrixXd(k_free);
-  const Eigen::MatrixXd M = free_block(model.mass_matrix(false), dofs);
+  const Eigen::MatrixXd M = free_block(model.mass_matrix(lumped), dofs);
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
   const Real omega = std::sqrt(eig.eigenvalues()(0));
   const VecX phi = eig.eigenvectors().col(0);  // M-normalised
@@ -66,7 +69,7 @@ TEST_CASE("Elastic strip in its first mode decays exactly by Houbolt's dissipati
   const Real omega_dt = 0.3;
   const Real dt = omega_dt / omega;
   const int steps = 150;
-  Scene scene = cantilever(dt, steps);
+  Scene scene = cantilever(dt, steps, lumped);
   // Step load f = alpha M phi (static modal amplitude q_s = alpha / omega^2 = 0.01 mm scale).
   const Real alpha = 0.01 * omega * omega;
   const VecX f_free = alpha * (M * phi);
