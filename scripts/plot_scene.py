@@ -3,6 +3,9 @@
 
 usage: /usr/bin/python3 scripts/plot_scene.py OUT_DIR [--steps 4,7] [--profile-steps 0-12]
                                               [--pressure-steps 13] [--hertz] [--mesh-steps 3,6]
+                                              [--fields sqrt_I2,tau_xy] [--pairs 23/47,63/71]
+                                              [--compare OTHER_OUT --compare-steps 47]
+                                              [--spacing sqrt_I2=10] [--label NAME]
 
 Reads fields.pvd / step_NNNN.vtu, contact.csv, roller.csv and scene.resolved.toml of a run and
 writes into OUT_DIR/figures/:
@@ -12,6 +15,13 @@ writes into OUT_DIR/figures/:
   pressure.png              contact pressure p_n (and p_t) along x at the chosen steps
   mesh_step<N>.png          deformed mesh (true scale and u magnified)
   hertz.png                 (--hertz) the last step's pressure against the Hertz solution
+  overlay_<field>_steps<A>-<B>.png
+                            (--pairs A/B) the contour lines of steps A (solid) and B (dashed) in one
+                            map with the same levels, the thesis's way; up to four steps per group
+                            (solid, dashed, dash-dot, dotted)
+  compare_<field>_step<N>.png
+                            (--compare) the contour lines of OTHER_OUT (the reference, solid) and
+                            of this run (dashed) at step N, same levels (e.g. pass 1 vs pass 2)
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
 import argparse
@@ -29,6 +39,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.tri as mtri  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 DTYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1), "Int32": ("i", 4)}
 
@@ -92,31 +105,113 @@ def available_steps(out):
     return sorted(int(f[5:9]) for f in os.listdir(out) if f.startswith("step_") and f.endswith(".vtu"))
 
 
-def contour_maps(out, figs, steps):
-    fields = [
-        ("sqrt_I2", "√I2 (von Mises) [MPa]", lambda pd: von_mises(pd["stress_nodal"])),
-        ("tau_xx", "τ_xx [MPa]", lambda pd: pd["stress_nodal"][:, 0]),
-        ("tau_yy", "τ_yy [MPa]", lambda pd: pd["stress_nodal"][:, 1]),
-        ("tau_xy", "τ_xy [MPa]", lambda pd: pd["stress_nodal"][:, 3]),
-        ("eps_xy", "ε_xy [-]", lambda pd: pd["strain_nodal"][:, 3]),
-        ("u_y", "u_y [mm]", lambda pd: pd["displacement"][:, 1]),
-    ]
+FIELDS = {  # name: (label, value per node from the VTU point data)
+    "sqrt_I2": ("√I2 (von Mises) [MPa]", lambda pd: von_mises(pd["stress_nodal"])),
+    "tau_xx": ("τ_xx [MPa]", lambda pd: pd["stress_nodal"][:, 0]),
+    "tau_yy": ("τ_yy [MPa]", lambda pd: pd["stress_nodal"][:, 1]),
+    "tau_xy": ("τ_xy [MPa]", lambda pd: pd["stress_nodal"][:, 3]),
+    "eps_xy": ("ε_xy [-]", lambda pd: pd["strain_nodal"][:, 3]),
+    "u_y": ("u_y [mm]", lambda pd: pd["displacement"][:, 1]),
+}
+STRESSES = ["sqrt_I2", "tau_xx", "tau_yy", "tau_xy"]
+
+
+def strip_figure(points, extra):
+    """A figure whose height follows the strip's aspect ratio, plus `extra` inches for labels."""
+    span = points.max(axis=0) - points.min(axis=0)
+    return plt.subplots(figsize=(11, extra + 9.0 * span[1] / span[0]), layout="constrained")
+
+
+def contour_maps(out, figs, steps, fields):
     for step in steps:
         points, elements, pd, _ = read_vtu(vtu_path(out, step))
         tri = mtri.Triangulation(points[:, 0], points[:, 1], triangles(elements))
-        for name, label, get in fields:
+        for name in fields:
+            label, get = FIELDS[name]
             values = get(pd)
-            fig, ax = plt.subplots(figsize=(10, 3.2))
+            fig, ax = strip_figure(points, 2.0)
             cs = ax.tricontourf(tri, values, levels=20, cmap="viridis")
             ax.tricontour(tri, values, levels=10, colors="k", linewidths=0.3)
-            fig.colorbar(cs, ax=ax, label=label)
             ax.set_aspect("equal")
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
             ax.set_title("%s, step %d" % (label, step))
-            fig.tight_layout()
-            fig.savefig(os.path.join(figs, "map_%s_step%d.png" % (name, step)), dpi=110)
+            fig.colorbar(cs, ax=ax, label=label, location="bottom", aspect=60, shrink=0.7)
+            fig.savefig(os.path.join(figs, "map_%s_step%d.png" % (name, step)), dpi=110, bbox_inches="tight")
             plt.close(fig)
+
+
+def boundary_edges(points, elements):
+    """The mesh outline: element edges that belong to one element only, as [[p, q], ...]."""
+    count = {}
+    for e in elements:
+        for a, b in zip(e, np.roll(e, -1)):
+            key = (min(a, b), max(a, b))
+            count[key] = count.get(key, 0) + 1
+    return [points[list(k)] for k, n in count.items() if n == 1]
+
+
+LINES = [("solid", "k"), ("dashed", "C3"), ("dashdot", "C0"), ("dotted", "C2")]
+
+
+def overlay(path, name, curves, title, spacing=None):
+    """Contour lines of one field from several (out, step, legend) in one map, the thesis's way:
+    the same levels (every `spacing`, or about ten round values), the first solid, then dashed,
+    dash-dot, dotted; lines labelled with values. Each curve is drawn on its own deformed mesh;
+    the outline is the first curve's."""
+    label, get = FIELDS[name]
+    data = []
+    for out, step, _ in curves:
+        points, elements, pd, _ = read_vtu(vtu_path(out, step))
+        tri = mtri.Triangulation(points[:, 0], points[:, 1], triangles(elements))
+        data.append((tri, get(pd), points, elements))
+    values = np.concatenate([d[1] for d in data])
+    lo, hi = values.min(), values.max()
+    ticks = np.arange(math.floor(lo / spacing), math.ceil(hi / spacing) + 1) * spacing if spacing \
+        else MaxNLocator(nbins=10).tick_values(lo, hi)
+    levels = [v for v in ticks if lo < v < hi]
+    points, elements = data[0][2], data[0][3]
+    fig, ax = strip_figure(points, 1.2)
+    ax.add_collection(LineCollection(boundary_edges(points, elements), colors="0.5", linewidths=0.8))
+    handles = []
+    for (tri, v, _, _), (_, _, legend), (style, color) in zip(data, curves, LINES):
+        cs = ax.tricontour(tri, v, levels=levels, colors=color, linestyles=style, linewidths=0.9)
+        ax.clabel(cs, fmt="%g", fontsize=6)
+        handles.append(Line2D([], [], color=color, linestyle=style, label=legend))
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_title("%s: %s" % (label, title), fontsize=10)
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
+              title="levels every %g %s" % (levels[1] - levels[0], label.split("[")[-1].rstrip("]"))
+              if len(levels) > 1 else None,
+              title_fontsize=7)
+    fig.savefig(path, dpi=130, bbox_inches="tight")
+    plt.close(fig)
+
+
+def step_overlays(out, figs, groups, fields, run, spacing):
+    for group in groups:
+        for name in fields:
+            overlay(os.path.join(figs, "overlay_%s_steps%s.png" % (name, "-".join(map(str, group)))), name,
+                    [(out, step, "step %d" % step) for step in group],
+                    "%s, steps %s" % (run, ", ".join(map(str, group))), spacing.get(name))
+
+
+def run_comparison(out, other, figs, steps, fields, label, other_label, spacing):
+    for step in steps:
+        for name in fields:
+            overlay(os.path.join(figs, "compare_%s_step%d.png" % (name, step)), name,
+                    [(other, step, other_label), (out, step, label)],
+                    "%s vs %s, step %d" % (other_label, label, step), spacing.get(name))
+
+
+def reference_mesh(out):
+    """The undeformed node positions and elements (the VTU points are the deformed positions; a
+    run restarted from another's state starts displaced already)."""
+    points, elements, pd, _ = read_vtu(vtu_path(out, 0))
+    return points - pd["displacement"][:, :2], elements
 
 
 def top_nodes(points):
@@ -125,7 +220,7 @@ def top_nodes(points):
 
 
 def profile(out, figs, steps):
-    points0, _, _, _ = read_vtu(vtu_path(out, 0))
+    points0, _ = reference_mesh(out)
     top = top_nodes(points0)
     order = top[np.argsort(points0[top, 0])]
     fig, ax = plt.subplots(figsize=(10, 4))
@@ -168,7 +263,7 @@ def pressure(out, figs, steps):
 
 
 def deformed_mesh(out, figs, steps):
-    points0, elements, _, _ = read_vtu(vtu_path(out, 0))
+    points0, elements = reference_mesh(out)
     for step in steps:
         _, _, pd, _ = read_vtu(vtu_path(out, step))
         u = pd["displacement"][:, :2]
@@ -224,6 +319,20 @@ def main():
     ap.add_argument("--pressure-steps", default="", help="steps for the pressure plot (default: the last)")
     ap.add_argument("--mesh-steps", default="", help="steps for deformed-mesh plots, e.g. 3,6")
     ap.add_argument("--hertz", action="store_true", help="also plot the pressure against Hertz")
+    ap.add_argument("--fields", default="",
+                    help="fields for maps, overlays and comparisons, from %s (default: all for "
+                         "the maps, the four stresses for overlays and comparisons)" % ",".join(FIELDS))
+    ap.add_argument("--pairs", default="",
+                    help="step groups overlaid in one map, e.g. 23/47,63/71 or 6/8/14/16 "
+                         "(solid, dashed, dash-dot, dotted)")
+    ap.add_argument("--compare", metavar="OTHER_OUT",
+                    help="a reference run whose contour lines (solid) are overlaid with this run's (dashed)")
+    ap.add_argument("--compare-steps", default="", help="steps of the comparison (default: the last)")
+    ap.add_argument("--spacing", default="",
+                    help="contour spacing of overlays and comparisons per field, e.g. sqrt_I2=10,tau_xy=10 "
+                         "(default: about ten round levels)")
+    ap.add_argument("--label", help="this run's name in titles and legends (default: the folder name)")
+    ap.add_argument("--compare-label", help="OTHER_OUT's name in the legend (default: its folder name)")
     args = ap.parse_args()
     steps = available_steps(args.out)
     if not steps:
@@ -231,7 +340,23 @@ def main():
     last = steps[-1]
     figs = os.path.join(args.out, "figures")
     os.makedirs(figs, exist_ok=True)
-    contour_maps(args.out, figs, parse_steps(args.steps, last) or [last])
+    fields = [f for f in args.fields.split(",") if f]
+    if any(f not in FIELDS for f in fields):
+        sys.exit("plot_scene: --fields: known fields are %s" % ", ".join(FIELDS))
+    groups = [[int(n) for n in g.split("/")] for g in args.pairs.split(",") if g]
+    if any(not 2 <= len(g) <= len(LINES) or set(g) - set(steps) for g in groups):
+        sys.exit("plot_scene: --pairs: groups of 2 to %d steps that have VTU files" % len(LINES))
+    spacing = {k: float(v) for k, v in (item.split("=") for item in args.spacing.split(",") if item)}
+    if set(spacing) - set(FIELDS) or any(v <= 0 for v in spacing.values()):
+        sys.exit("plot_scene: --spacing: FIELD=positive value, fields %s" % ", ".join(FIELDS))
+    label = args.label or os.path.basename(os.path.normpath(args.out))
+    contour_maps(args.out, figs, parse_steps(args.steps, last) or [last], fields or list(FIELDS))
+    step_overlays(args.out, figs, groups, fields or STRESSES, label, spacing)
+    if args.compare:
+        other = available_steps(args.compare)
+        both = [n for n in parse_steps(args.compare_steps, last) or [last] if n in other]
+        run_comparison(args.out, args.compare, figs, both, fields or STRESSES, label,
+                       args.compare_label or os.path.basename(os.path.normpath(args.compare)), spacing)
     profile(args.out, figs, parse_steps(args.profile_steps, last) or steps)
     if os.path.exists(os.path.join(args.out, "contact.csv")):
         pressure(args.out, figs, parse_steps(args.pressure_steps, last) or [last])
