@@ -19,9 +19,12 @@ std::vector<Real> tributary_lengths(const std::vector<Vec2>& x, const std::vecto
 }
 
 // Depth of the surface element under each node: distance to the nearest other node of the
-// elements that contain it, measured along y (the strip's thickness direction).
+// elements that contain it, measured along y (the strip's thickness direction), in the initial
+// mesh. Not in the current configuration: once the surface deforms, neighbouring top nodes
+// differ in y by micrometres and would pass for the element's depth (measured on Z1 after step
+// 1: 1e-3 to 0.1 mm instead of 6.67 mm, i.e. penalties 50-5000x stiffer than the factor says).
 std::vector<Real> element_depths(const StripModel& model, const std::vector<Index>& nodes) {
-  const auto& x = model.reference_coordinates();
+  const auto& x = model.mesh().nodes;
   std::vector<Real> depth(model.mesh().n_nodes(), std::numeric_limits<Real>::infinity());
   for (const auto& element : model.mesh().elements)
     for (Index a : element)

@@ -23,7 +23,8 @@ struct IpoptOptions {
   std::string friction = "split";        // "split" (v_T = s+ - s-, exact) | "regularized"
   Real regularization = 1e-8;            // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only
   std::string fixed_point = "converge";  // "converge" (Coulomb) | "single" (thesis's explicit variant)
-  Real fixed_point_tol = 1e-6;           // relative change of F_N that ends the fixed point
+  Real fixed_point_tol = 1e-6;           // relative change of F_N that ends the fixed point (changes
+                                         // below a pass's multiplier resolution end it too)
   int fixed_point_max = 30;
   bool is_valid(std::string* why) const;
 };
