@@ -127,12 +127,17 @@ RunSummary Simulation::run(const RunOptions& options) {
     const Index n_yielded = model_->n_yielded_last();  // before the monitor re-evaluates the strip
     // Run-time monotonicity monitor (SPEC §3): operator A at the integration points and the
     // definiteness of the assembled effective tangent (contact terms excluded) at the new state.
+    // Switched off (output.monitor = false) its columns read -1 (not checked).
     const Real dt_dynamic = scene_.dynamics.strip_inertia ? dt : 0.0;
-    const StripMonotonicity mono = check_strip(*model_, dt_dynamic);
-    SparseMatrix k_eff;
-    model_->evaluate(VecX::Zero(model_->n_dofs()), nullptr, &k_eff);
-    if (scene_.dynamics.strip_inertia) k_eff += (2.0 / (dt * dt)) * mass_free_;
-    const SparseDefiniteness kdef = sparse_definiteness(k_eff);
+    StripMonotonicity mono;
+    SparseDefiniteness kdef;
+    if (scene_.output.monitor) {
+      mono = check_strip(*model_, dt_dynamic);
+      SparseMatrix k_eff;
+      model_->evaluate(VecX::Zero(model_->n_dofs()), nullptr, &k_eff);
+      if (scene_.dynamics.strip_inertia) k_eff += (2.0 / (dt * dt)) * mass_free_;
+      kdef = sparse_definiteness(k_eff);
+    }
     // Where: the centroid of the worst element.
     Vec2 where = Vec2::Zero();
     if (mono.worst.element >= 0) {
@@ -149,7 +154,7 @@ RunSummary Simulation::run(const RunOptions& options) {
           step, mono.n_not_pd, where.x(), where.y());
       pointwise_loss_reported = true;
     }
-    if (!kdef.positive_definite() && options.progress)
+    if (scene_.output.monitor && !kdef.positive_definite() && options.progress)
       *options.progress << fmt::format(
           "warning: step {}: the assembled tangent stiffness is not positive definite ({} negative, {} zero "
           "pivots) near x = {:.4g}, y = {:.4g} mm: operator A lost monotonicity ({}); {}\n",
@@ -157,12 +162,15 @@ RunSummary Simulation::run(const RunOptions& options) {
           mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
               ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
               : "in a quasistatic strip no time step restores it: use smaller steps or check the supports");
+    const Index not_checked = -1;
     solver_csv->add_row({static_cast<Index>(step), step * dt, static_cast<Index>(res.iterations), res.last.residual,
                          res.max_penetration, wall, static_cast<Index>(res.cuts), n_yielded,
                          static_cast<Index>(res.factorizations), stat("complementarity"),
-                         stat("constraint_violation"), stat("fixed_point_iterations"), n_contact, mono.n_not_pd,
+                         stat("constraint_violation"), stat("fixed_point_iterations"), n_contact,
+                         scene_.output.monitor ? mono.n_not_pd : not_checked,
                          std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0,
-                         static_cast<Index>(kdef.positive_definite() ? 1 : 0), kdef.n_negative,
+                         scene_.output.monitor ? static_cast<Index>(kdef.positive_definite() ? 1 : 0) : not_checked,
+                         scene_.output.monitor ? kdef.n_negative : not_checked,
                          std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0, kinetic_energy(),
                          stat("suspension_passes"), std::string(res.converged ? "converged" : "failed")});
     if (!res.converged) {

@@ -199,6 +199,7 @@ void read_output(TomlSection& root, Scene& scene) {
   if (!s) return;
   scene.output.every = static_cast<int>(s->integer_or("every", scene.output.every));
   scene.output.vtu = s->boolean("vtu").value_or(scene.output.vtu);
+  scene.output.monitor = s->boolean("monitor").value_or(scene.output.monitor);
   scene.output.checkpoint_every =
       static_cast<int>(s->integer_or("checkpoint_every", scene.output.checkpoint_every));
   if (scene.output.every < 1) s->fail("every", "expected an integer >= 1");

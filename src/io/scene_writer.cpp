@@ -82,6 +82,7 @@ std::string scene_to_toml(const Scene& scene) {
   for (int step : scene.output.save_states) save_states.push_back(static_cast<int64_t>(step));
   root.insert("output", toml::table{{"every", static_cast<int64_t>(scene.output.every)},
                                     {"vtu", scene.output.vtu},
+                                    {"monitor", scene.output.monitor},
                                     {"checkpoint_every", static_cast<int64_t>(scene.output.checkpoint_every)},
                                     {"save_states", save_states}});
   root.insert("dynamics", toml::table{{"strip_inertia", scene.dynamics.strip_inertia},

@@ -57,6 +57,8 @@ struct StepControl {
 struct OutputOptions {
   int every = 1;          // write fields every N steps (and always the last step)
   bool vtu = true;
+  bool monitor = true;           // run-time monotonicity monitor (one extra assembly and
+                                 // factorisation of the strip tangent per step)
   int checkpoint_every = 1;      // write checkpoint.cbor (the full state, for --resume) every N
                                  // steps; 0 = never
   std::vector<int> save_states;  // steps whose full state is kept as state_NNNN.cbor

@@ -1,0 +1,393 @@
+#!/usr/bin/python3
+"""Stiff and extreme cases (issue 7, item 3): every case on both contact backends.
+
+usage: /usr/bin/python3 scripts/stability.py [--out out/stability] [--only CASE,CASE]
+                                             [--timeout 600] [--roller ./build/roller]
+                                             [--no-run]
+
+Runs `roller run` once per case and backend (one process at a time, each under a timeout,
+killed with its process group when it exceeds it) into OUT/<case>/<backend>/ (log beside it:
+OUT/<case>/<backend>.log), then measures every run:
+  exit code, converged steps / total, wall time, cuts, the largest |r|/F of an accepted step,
+  max penetration (solver.csv max_penetration, summary.json, and -gap from contact.csv),
+  friction-cone violation max(|p_t| - mu p_n)+ over all contact.csv rows (absolute [MPa] and
+  relative to the largest p_n of the run),
+  non-finite numbers in ANY output file: csv cells, json values (nlohmann writes NaN as null,
+  so null counts too), every DataArray of every VTU (decoded with plot_scene.py's decoder),
+  every float of the CBOR state files, and nan/inf tokens in the text files (pvd, toml, log),
+  the failure message (summary.json "message", else the last "error:" line of the log).
+Writes OUT/stability.csv and OUT/table.md (the Markdown table of docs/stability.md).
+--no-run re-measures the existing outputs without running roller.
+The cases, their base scenes and what "dt x10" means: docs/stability.md.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import time
+import tomllib
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_scene import decode, read_vtu  # noqa: E402
+
+Z1 = "problems/z1_outf05.toml"
+HERTZ = "problems/hertz.toml"
+Z4 = "problems/z4_v25.toml"
+THIN = "problems/stability_thin.toml"
+
+Z1_ROLL = "{steps=[4,13], dx=-40.0, slip=0.03, harmonic={amplitude=0.1, wavelength=20.0}}"
+
+# (id, what, base scene, extra arguments, remark)
+CASES = [
+    ("z1_base", "Z1 OUTF05 as is (reference)", Z1, [], ""),
+    ("et0", "E_T = 0 (perfect plasticity)", Z1, ["--set", "material.kappa=0.0"], ""),
+    ("et09", "E_T = 0.9 E", Z1, ["--set", "material.kappa=0.9"], ""),
+    ("mu0", "mu = 0", Z1, ["--set", "contact.friction=0.0"], ""),
+    ("mu1", "mu = 1", Z1, ["--set", "contact.friction=1.0"], ""),
+    ("indent10", "indentation 10 % of H (2 mm)", Z1,
+     ["--set", "roller.path=[{steps=[1,3], dy=-2.0}, %s]" % Z1_ROLL], ""),
+    ("penalty1e12", "penalty factor 1e12 (kN = 1e12 E* l/h)", Z1,
+     ["--set", "contact.penalty.factor=1e12"], "ipopt: setting unused"),
+    ("ipopt_tol12", "Ipopt tol 1e-12", Z1, ["--set", "contact.ipopt.tol=1e-12"],
+     "penalty: setting unused"),
+    ("hertz_base", "Hertz as is (nu = 0.3, reference)", HERTZ, [], ""),
+    ("nu049", "nu = 0.49", HERTZ, ["--set", "material.nu=0.49"], ""),
+    ("nu0499", "nu = 0.499", HERTZ, ["--set", "material.nu=0.499"], ""),
+    ("nu0499_bbar", "nu = 0.499, B-bar Q4", HERTZ,
+     ["--set", "material.nu=0.499", "--set", "mesh.q4_formulation=bbar"], ""),
+    ("thin", "strip H = 1 mm under R = 300 mm", THIN, [], ""),
+    ("z4_base", "Z4 25 m/s as is (reference)", Z4, [], ""),
+    ("impact200", "impact at 200 m/s (dt = 1e-5 s)", Z4, ["--set", "steps.dt=1e-5"], ""),
+    ("dt_small", "dt / 10 at the same speed (200 steps)", Z4,
+     ["--set", "steps.dt=8e-6", "--steps", "200",
+      "--set", "roller.path=[{steps=[1,200], dx=-40.0, slip=0.0}]"], ""),
+    ("dt_large", "dt x 10 at the same speed (2 steps)", Z4,
+     ["--set", "steps.dt=8e-4", "--steps", "2",
+      "--set", "roller.path=[{steps=[1,2], dx=-40.0, slip=0.0}]"], ""),
+]
+NOT_RUN = [("layers", "stiffness ratio 1e6 between two strip layers",
+            "not run: a strip has one material (no layered strips in roller)")]
+BACKENDS = ["penalty", "ipopt"]
+
+NONFINITE_TOKEN = re.compile(r"(?<![A-Za-z_])[-+]?(nan|inf|infinity)(?![A-Za-z_])", re.I)
+
+
+# ---------------------------------------------------------------- running
+
+def run_one(roller, scene, extra, backend, out, log, timeout):
+    if os.path.isdir(out):
+        shutil.rmtree(out)
+    cmd = [roller, "run", scene, "--out", out, "--contact", backend] + extra
+    t0 = time.monotonic()
+    with open(log, "w") as f:
+        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True)
+        try:
+            rc = proc.wait(timeout=timeout)
+            timed_out = False
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)  # our own child's process group only
+            proc.wait()
+            rc, timed_out = None, True
+    return cmd, rc, timed_out, time.monotonic() - t0
+
+
+def shell_command(cmd):
+    def q(a):
+        return "'%s'" % a if re.search(r"[\s\[\]{}=,]", a) and not a.startswith("--") else a
+    return " ".join(q(a) for a in cmd)
+
+
+# ---------------------------------------------------------------- non-finite scan
+
+def cbor_floats(data):
+    """All floats of a CBOR document (a linear scan of the data item heads)."""
+    out, i, n = [], 0, len(data)
+    while i < n:
+        b = data[i]
+        major, ai = b >> 5, b & 31
+        i += 1
+        if major == 7:
+            if ai == 25:
+                out.append(struct.unpack(">e", data[i:i + 2])[0]); i += 2
+            elif ai == 26:
+                out.append(struct.unpack(">f", data[i:i + 4])[0]); i += 4
+            elif ai == 27:
+                out.append(struct.unpack(">d", data[i:i + 8])[0]); i += 8
+            elif ai == 24:
+                i += 1
+            continue
+        if ai < 24:
+            length = ai
+        elif ai in (24, 25, 26, 27):
+            size = 1 << (ai - 24)
+            length = int.from_bytes(data[i:i + size], "big")
+            i += size
+        elif ai == 31:
+            length = 0  # indefinite length: the items follow, a break (0xff) ends them
+        else:
+            raise ValueError("bad CBOR head 0x%02x at byte %d" % (b, i - 1))
+        if major in (2, 3):
+            i += length
+    return out
+
+
+def json_nonfinite(value):
+    if value is None:
+        return 1
+    if isinstance(value, float):
+        return 0 if math.isfinite(value) else 1
+    if isinstance(value, dict):
+        return sum(json_nonfinite(v) for v in value.values())
+    if isinstance(value, list):
+        return sum(json_nonfinite(v) for v in value)
+    return 0
+
+
+def scan_file(path):
+    """Number of non-finite values in one output file (or a string saying why it is unreadable)."""
+    ext = os.path.splitext(path)[1]
+    if ext == ".csv":
+        bad = 0
+        with open(path, newline="") as f:
+            for row in csv.reader(f):
+                for cell in row:
+                    c = cell.strip()
+                    if NONFINITE_TOKEN.fullmatch(c):
+                        bad += 1
+                        continue
+                    try:
+                        bad += not math.isfinite(float(c))
+                    except ValueError:
+                        pass
+        return bad
+    if ext == ".json":
+        with open(path) as f:
+            text = f.read()
+        try:
+            value = json.loads(text)
+        except ValueError as e:
+            return "invalid JSON (%s)" % e
+        return json_nonfinite(value)
+    if ext == ".vtu":
+        try:
+            read_vtu(path)  # the structure plot_scene.py relies on
+            root = ET.parse(path).getroot()
+            bad = 0
+            for array in root.iter("DataArray"):
+                values = decode(array)
+                if values.dtype.kind == "f":
+                    bad += int(np.count_nonzero(~np.isfinite(values)))
+            return bad
+        except Exception as e:  # noqa: BLE001
+            return "unreadable VTU (%s)" % e
+    if ext == ".cbor":
+        with open(path, "rb") as f:
+            data = f.read()
+        try:
+            return sum(not math.isfinite(v) for v in cbor_floats(data))
+        except (ValueError, struct.error) as e:
+            return "unreadable CBOR (%s)" % e
+    with open(path, errors="replace") as f:  # pvd, toml, log: text
+        return len(NONFINITE_TOKEN.findall(f.read()))
+
+
+def scan_outputs(out, log):
+    files = [log] if os.path.exists(log) else []
+    for d, _, names in os.walk(out):
+        files += [os.path.join(d, n) for n in sorted(names)]
+    problems = []
+    for p in files:
+        r = scan_file(p)
+        if r:
+            problems.append("%s: %s" % (os.path.relpath(p, os.path.dirname(out)), r))
+    return len(files), problems
+
+
+# ---------------------------------------------------------------- measuring
+
+def read_rows(path):
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def measure(case, backend, out, log, rc, timed_out, wall):
+    summary = {}
+    if os.path.exists(os.path.join(out, "summary.json")):
+        try:
+            with open(os.path.join(out, "summary.json")) as f:
+                summary = json.load(f)
+        except ValueError:
+            summary = {}
+    resolved = {}
+    if os.path.exists(os.path.join(out, "scene.resolved.toml")):
+        with open(os.path.join(out, "scene.resolved.toml"), "rb") as f:
+            resolved = tomllib.load(f)
+    solver = read_rows(os.path.join(out, "solver.csv"))
+    contact = read_rows(os.path.join(out, "contact.csv"))
+    mu = resolved.get("contact", {}).get("friction", float("nan"))
+    tol = resolved.get("newton", {}).get("residual_tolerance", float("nan"))
+
+    total = summary.get("steps", resolved.get("steps", {}).get("count", ""))
+    done = summary.get("steps_done", sum(r.get("status") == "converged" for r in solver))
+    accepted = [r for r in solver if r.get("status") == "converged"]
+    pen_solver = max([num(r["max_penetration"]) for r in solver], default=float("nan"))
+    pen_summary = num(summary.get("max_penetration"))
+    pen_gap = max([-num(r["gap"]) for r in contact] + [0.0]) if contact else float("nan")
+    pn = np.array([num(r["p_n"]) for r in contact]) if contact else np.zeros(0)
+    pt = np.array([num(r["p_t"]) for r in contact]) if contact else np.zeros(0)
+    cone = float(np.max(np.maximum(np.abs(pt) - mu * pn, 0.0))) if len(pn) else float("nan")
+    pn_max = float(np.max(pn)) if len(pn) else float("nan")
+    n_files, nonfinite = scan_outputs(out, log)
+
+    message = summary.get("message", "")
+    if timed_out:
+        message = "TIMEOUT: killed after %.0f s" % wall
+    elif rc != 0 and not summary:
+        with open(log, errors="replace") as f:
+            errors = [ln.strip() for ln in f if ln.startswith("error")]
+        message = errors[-1] if errors else "(no message)"
+    note = ""
+    if case.startswith("hertz") or case.startswith("nu0"):
+        note = hertz_note(out, resolved)
+    return {
+        "case": case, "backend": backend, "exit_code": "timeout" if timed_out else rc,
+        "steps_converged": done, "steps_total": total, "wall_s": round(wall, 2),
+        "cuts": summary.get("cuts_total", sum(int(num(r.get("cuts"))) for r in solver if r.get("cuts"))),
+        "max_accepted_residual": max([num(r["residual"]) for r in accepted], default=float("nan")),
+        "residual_tolerance": tol,
+        "pen_solver_csv": pen_solver, "pen_summary": pen_summary, "pen_contact_gap": pen_gap,
+        "max_penetration": np.nanmax([pen_solver, pen_summary, pen_gap, -1.0]),
+        "mu": mu, "max_p_n": pn_max, "cone_violation": cone,
+        "cone_violation_rel": cone / pn_max if pn_max > 0 else float("nan"),
+        "files_scanned": n_files, "nonfinite": "; ".join(nonfinite), "note": note,
+        "message": message,
+    }
+
+
+def hertz_note(out, resolved):
+    """Largest p_n of the last step against the Hertz p0 for the measured load."""
+    roller = read_rows(os.path.join(out, "roller.csv"))
+    contact = read_rows(os.path.join(out, "contact.csv"))
+    if not roller or not contact:
+        return ""
+    last = roller[-1]["step"]
+    load = abs(num(roller[-1]["fy"]))
+    mat = resolved["material"]
+    e_star = mat["E"] / (1.0 - mat.get("nu", 0.3) ** 2)
+    p0 = math.sqrt(load * e_star / (math.pi * resolved["roller"]["radius"]))
+    pmax = max(num(r["p_n"]) for r in contact if r["step"] == last)
+    return "P = %.0f N/mm, max p_n / p0(Hertz) = %.3f" % (load, pmax / p0)
+
+
+# ---------------------------------------------------------------- report
+
+FIELDS = ["case", "backend", "exit_code", "steps_converged", "steps_total", "wall_s", "cuts",
+          "max_accepted_residual", "residual_tolerance", "max_penetration", "pen_solver_csv",
+          "pen_summary", "pen_contact_gap", "mu", "max_p_n", "cone_violation", "cone_violation_rel",
+          "files_scanned", "nonfinite", "note", "message", "command"]
+
+
+def g(x, fmt="%.2g"):
+    if isinstance(x, float):
+        return "—" if math.isnan(x) else fmt % x
+    return str(x)
+
+
+def markdown(rows, whats):
+    lines = ["| case | base | backend | exit | steps | wall [s] | cuts | max pen. [mm] | "
+             "cone viol. [MPa] (rel.) | NaN/Inf | message / note |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        what, base = whats[r["case"]]
+        cone = "—" if math.isnan(r["cone_violation"]) else "%s (%s)" % (
+            g(r["cone_violation"]), g(r["cone_violation_rel"]))
+        text = r["message"] if r["exit_code"] != 0 else r["note"]
+        lines.append("| %s: %s | %s | %s | %s | %s/%s | %.1f | %s | %s | %s | %s | %s |" % (
+            r["case"], what, base, r["backend"], r["exit_code"], r["steps_converged"],
+            r["steps_total"], r["wall_s"], r["cuts"], g(r["max_penetration"]), cone,
+            "—" if r["exit_code"] == "not run" else (r["nonfinite"] or "none"),
+            text.replace("|", "\\|")))
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--out", default="out/stability")
+    ap.add_argument("--only", default="", help="comma-separated case ids")
+    ap.add_argument("--timeout", type=float, default=600.0)
+    ap.add_argument("--roller", default="./build/roller")
+    ap.add_argument("--no-run", action="store_true", help="measure existing outputs only")
+    args = ap.parse_args()
+    os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    only = set(filter(None, args.only.split(",")))
+    os.makedirs(args.out, exist_ok=True)
+
+    rows, whats = [], {}
+    t_start = time.monotonic()
+    for case, what, scene, extra, remark in CASES:
+        if only and case not in only:
+            continue
+        whats[case] = (what, os.path.splitext(os.path.basename(scene))[0])
+        for backend in BACKENDS:
+            out = os.path.join(args.out, case, backend)
+            log = os.path.join(args.out, case, backend + ".log")
+            os.makedirs(os.path.dirname(log), exist_ok=True)
+            cmd = [args.roller, "run", scene, "--out", out, "--contact", backend] + extra
+            if args.no_run:
+                rc, timed_out, wall = None, False, float("nan")
+                if os.path.exists(os.path.join(out, "summary.json")):
+                    with open(os.path.join(out, "summary.json")) as f:
+                        s = json.load(f)
+                    rc, wall = (0 if s.get("converged") else 1), s.get("wall_s", float("nan"))
+            else:
+                cmd, rc, timed_out, wall = run_one(args.roller, scene, extra, backend, out, log,
+                                                   args.timeout)
+            r = measure(case, backend, out, log, rc, timed_out, wall)
+            if remark and backend in remark.split(":")[0]:
+                r["note"] = (r["note"] + "; " if r["note"] else "") + remark
+            r["command"] = shell_command(cmd)
+            rows.append(r)
+            print("%-12s %-8s exit %-7s steps %s/%s  %7.1f s  pen %-8s cone %-8s nonfinite: %s  %s" % (
+                case, backend, r["exit_code"], r["steps_converged"], r["steps_total"], r["wall_s"],
+                g(r["max_penetration"]), g(r["cone_violation"]), r["nonfinite"] or "none",
+                r["message"] if r["exit_code"] != 0 else ""), flush=True)
+    for case, what, remark in NOT_RUN:
+        whats[case] = (what, "—")
+        for backend in BACKENDS:
+            rows.append({"case": case, "backend": backend, "exit_code": "not run", "steps_converged": "—",
+                         "steps_total": "—", "wall_s": 0.0, "cuts": "", "max_penetration": float("nan"),
+                         "cone_violation": float("nan"), "nonfinite": "", "note": "", "message": remark,
+                         "command": ""})
+
+    with open(os.path.join(args.out, "stability.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=FIELDS, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    with open(os.path.join(args.out, "table.md"), "w") as f:
+        f.write(markdown(rows, whats))
+    print("%d runs in %.0f s; %s, %s" % (
+        sum(r["exit_code"] != "not run" for r in rows), time.monotonic() - t_start,
+        os.path.join(args.out, "stability.csv"), os.path.join(args.out, "table.md")))
+
+
+if __name__ == "__main__":
+    main()
