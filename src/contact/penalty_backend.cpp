@@ -16,6 +16,9 @@ namespace {
 
 using Stiffness = PenaltyBackend::Stiffness;
 
+// Largest |r|/F accepted because the round-off floor forbids a smaller one (newton_stage).
+constexpr Real kMaxRoundoffResidual = 1e-3;
+
 // Contact forces of candidate c at x and, optionally, the 2x2 tangent block d(-f)/du of the
 // force f = F_N n + F_T t acting on the node. With `frozen`, the node keeps that status (and slip
 // direction) whatever x: open nodes carry no force, closed ones a bilateral normal penalty (also
@@ -173,6 +176,20 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       return result;
     }
     if (result.residual <= tolerance || rnorm <= e.roundoff_floor) {
+      // Below the round-off floor no iteration reduces the residual further, but the floor grows
+      // with the penalty (eps |x - c| kN per node). Above kMaxRoundoffResidual of the force scale
+      // the penalty is too stiff for double precision and the contact forces are round-off
+      // noise (measured, docs/stability.md: Z1 at factor 1e12 was accepted at |r|/F ~ 1.8 with
+      // the roller force 28 % off): stop with the cause instead of accepting the increment.
+      if (result.residual > tolerance && result.residual > kMaxRoundoffResidual) {
+        result.status = NewtonStatus::NotConverged;
+        result.message = fmt::format(
+            "penalty Newton: the penalty is too stiff for double precision: round-off in the gaps "
+            "alone leaves |r|/F = {:.2e} (> {:.0e}), the contact forces are not resolved; use a "
+            "smaller contact.penalty.factor (now {:.3g}) or the ipopt backend",
+            result.residual, kMaxRoundoffResidual, options_.penalty.factor);
+        break;
+      }
       result.status = NewtonStatus::Converged;
       break;
     }
