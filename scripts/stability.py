@@ -58,14 +58,20 @@ CASES = [
      ["--set", "roller.path=[{steps=[1,3], dy=-2.0}, %s]" % Z1_ROLL], ""),
     ("penalty1e12", "penalty factor 1e12 (kN = 1e12 E* l/h)", Z1,
      ["--set", "contact.penalty.factor=1e12"], "ipopt: setting unused"),
+    ("penalty1e8", "(extra) penalty factor 1e8, below the round-off limit", Z1,
+     ["--set", "contact.penalty.factor=1e8"], "ipopt: setting unused"),
     ("ipopt_tol12", "Ipopt tol 1e-12", Z1, ["--set", "contact.ipopt.tol=1e-12"],
      "penalty: setting unused"),
+    ("nu0499_z1", "(extra) nu = 0.499 on Z1 (T3, plastic, rolling)", Z1, ["--set", "material.nu=0.499"], ""),
     ("hertz_base", "Hertz as is (nu = 0.3, reference)", HERTZ, [], ""),
     ("nu049", "nu = 0.49", HERTZ, ["--set", "material.nu=0.49"], ""),
     ("nu0499", "nu = 0.499", HERTZ, ["--set", "material.nu=0.499"], ""),
     ("nu0499_bbar", "nu = 0.499, B-bar Q4", HERTZ,
      ["--set", "material.nu=0.499", "--set", "mesh.q4_formulation=bbar"], ""),
     ("thin", "strip H = 1 mm under R = 300 mm", THIN, [], ""),
+    ("thin_half", "(extra) strip H = 0.5 mm (1 mm full thickness) under R = 300 mm", THIN,
+     ["--set", "mesh.height=0.5", "--set", "roller.centre=[30.0, 300.5]",
+      "--set", "roller.path=[{steps=[1,3], dy=-0.015}, {steps=[4,10], dx=-14.0, slip=0.03}]"], ""),
     ("z4_base", "Z4 25 m/s as is (reference)", Z4, [], ""),
     ("impact200", "impact at 200 m/s (dt = 1e-5 s)", Z4, ["--set", "steps.dt=1e-5"], ""),
     ("dt_small", "dt / 10 at the same speed (200 steps)", Z4,
@@ -74,6 +80,10 @@ CASES = [
     ("dt_large", "dt x 10 at the same speed (2 steps)", Z4,
      ["--set", "steps.dt=8e-4", "--steps", "2",
       "--set", "roller.path=[{steps=[1,2], dx=-40.0, slip=0.0}]"], ""),
+    ("dt_small_fast", "(extra) dt / 10, same path per step (250 m/s)", Z4,
+     ["--set", "steps.dt=8e-6"], ""),
+    ("dt_large_slow", "(extra) dt x 10, same path per step (2.5 m/s)", Z4,
+     ["--set", "steps.dt=8e-4"], ""),
 ]
 NOT_RUN = [("layers", "stiffness ratio 1e6 between two strip layers",
             "not run: a strip has one material (no layered strips in roller)")]
@@ -313,20 +323,33 @@ def g(x, fmt="%.2g"):
 
 
 def markdown(rows, whats):
-    lines = ["| case | base | backend | exit | steps | wall [s] | cuts | max pen. [mm] | "
-             "cone viol. [MPa] (rel.) | NaN/Inf | message / note |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| case | base | backend | exit | steps | wall [s] | cuts | max accepted \\|r\\|/F | "
+             "max pen. [mm] | cone viol. [MPa] (rel.) | NaN/Inf | message / note |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         what, base = whats[r["case"]]
         cone = "—" if math.isnan(r["cone_violation"]) else "%s (%s)" % (
             g(r["cone_violation"]), g(r["cone_violation_rel"]))
         text = r["message"] if r["exit_code"] != 0 else r["note"]
-        lines.append("| %s: %s | %s | %s | %s | %s/%s | %.1f | %s | %s | %s | %s | %s |" % (
+        lines.append("| %s: %s | %s | %s | %s | %s/%s | %.1f | %s | %s | %s | %s | %s | %s |" % (
             r["case"], what, base, r["backend"], r["exit_code"], r["steps_converged"],
-            r["steps_total"], r["wall_s"], r["cuts"], g(r["max_penetration"]), cone,
+            r["steps_total"], r["wall_s"], r["cuts"], g(r.get("max_accepted_residual", float("nan"))),
+            g(r["max_penetration"]), cone,
             "—" if r["exit_code"] == "not run" else (r["nonfinite"] or "none"),
             text.replace("|", "\\|")))
     return "\n".join(lines) + "\n"
+
+
+def provenance(roller):
+    """Which source the measured binary was built from (the working tree is shared)."""
+    try:
+        rev = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True, text=True,
+                             check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        rev = "unknown"
+    built = time.strftime("%Y-%m-%d %H:%M", time.gmtime(os.path.getmtime(roller))) if os.path.exists(roller) else "?"
+    return "Measured %s UTC with %s (built %s UTC) at source %s." % (
+        time.strftime("%Y-%m-%d %H:%M", time.gmtime()), roller, built, rev)
 
 
 def main():
@@ -383,7 +406,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     with open(os.path.join(args.out, "table.md"), "w") as f:
-        f.write(markdown(rows, whats))
+        f.write(provenance(args.roller) + "\n\n" + markdown(rows, whats))
     print("%d runs in %.0f s; %s, %s" % (
         sum(r["exit_code"] != "not run" for r in rows), time.monotonic() - t_start,
         os.path.join(args.out, "stability.csv"), os.path.join(args.out, "table.md")))

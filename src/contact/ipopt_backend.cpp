@@ -621,6 +621,22 @@ void set(Ipopt::IpoptApplication& app, const std::string& name, int value) {
     throw std::logic_error(fmt::format("ipopt backend: Ipopt rejected option {} = {}", name, value));
 }
 
+// [contact.ipopt.options]: pass-through options, after ours so that they override them.
+void apply_raw_options(Ipopt::IpoptApplication& app, const std::vector<RawIpoptOption>& raw) {
+  for (const RawIpoptOption& r : raw) {
+    bool ok = false;
+    switch (r.kind) {
+      case RawIpoptOption::Kind::Integer: ok = app.Options()->SetIntegerValue(r.name, std::stoi(r.text)); break;
+      case RawIpoptOption::Kind::Number: ok = app.Options()->SetNumericValue(r.name, std::stod(r.text)); break;
+      case RawIpoptOption::Kind::String: ok = app.Options()->SetStringValue(r.name, r.text); break;
+    }
+    if (!ok)
+      throw InputError(fmt::format("contact.ipopt.options.{} = {}: Ipopt rejects it (unknown option, wrong type "
+                                   "or value out of range; see Ipopt's option list)",
+                                   r.name, r.text));
+  }
+}
+
 // Ipopt's warm start from a primal-dual point (notes/ipopt-on-debian.md, item 9).
 void set_warm_start(Ipopt::IpoptApplication& app, bool on) {
   set(app, "warm_start_init_point", std::string(on ? "yes" : "no"));
@@ -690,6 +706,7 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   set(*app, "bound_relax_factor", 0.0);
   set(*app, "honor_original_bounds", std::string("yes"));
   set(*app, "line_search_method", std::string("penalty"));  // see the header comment
+  apply_raw_options(*app, o.raw);
   if (hooks.derivative_test) {
     set(*app, "derivative_test", std::string("second-order"));
     set(*app, "derivative_test_print_all", std::string("no"));
@@ -852,6 +869,13 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
 IpoptBackend::IpoptBackend(ContactOptions options) : options_(std::move(options)) {
   std::string why;
   if (!options_.ipopt.is_valid(&why)) throw InputError(why);
+  if (!options_.ipopt.raw.empty()) {
+    // Validate the pass-through options before any step is computed.
+    Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+    set(*app, "sb", std::string("yes"));
+    set(*app, "print_level", 0);
+    apply_raw_options(*app, options_.ipopt.raw);
+  }
 }
 
 BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) {

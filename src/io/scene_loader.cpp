@@ -345,6 +345,28 @@ void read_contact(TomlSection& root, Scene& scene) {
     o.fixed_point = p->choice_or("fixed_point", {"converge", "single"}, o.fixed_point);
     o.fixed_point_tol = p->real_or("fixed_point_tol", o.fixed_point_tol);
     o.fixed_point_max = static_cast<int>(p->integer_or("fixed_point_max", o.fixed_point_max));
+    if (auto raw = p->table("options")) {
+      // Any Ipopt option, passed through (checked by Ipopt when the backend is built).
+      for (const std::string& key : raw->keys()) {
+        const toml::node* v = raw->node(key);
+        RawIpoptOption r{key, RawIpoptOption::Kind::String, ""};
+        if (v->is_integer()) {
+          r.kind = RawIpoptOption::Kind::Integer;
+          r.text = std::to_string(v->value<int64_t>().value());
+        } else if (v->is_floating_point()) {
+          r.kind = RawIpoptOption::Kind::Number;
+          r.text = fmt::format("{:.17g}", v->value<double>().value());
+        } else if (v->is_boolean()) {
+          r.text = v->value<bool>().value() ? "yes" : "no";
+        } else if (v->is_string()) {
+          r.text = v->value<std::string>().value();
+        } else {
+          raw->fail(key, "expected a string, integer, number or boolean (an Ipopt option value)");
+        }
+        o.raw.push_back(r);
+      }
+      raw->finish();
+    }
     p->finish();
   }
   std::string why;

@@ -131,6 +131,12 @@ std::string scene_to_toml(const Scene& scene) {
     root.insert("roller", roller);
     const ContactOptions& c = scene.contact;
     const IpoptOptions& o = c.ipopt;
+    toml::table raw_options;
+    for (const RawIpoptOption& r : o.raw) {
+      if (r.kind == RawIpoptOption::Kind::Integer) raw_options.insert(r.name, std::stoll(r.text));
+      else if (r.kind == RawIpoptOption::Kind::Number) raw_options.insert(r.name, std::stod(r.text));
+      else raw_options.insert(r.name, r.text);
+    }
     root.insert("contact",
                 toml::table{{"backend", c.backend},
                             {"friction", c.friction},
@@ -146,7 +152,8 @@ std::string scene_to_toml(const Scene& scene) {
                                                   {"regularization", o.regularization},
                                                   {"fixed_point", o.fixed_point},
                                                   {"fixed_point_tol", o.fixed_point_tol},
-                                                  {"fixed_point_max", static_cast<int64_t>(o.fixed_point_max)}}}});
+                                                  {"fixed_point_max", static_cast<int64_t>(o.fixed_point_max)},
+                                                  {"options", raw_options}}}});
   }
 
   std::ostringstream out;

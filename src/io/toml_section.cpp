@@ -54,6 +54,12 @@ void TomlSection::fail(const std::string& key, const std::string& expected) cons
 
 bool TomlSection::has(const std::string& key) const { return table_->contains(key); }
 
+std::vector<std::string> TomlSection::keys() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : *table_) out.emplace_back(k.str());
+  return out;
+}
+
 const toml::node* TomlSection::node(const std::string& key) {
   read_.insert(key);
   return table_->get(key);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "roller/core/error.hpp"
+#include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
@@ -144,4 +145,25 @@ TEST_CASE("a node can be selected as the one nearest to a point", "[io][scene]")
   CHECK(mesh.nodes[nodes[0]].y() == Approx(0.0));
   CHECK_THAT(error_of(replace(kGood, "nodes = [1, 2]", "nodes = { near = [5.2] }")),
              Catch::Contains("displacement[1].nodes.near"));
+}
+
+TEST_CASE("contact.ipopt.options pass Ipopt options through and reject unknown ones before computing", "[io][ipopt]") {
+  const std::string base = std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml";
+  const Scene ok = load_scene(base, {{"contact.backend", "\"ipopt\""},
+                                     {"contact.ipopt.options.mumps_pivot_order", "0"},
+                                     {"contact.ipopt.options.print_timing_statistics", "true"},
+                                     {"contact.ipopt.options.bound_push", "0.01"}});
+  REQUIRE(ok.contact.ipopt.raw.size() == 3);
+  auto find = [&](const std::string& name) {
+    for (const auto& r : ok.contact.ipopt.raw)
+      if (r.name == name) return r;
+    FAIL("option " << name << " missing");
+    return RawIpoptOption{};
+  };
+  CHECK(find("mumps_pivot_order").kind == RawIpoptOption::Kind::Integer);
+  CHECK(find("print_timing_statistics").text == "yes");
+  CHECK(find("bound_push").kind == RawIpoptOption::Kind::Number);
+  CHECK_NOTHROW(Simulation(ok));
+  const Scene bad = load_scene(base, {{"contact.backend", "\"ipopt\""}, {"contact.ipopt.options.mumps_pivot_ordr", "0"}});
+  CHECK_THROWS_WITH(Simulation(bad), Catch::Contains("contact.ipopt.options.mumps_pivot_ordr = 0: Ipopt rejects it"));
 }

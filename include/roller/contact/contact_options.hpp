@@ -2,6 +2,7 @@
 // Options of the contact model and of the two backends (scene tables [contact],
 // [contact.penalty], [contact.ipopt]; docs/scenes.md).
 #include <string>
+#include <vector>
 
 #include "roller/core/types.hpp"
 #include "roller/solver/newton_options.hpp"
@@ -12,6 +13,15 @@ struct PenaltyOptions {
   Real factor = 1e3;             // kappa_N = factor * E* * l_i / h_i  (per candidate)
   Real tangential_factor = 1.0;  // kappa_T = tangential_factor * kappa_N
   bool is_valid(std::string* why) const;
+};
+
+// An Ipopt option passed through unchanged ([contact.ipopt.options]): kind says which of
+// Ipopt's setters takes it.
+struct RawIpoptOption {
+  enum class Kind { String, Integer, Number };
+  std::string name;
+  Kind kind = Kind::String;
+  std::string text;  // the value as written (numbers: full precision)
 };
 
 struct IpoptOptions {
@@ -26,6 +36,7 @@ struct IpoptOptions {
   Real fixed_point_tol = 1e-6;           // relative change of F_N that ends the fixed point (changes
                                          // below a pass's multiplier resolution end it too)
   int fixed_point_max = 30;
+  std::vector<RawIpoptOption> raw;       // applied after roller's own settings (override them)
   bool is_valid(std::string* why) const;
 };
 
