@@ -3,7 +3,7 @@
 
 usage: /usr/bin/python3 scripts/stability.py [--out out/stability] [--only CASE,CASE]
                                              [--timeout 600] [--roller ./build/roller]
-                                             [--no-run]
+                                             [--no-run] [--source TEXT]
 
 Runs `roller run` once per case and backend (one process at a time, each under a timeout,
 killed with its process group when it exceeds it) into OUT/<case>/<backend>/ (log beside it:
@@ -239,7 +239,7 @@ def num(text):
         return float("nan")
 
 
-def measure(case, backend, out, log, rc, timed_out, wall):
+def measure(case, scene, backend, out, log, rc, timed_out, wall):
     summary = {}
     if os.path.exists(os.path.join(out, "summary.json")):
         try:
@@ -276,7 +276,7 @@ def measure(case, backend, out, log, rc, timed_out, wall):
             errors = [ln.strip() for ln in f if ln.startswith("error")]
         message = errors[-1] if errors else "(no message)"
     note = ""
-    if case.startswith("hertz") or case.startswith("nu0"):
+    if scene == HERTZ:
         note = hertz_note(out, resolved)
     return {
         "case": case, "backend": backend, "exit_code": "timeout" if timed_out else rc,
@@ -340,16 +340,18 @@ def markdown(rows, whats):
     return "\n".join(lines) + "\n"
 
 
-def provenance(roller):
+def provenance(roller, source):
     """Which source the measured binary was built from (the working tree is shared)."""
-    try:
-        rev = subprocess.run(["git", "describe", "--always", "--dirty"], capture_output=True, text=True,
-                             check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        rev = "unknown"
+    if not source:
+        try:
+            source = "working tree " + subprocess.run(
+                ["git", "describe", "--always", "--dirty"], capture_output=True, text=True,
+                check=True).stdout.strip()
+        except (OSError, subprocess.CalledProcessError):
+            source = "unknown"
     built = time.strftime("%Y-%m-%d %H:%M", time.gmtime(os.path.getmtime(roller))) if os.path.exists(roller) else "?"
-    return "Measured %s UTC with %s (built %s UTC) at source %s." % (
-        time.strftime("%Y-%m-%d %H:%M", time.gmtime()), roller, built, rev)
+    return "Measured %s UTC with %s (built %s UTC; source: %s)." % (
+        time.strftime("%Y-%m-%d %H:%M", time.gmtime()), roller, built, source)
 
 
 def main():
@@ -359,6 +361,8 @@ def main():
     ap.add_argument("--timeout", type=float, default=600.0)
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--no-run", action="store_true", help="measure existing outputs only")
+    ap.add_argument("--source", default="", help="what the binary was built from (for table.md; "
+                    "default: git describe of this working tree)")
     args = ap.parse_args()
     os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     only = set(filter(None, args.only.split(",")))
@@ -384,7 +388,7 @@ def main():
             else:
                 cmd, rc, timed_out, wall = run_one(args.roller, scene, extra, backend, out, log,
                                                    args.timeout)
-            r = measure(case, backend, out, log, rc, timed_out, wall)
+            r = measure(case, scene, backend, out, log, rc, timed_out, wall)
             if remark and backend in remark.split(":")[0]:
                 r["note"] = (r["note"] + "; " if r["note"] else "") + remark
             r["command"] = shell_command(cmd)
@@ -406,7 +410,7 @@ def main():
         w.writeheader()
         w.writerows(rows)
     with open(os.path.join(args.out, "table.md"), "w") as f:
-        f.write(provenance(args.roller) + "\n\n" + markdown(rows, whats))
+        f.write(provenance(args.roller, args.source) + "\n\n" + markdown(rows, whats))
     print("%d runs in %.0f s; %s, %s" % (
         sum(r["exit_code"] != "not run" for r in rows), time.monotonic() - t_start,
         os.path.join(args.out, "stability.csv"), os.path.join(args.out, "table.md")))

@@ -1,0 +1,30 @@
+// MUMPS LDL^T wrapper: solves an indefinite symmetric system and reports its inertia.
+#include <catch2/catch.hpp>
+
+#include "roller/solver/mumps_factorization.hpp"
+
+using namespace roller;
+
+TEST_CASE("MumpsLdlt solves a symmetric indefinite system and counts negative pivots", "[solver]") {
+  // Tridiagonal 1D Laplacian shifted by -0.5: eigenvalues 2 - 2cos(k pi/(n+1)) - 0.5, three
+  // of them negative for n = 20.
+  const int n = 20;
+  std::vector<Triplet> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.0 - 0.5);
+    if (i + 1 < n) {
+      t.emplace_back(i + 1, i, -1.0);
+      t.emplace_back(i, i + 1, -1.0);
+    }
+  }
+  SparseMatrix a(n, n);
+  a.setFromTriplets(t.begin(), t.end());
+  MumpsLdlt ldlt;
+  REQUIRE(ldlt.factorize(a));
+  const VecX x_true = VecX::LinSpaced(n, 1.0, 2.0);
+  const VecX x = ldlt.solve(a * x_true);
+  CHECK((x - x_true).norm() < 1e-10 * x_true.norm());
+  int expected_negative = 0;
+  for (int k = 1; k <= n; ++k) expected_negative += (2.0 - 2.0 * std::cos(k * M_PI / (n + 1)) - 0.5 < 0) ? 1 : 0;
+  CHECK(ldlt.negative_pivots() == expected_negative);
+}
