@@ -169,12 +169,14 @@ Real field_l2(const Result& r, const GridField& mine, const GridField& ref) {
 }
 
 std::vector<Plan> plans(bool quick) {
-  if (quick) return {{"hertz", 0, {1, 2}, 1, 2}, {"cattaneo", 0, {1}, 1, 1}};
-  return {{"hertz", 0, {1, 2, 3, 4}, 2, 4},
-          {"cattaneo", 0, {1, 2, 3, 4}, 2, 4},
-          {"z1_outf05", 0, {1, 2, 3, 4}, 2, 4},
-          {"z3_data01", 24, {1, 2, 3, 4}, 2, 4},
-          {"z4_v25", 0, {1, 2, 3, 4}, 2, 4}};
+  if (quick) return {{"hertz", 0, {1, 2}, 1, 3}, {"cattaneo", 0, {1}, 1, 2}};
+  // The reference is one level finer than the finest swept mesh, so that every swept run has a
+  // discretisation error to show (a reference equal to a swept level would give that level ~0).
+  return {{"hertz", 0, {1, 2, 3, 4}, 2, 5},
+          {"cattaneo", 0, {1, 2, 3, 4}, 2, 5},
+          {"z1_outf05", 0, {1, 2, 3, 4}, 2, 5},
+          {"z3_data01", 24, {1, 2, 3, 4}, 2, 5},
+          {"z4_v25", 0, {1, 2, 3, 4}, 2, 5}};
 }
 
 }  // namespace
