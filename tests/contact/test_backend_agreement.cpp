@@ -64,24 +64,15 @@ TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip z
   CHECK(disagreements <= 2);
 }
 
-TEST_CASE("Z2 (INFINI and LARGE): ipopt and penalty agree on the roller force and the pressure",
-          "[contact][ipopt][agreement][slow]") {
-  for (const char* name : {"z2_infini", "z2_large"}) {
-    SECTION(name) {
-      const Simulation ip = run(name, "ipopt", "1e3");
-      const Simulation pe = run(name, "penalty", "1e3");
-      CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
-      CHECK(pressure_difference(ip, pe) < 0.02);
-    }
-  }
-}
-
 namespace {
 
 // Runs a scene with both backends side by side: at every step both converge without cutting
-// the step (a cut changes the friction history, so the two would solve different problems) and
-// the roller forces agree within 0.5 %; at the end the pressure profiles agree within 2 %.
-void check_z1_agreement(const std::string& name, const std::vector<SceneOverride>& overrides) {
+// the step (a cut changes the friction history, so the two would solve different problems), the
+// roller forces agree within 0.5 % (of |F|, so a near-zero component is compared to the force
+// scale), and the interior-point solution is feasible (gap >= -1e-8 R) and complementary
+// (max F_N g / F_ref below Ipopt's tol). At the end the pressure profiles agree within 2 % and
+// the stick/slip statuses agree except next to a change of status (zone boundaries).
+void check_lockstep_agreement(const std::string& name, const std::vector<SceneOverride>& overrides) {
   auto load = [&](const std::string& backend) {
     std::vector<SceneOverride> o = overrides;
     o.push_back({"contact.backend", "\"" + backend + "\""});
@@ -89,6 +80,8 @@ void check_z1_agreement(const std::string& name, const std::vector<SceneOverride
   };
   Simulation ip = load("ipopt");
   Simulation pe = load("penalty");
+  const Real radius = ip.scene().roller->radius;
+  const Real tol = ip.scene().contact.ipopt.tol;
   for (int step = 1; step <= ip.scene().steps.n_steps; ++step) {
     INFO("step " << step);
     const auto a = ip.advance_step(step);
@@ -97,13 +90,36 @@ void check_z1_agreement(const std::string& name, const std::vector<SceneOverride
     REQUIRE(b.converged);
     CHECK(a.cuts == 0);
     CHECK(b.cuts == 0);
-    CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
-    CHECK(ip.roller_force().x() == Approx(pe.roller_force().x()).epsilon(0.005));
+    const Real scale = pe.roller_force().norm();
+    CHECK(std::abs(ip.roller_force().y() - pe.roller_force().y()) <= 0.005 * scale);
+    CHECK(std::abs(ip.roller_force().x() - pe.roller_force().x()) <= 0.005 * scale);
+    CHECK(a.last.stats.at("constraint_violation") <= 1e-8 * radius);
+    CHECK(a.last.stats.at("complementarity") <= tol);
+    for (const auto& c : ip.contact()) CHECK(c.contact.gap >= -1e-8 * radius);
   }
   CHECK(pressure_difference(ip, pe) < 0.02);
+  const auto& a = ip.contact();
+  const auto& b = pe.contact();
+  REQUIRE(a.size() == b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].contact.status == b[i].contact.status) continue;
+    const bool boundary = (i > 0 && (b[i - 1].contact.status != b[i].contact.status ||
+                                     a[i - 1].contact.status != a[i].contact.status)) ||
+                          (i + 1 < b.size() && (b[i + 1].contact.status != b[i].contact.status ||
+                                                a[i + 1].contact.status != a[i].contact.status));
+    INFO("node " << a[i].node + 1 << " ipopt " << to_string(a[i].contact.status) << " penalty "
+                 << to_string(b[i].contact.status));
+    CHECK(boundary);
+  }
 }
 
 }  // namespace
+
+TEST_CASE("Z2 (INFINI and LARGE): ipopt and penalty agree step by step", "[contact][ipopt][agreement][slow]") {
+  for (const char* name : {"z2_infini", "z2_large"}) {
+    SECTION(name) { check_lockstep_agreement(name, {}); }
+  }
+}
 
 // Z1 rolls with friction over a path that lifts the roller (step 4) and presses it again.
 // Before the penalty scale was taken from the initial mesh the penalty backend cut steps 5-6
@@ -111,18 +127,18 @@ void check_z1_agreement(const std::string& name, const std::vector<SceneOverride
 TEST_CASE("Z1 (OUTF05 and OUTF10): ipopt and penalty agree step by step on the roller force and the pressure",
           "[contact][ipopt][agreement][slow]") {
   for (const char* name : {"z1_outf05", "z1_outf10"}) {
-    SECTION(name) { check_z1_agreement(name, {}); }
+    SECTION(name) { check_lockstep_agreement(name, {}); }
   }
 }
 
 // Without friction nothing holds the strip beyond the roller in x but a plastic zone through the
 // thickness: the soft mode on which Ipopt's filter line search let Newton cycle (failed at step 4).
 TEST_CASE("Z1 without friction: ipopt runs all steps and agrees with penalty", "[contact][ipopt][agreement][slow]") {
-  check_z1_agreement("z1_outf05", {{"contact.friction", "0"}});
+  check_lockstep_agreement("z1_outf05", {{"contact.friction", "0"}});
 }
 
 // At refine 2 the ipopt friction fixed point ran out of passes on inner-solve noise (steps 6 and
 // 12 cut, roller force 3 % off at step 6).
 TEST_CASE("Z1 refine 2: ipopt and penalty agree step by step", "[contact][ipopt][agreement][slow]") {
-  check_z1_agreement("z1_outf05", {{"mesh.refine", "2"}});
+  check_lockstep_agreement("z1_outf05", {{"mesh.refine", "2"}});
 }
