@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "roller/assembly/increment_energy.hpp"
+#include "roller/contact/arc_predictor.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/core/error.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -177,6 +178,12 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     motion.start = pose_;
     motion.end = roller_pose(*scene_.roller, start_centre(), s_to);
     motion.friction = scene_.contact.friction;
+    if (scene_.contact.predictor == "arc") {
+      // Thesis §4.2.3: nodes the extrapolated predictor puts inside the roller start on its
+      // surface at the arc position (4.25) instead.
+      apply_arc_predictor(candidate_nodes_, model_->current_coordinates(), model_->dof_map(), motion, predictor);
+      x = model_->dof_map().restrict_to_free(predictor);
+    }
     if (!suspension_) {
       contact_result = solve_contact(energy, prescribed, predictor, motion, x, candidates);
       take(contact_result);

@@ -328,6 +328,7 @@ void read_contact(TomlSection& root, Scene& scene) {
   c.backend = s->choice_or("backend", {"penalty", "ipopt"}, c.backend);
   c.friction = s->real_or("friction", c.friction);
   c.candidates = s->string("candidates").value_or(c.candidates);
+  c.predictor = s->choice_or("predictor", {"extrapolate", "arc"}, c.predictor);
   if (auto p = s->table("penalty")) {
     c.penalty.factor = p->real_or("factor", c.penalty.factor);
     c.penalty.tangential_factor = p->real_or("tangential_factor", c.penalty.tangential_factor);

@@ -141,6 +141,7 @@ std::string scene_to_toml(const Scene& scene) {
                 toml::table{{"backend", c.backend},
                             {"friction", c.friction},
                             {"candidates", c.candidates},
+                            {"predictor", c.predictor},
                             {"penalty", toml::table{{"factor", c.penalty.factor},
                                                     {"tangential_factor", c.penalty.tangential_factor}}},
                             {"ipopt", toml::table{{"tol", o.tol},

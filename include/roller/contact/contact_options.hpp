@@ -44,6 +44,8 @@ struct ContactOptions {
   std::string backend = "penalty";  // "penalty" | "ipopt"
   Real friction = 0.0;              // Coulomb mu
   std::string candidates = "contact";  // node set of contact candidates
+  std::string predictor = "extrapolate";  // start of each increment: "extrapolate" (the previous
+                                          // increment scaled) | "arc" (then the thesis's arc rule (4.25))
   PenaltyOptions penalty;
   IpoptOptions ipopt;
   bool is_valid(std::string* why) const;
