@@ -142,3 +142,10 @@ TEST_CASE("Z1 without friction: ipopt runs all steps and agrees with penalty", "
 TEST_CASE("Z1 refine 2: ipopt and penalty agree step by step", "[contact][ipopt][agreement][slow]") {
   check_lockstep_agreement("z1_outf05", {{"mesh.refine", "2"}});
 }
+
+// Issue 4's per-step checks (feasibility, complementarity, force agreement, stick/slip) on the
+// validation scenes too.
+TEST_CASE("Hertz and Cattaneo: ipopt and penalty agree step by step", "[contact][ipopt][agreement][slow]") {
+  SECTION("hertz") { check_lockstep_agreement("hertz", {{"contact.penalty.factor", "1e5"}}); }
+  SECTION("cattaneo") { check_lockstep_agreement("cattaneo", {}); }
+}
