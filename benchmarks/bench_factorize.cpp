@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   sim.model().evaluate(VecX::Zero(sim.model().n_dofs()), nullptr, &k);
   std::vector<double> times;
   for (int r = 0; r < repeats; ++r) {
-    MumpsLdlt ldlt;
+    MumpsSolver ldlt;
     const auto t0 = std::chrono::steady_clock::now();
     if (!ldlt.factorize(k)) {
       std::fprintf(stderr, "%s\n", ldlt.message().c_str());

@@ -4,11 +4,10 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
+#include "roller/solver/mumps_factorization.hpp"
 
 namespace roller {
 
@@ -124,17 +123,18 @@ std::vector<Stiffness> penalty_stiffnesses(const IncrementProblem& p, Real facto
   return k;
 }
 
+// MUMPS: LDL^T for the symmetric Jacobian (no friction, or stick), LU for the unsymmetric one
+// of sliding friction, and LU as the fallback when LDL^T fails.
 bool solve_linear(const Evaluation& e, VecX& d) {
   if (e.symmetric) {
-    Eigen::SimplicialLDLT<SparseMatrix> ldlt(e.jacobian);
-    if (ldlt.info() == Eigen::Success) {
+    MumpsSolver ldlt(MumpsSolver::Symmetry::Symmetric);
+    if (ldlt.factorize(e.jacobian)) {
       d = ldlt.solve(-e.residual);
       if (d.allFinite()) return true;
     }
   }
-  Eigen::SparseLU<SparseMatrix> lu;
-  lu.compute(e.jacobian);
-  if (lu.info() != Eigen::Success) return false;
+  MumpsSolver lu(MumpsSolver::Symmetry::General);
+  if (!lu.factorize(e.jacobian)) return false;
   d = lu.solve(-e.residual);
   return d.allFinite();
 }

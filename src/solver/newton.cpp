@@ -2,29 +2,27 @@
 
 #include <cmath>
 
-#include <Eigen/SparseCholesky>
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
+#include "roller/solver/mumps_factorization.hpp"
 
 namespace roller {
 
 namespace {
 
-// Solves H d = -g. LDL^T without pivoting works for the symmetric tangents met here, including
-// mildly indefinite ones (geometric stiffness under compression); when the result is not a
-// descent direction the Hessian is shifted (Levenberg) until it is.
+// Solves H d = -g by MUMPS's LDL^T (symmetric, indefinite allowed: geometric stiffness under
+// compression); when the result is not a descent direction the Hessian is shifted (Levenberg)
+// until it is.
 bool newton_direction(const SparseMatrix& h, const VecX& g, VecX& d, int& factorizations) {
-  Eigen::SimplicialLDLT<SparseMatrix> solver;
-  solver.analyzePattern(h);
+  MumpsSolver solver(MumpsSolver::Symmetry::Symmetric);
   Real shift = 0.0;
   const Real diag_scale = h.diagonal().cwiseAbs().maxCoeff();
   for (int attempt = 0; attempt < 8; ++attempt) {
     SparseMatrix shifted = h;
     if (shift > 0.0) shifted.diagonal().array() += shift;
-    solver.factorize(shifted);
     ++factorizations;
-    if (solver.info() == Eigen::Success) {
+    if (solver.factorize(shifted)) {
       d = solver.solve(-g);
       if (d.allFinite() && d.dot(g) < 0.0) return true;
     }
