@@ -11,7 +11,7 @@ using namespace roller;
 
 TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P)), Coulomb bound at every node",
           "[contact][cattaneo][slow]") {
-  const Simulation sim = test::run_scene("cattaneo", {{"mesh.refine", "2"}});
+  const Simulation sim = test::run_scene("cattaneo", {{"mesh.refine", "2"}, {"contact.backend", "\"penalty\""}});
   const Real mu = sim.scene().contact.friction;
   std::vector<Real> x;
   std::vector<bool> in_contact, stick;

@@ -41,7 +41,7 @@ struct IpoptOptions {
 };
 
 struct ContactOptions {
-  std::string backend = "penalty";  // "penalty" | "ipopt"
+  std::string backend = "ipopt";  // "ipopt" (the main method) | "penalty"
   Real friction = 0.0;              // Coulomb mu
   std::string candidates = "contact";  // node set of contact candidates
   std::string predictor = "extrapolate";  // start of each increment: "extrapolate" (the previous
