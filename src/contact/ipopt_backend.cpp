@@ -742,6 +742,7 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   int passes = 0;
   bool fixed_point_converged = mu == 0.0 || o.fixed_point == "single";
   Real last_change = 0.0, last_max = 0.0;
+  Real previous_change = std::numeric_limits<Real>::infinity(), relaxation = 1.0;
   std::string evaluation_error;
   for (int pass = 1; pass <= max_passes; ++pass) {
     Real fb = 0.0;
@@ -789,8 +790,14 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
       last_change = std::max(last_change, std::abs(last.normal[i] - fbar[i]));
       last_max = std::max(last_max, last.normal[i]);
     }
-    fbar = last.normal;
-    for (Real& f : fbar) f = std::max(f, 0.0);
+    // Plain substitution while the change at least halves per pass; once it does not (the map
+    // can cycle, e.g. with nodes at the contact edge switching between passes: Cattaneo at
+    // refine 5 repeated a 3-pass cycle until the passes ran out), average the new normal forces
+    // with the previous estimate (Krasnoselskii-Mann), which damps the cycle.
+    if (pass > 1 && last_change > 0.5 * previous_change) relaxation = 0.5;
+    previous_change = last_change;
+    for (std::size_t i = 0; i < n_c; ++i)
+      fbar[i] = std::max((1.0 - relaxation) * fbar[i] + relaxation * last.normal[i], 0.0);
     if (o.fixed_point == "single") break;
     if (last_change <= std::max(o.fixed_point_tol * last_max, force_tol) || last_max <= 1e-6 * scales.force) {
       fixed_point_converged = true;
