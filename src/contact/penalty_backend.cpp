@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
-#include "roller/solver/mumps_factorization.hpp"
+#include "roller/solver/sparse_solver.hpp"
 
 namespace roller {
 
@@ -123,17 +123,19 @@ std::vector<Stiffness> penalty_stiffnesses(const IncrementProblem& p, Real facto
   return k;
 }
 
-// MUMPS: LDL^T for the symmetric Jacobian (no friction, or stick), LU for the unsymmetric one
-// of sliding friction, and LU as the fallback when LDL^T fails.
+// LDL^T for the symmetric Jacobian (no friction, or stick), LU for the unsymmetric one of
+// sliding friction, and LU as the fallback when LDL^T fails (solver/sparse_solver.hpp).
+// The solvers persist between calls so that MUMPS's symbolic analysis is redone only when the
+// Jacobian's pattern changes (it is fixed within an increment).
 bool solve_linear(const Evaluation& e, VecX& d) {
+  thread_local SparseSolver ldlt(MumpsSolver::Symmetry::Symmetric);
+  thread_local SparseSolver lu(MumpsSolver::Symmetry::General);
   if (e.symmetric) {
-    MumpsSolver ldlt(MumpsSolver::Symmetry::Symmetric);
     if (ldlt.factorize(e.jacobian)) {
       d = ldlt.solve(-e.residual);
       if (d.allFinite()) return true;
     }
   }
-  MumpsSolver lu(MumpsSolver::Symmetry::General);
   if (!lu.factorize(e.jacobian)) return false;
   d = lu.solve(-e.residual);
   return d.allFinite();

@@ -5,17 +5,18 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
-#include "roller/solver/mumps_factorization.hpp"
+#include "roller/solver/sparse_solver.hpp"
 
 namespace roller {
 
 namespace {
 
-// Solves H d = -g by MUMPS's LDL^T (symmetric, indefinite allowed: geometric stiffness under
-// compression); when the result is not a descent direction the Hessian is shifted (Levenberg)
+// Solves H d = -g by LDL^T (solver/sparse_solver.hpp; indefinite allowed: geometric stiffness
+// under compression); when the result is not a descent direction the Hessian is shifted (Levenberg)
 // until it is.
 bool newton_direction(const SparseMatrix& h, const VecX& g, VecX& d, int& factorizations) {
-  MumpsSolver solver(MumpsSolver::Symmetry::Symmetric);
+  // Persistent: MUMPS's symbolic analysis is redone only when the pattern changes.
+  thread_local SparseSolver solver(MumpsSolver::Symmetry::Symmetric);
   Real shift = 0.0;
   const Real diag_scale = h.diagonal().cwiseAbs().maxCoeff();
   for (int attempt = 0; attempt < 8; ++attempt) {

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "roller/solver/mumps_factorization.hpp"
+#include "roller/solver/sparse_solver.hpp"
 
 using namespace roller;
 
@@ -56,4 +57,25 @@ TEST_CASE("MumpsSolver (general) solves an unsymmetric system and reuses the ana
   MumpsSolver singular(MumpsSolver::Symmetry::General);
   CHECK_FALSE(singular.factorize(z));
   CHECK_THAT(singular.message(), Catch::Contains("MUMPS"));
+}
+
+TEST_CASE("SparseSolver solves below and above the MUMPS threshold alike", "[solver]") {
+  for (const Index n : {Index{50}, kMumpsFromUnknowns + 10}) {
+    for (const auto symmetry : {MumpsSolver::Symmetry::Symmetric, MumpsSolver::Symmetry::General}) {
+      std::vector<Triplet> t;
+      for (Index i = 0; i < n; ++i) {
+        t.emplace_back(i, i, 3.0);
+        if (i + 1 < n) {
+          t.emplace_back(i + 1, i, -1.0);
+          t.emplace_back(i, i + 1, symmetry == MumpsSolver::Symmetry::Symmetric ? -1.0 : -1.5);
+        }
+      }
+      SparseMatrix a(n, n);
+      a.setFromTriplets(t.begin(), t.end());
+      SparseSolver solver(symmetry);
+      const VecX x_true = VecX::LinSpaced(n, 0.5, 1.5);
+      REQUIRE(solver.factorize(a));
+      CHECK((solver.solve(a * x_true) - x_true).norm() < 1e-10 * x_true.norm());
+    }
+  }
 }
