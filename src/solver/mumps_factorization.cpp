@@ -15,6 +15,8 @@ struct MumpsSolver::Impl {
   DMUMPS_STRUC_C id{};
   std::vector<MUMPS_INT> rows, cols;
   std::vector<double> values;
+  std::vector<MUMPS_INT> schur_list;  // 1-based; empty = no Schur complement
+  std::vector<double> schur;         // size_schur^2, by rows
   bool initialised = false;
   bool analysed = false;
   std::string message;
@@ -29,7 +31,10 @@ struct MumpsSolver::Impl {
     id.icntl[2] = -1;
     id.icntl[3] = 0;
     id.icntl[13] = 50;  // ICNTL(14): 50 % workspace headroom for delayed pivots
+    id.icntl[18] = schur_list.empty() ? 0 : 1;  // ICNTL(19): centralised Schur complement, by rows
+    id.icntl[25] = 0;   // ICNTL(26): with a Schur complement, solve the interior problem only
   }
+  bool factorize(const SparseMatrix& a, std::vector<MUMPS_INT> schur_vars);
   bool failed(const char* what) {
     if (id.infog[0] >= 0) return false;
     message = fmt::format("MUMPS {} failed: INFOG(1) = {}, INFOG(2) = {}{}", what, id.infog[0], id.infog[1],
@@ -51,34 +56,42 @@ MumpsSolver::~MumpsSolver() {
   if (impl_->initialised) impl_->call(-2);
 }
 
-bool MumpsSolver::factorize(const SparseMatrix& a) {
-  Impl& m = *impl_;
+bool MumpsSolver::Impl::factorize(const SparseMatrix& a, std::vector<MUMPS_INT> schur_vars) {
+  Impl& m = *this;
   if (!m.initialised) {
     m.message = "MUMPS could not be initialised";
     return false;
   }
-  std::vector<MUMPS_INT> rows, cols;
-  std::vector<double> values;
-  rows.reserve(a.nonZeros());
-  cols.reserve(a.nonZeros());
-  values.reserve(a.nonZeros());
+  std::vector<MUMPS_INT> new_rows, new_cols;
+  std::vector<double> new_values;
+  new_rows.reserve(a.nonZeros());
+  new_cols.reserve(a.nonZeros());
+  new_values.reserve(a.nonZeros());
   const bool lower_only = m.id.sym != 0;
   for (int k = 0; k < a.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(a, k); it; ++it)
       if (!lower_only || it.row() >= it.col()) {
-        rows.push_back(static_cast<MUMPS_INT>(it.row() + 1));
-        cols.push_back(static_cast<MUMPS_INT>(it.col() + 1));
-        values.push_back(it.value());
+        new_rows.push_back(static_cast<MUMPS_INT>(it.row() + 1));
+        new_cols.push_back(static_cast<MUMPS_INT>(it.col() + 1));
+        new_values.push_back(it.value());
       }
-  const bool same_pattern = m.analysed && rows == m.rows && cols == m.cols && m.id.n == a.rows();
-  m.rows = std::move(rows);
-  m.cols = std::move(cols);
-  m.values = std::move(values);
+  const bool same_pattern = m.analysed && new_rows == m.rows && new_cols == m.cols && m.id.n == a.rows() &&
+                            schur_vars == m.schur_list;
+  m.rows = std::move(new_rows);
+  m.cols = std::move(new_cols);
+  m.values = std::move(new_values);
+  m.schur_list = std::move(schur_vars);
   m.id.n = static_cast<MUMPS_INT>(a.rows());
   m.id.nnz = static_cast<int64_t>(m.values.size());
   m.id.irn = m.rows.data();
   m.id.jcn = m.cols.data();
   m.id.a = m.values.data();
+  const auto ns = static_cast<MUMPS_INT>(m.schur_list.size());
+  m.schur.assign(static_cast<std::size_t>(ns) * ns, 0.0);
+  m.id.size_schur = ns;
+  m.id.listvar_schur = ns > 0 ? m.schur_list.data() : nullptr;
+  m.id.schur = ns > 0 ? m.schur.data() : nullptr;
+  m.id.schur_lld = ns;
   m.settings();
   if (!same_pattern) {
     m.analysed = false;
@@ -88,6 +101,34 @@ bool MumpsSolver::factorize(const SparseMatrix& a) {
   }
   m.call(2);
   return !m.failed("factorisation");
+}
+
+bool MumpsSolver::factorize(const SparseMatrix& a) { return impl_->factorize(a, {}); }
+
+bool MumpsSolver::factorize_with_schur(const SparseMatrix& a, const std::vector<Index>& schur, MatX* s) {
+  std::vector<MUMPS_INT> list;
+  list.reserve(schur.size());
+  for (const Index i : schur) list.push_back(static_cast<MUMPS_INT>(i + 1));
+  if (!impl_->factorize(a, std::move(list))) return false;
+  const Index n = static_cast<Index>(schur.size());
+  s->resize(n, n);
+  const std::vector<double>& v = impl_->schur;
+  for (Index i = 0; i < n; ++i)
+    for (Index j = 0; j < n; ++j) (*s)(i, j) = v[static_cast<std::size_t>(i) * n + j];
+  // Symmetric matrices: MUMPS fills one triangle only (the lower one by rows = the upper one
+  // by columns); mirror it.
+  if (impl_->id.sym != 0)
+    for (Index i = 0; i < n; ++i)
+      for (Index j = i + 1; j < n; ++j) (*s)(i, j) = (*s)(j, i);
+  return true;
+}
+
+VecX MumpsSolver::solve_interior(const VecX& b) {
+  VecX x = b;
+  for (const MUMPS_INT i : impl_->schur_list) x(i - 1) = 0.0;
+  x = solve(x);
+  for (const MUMPS_INT i : impl_->schur_list) x(i - 1) = 0.0;
+  return x;
 }
 
 VecX MumpsSolver::solve(const VecX& b) {
