@@ -65,6 +65,8 @@ bool IpoptOptions::is_valid(std::string* why) const {
     if (why) *why = m;
     return false;
   };
+  if (formulation != "condensed" && formulation != "full")
+    return bad(fmt::format("contact.ipopt.formulation = \"{}\": expected \"condensed\" or \"full\"", formulation));
   if (!(tol > 0.0 && tol < 1.0)) return bad(fmt::format("contact.ipopt.tol = {}: must be in (0, 1)", tol));
   if (max_iter < 1) return bad(fmt::format("contact.ipopt.max_iter = {}: must be >= 1", max_iter));
   if (mu_strategy != "adaptive" && mu_strategy != "monotone")

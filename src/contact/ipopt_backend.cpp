@@ -94,13 +94,13 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
+#include "ipopt_common.hpp"
 
 namespace roller {
 
 namespace {
 
-using IIndex = Ipopt::Index;
-using Ipopt::Number;
+using namespace ipopt_detail;
 
 // ---------------------------------------------------------------------------------------------
 // Data shared by all passes of one increment.
@@ -532,75 +532,6 @@ class StringJournal : public Ipopt::Journal {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Status mapping.
-
-struct StatusText {
-  NewtonStatus status;
-  std::string message;
-};
-
-StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,
-                      const std::string& evaluation_error) {
-  using S = NewtonStatus;
-  const std::string cause = evaluation_error.empty() ? "" : fmt::format(" (last evaluation error: {})", evaluation_error);
-  switch (s) {
-    case Ipopt::Solve_Succeeded:
-    case Ipopt::Solved_To_Acceptable_Level:
-      return {S::Converged, ""};
-    case Ipopt::Maximum_Iterations_Exceeded:
-      return {S::NotConverged,
-              fmt::format("Ipopt stopped after {} iterations without reaching contact.ipopt.tol = {:g} "
-                          "(contact.ipopt.max_iter = {}); use smaller steps or raise contact.ipopt.max_iter",
-                          iterations, o.tol, o.max_iter)};
-    case Ipopt::Maximum_CpuTime_Exceeded:
-      return {S::NotConverged, "Ipopt exceeded its CPU time limit; use smaller steps"};
-    case Ipopt::Restoration_Failed:
-      return {S::NotConverged,
-              fmt::format("Ipopt's feasibility restoration failed after {} iterations: the roller cannot be "
-                          "placed without penetration from this start (or the strip cannot follow it){}; "
-                          "use smaller steps", iterations, cause)};
-    case Ipopt::Infeasible_Problem_Detected:
-      return {S::NotConverged,
-              "Ipopt found the increment locally infeasible: the roller cannot be placed without "
-              "penetration (e.g. it presses a node whose dofs are prescribed, or the step is too large "
-              "for the curved gap); use smaller steps"};
-    case Ipopt::Search_Direction_Becomes_Too_Small:
-      return {S::NotConverged,
-              fmt::format("Ipopt's search direction became too small before reaching contact.ipopt.tol = {:g}: "
-                          "the tolerance is below what round-off allows for this problem; raise "
-                          "contact.ipopt.tol or use smaller steps", o.tol)};
-    case Ipopt::Feasible_Point_Found:
-      return {S::NotConverged, "Ipopt found a feasible point but not an optimum; use smaller steps"};
-    case Ipopt::Diverging_Iterates:
-      return {S::Failure,
-              "Ipopt's iterates diverged (|x| > 1e20): the strip is not held against rigid-body motion "
-              "(check the boundary conditions) or the step is far too large"};
-    case Ipopt::Error_In_Step_Computation:
-      return {S::Failure,
-              fmt::format("Ipopt could not solve its Newton system (singular KKT matrix after regularisation){}; "
-                          "check the boundary conditions (rigid-body modes) or use smaller steps", cause)};
-    case Ipopt::Invalid_Number_Detected:
-      return {S::Failure,
-              fmt::format("the strip's energy or its derivatives could not be evaluated at an Ipopt iterate{}; "
-                          "use smaller steps", cause)};
-    case Ipopt::Not_Enough_Degrees_Of_Freedom:
-      return {S::Failure, "Ipopt: more equality constraints than free variables (internal error; please report)"};
-    case Ipopt::Invalid_Problem_Definition:
-    case Ipopt::Invalid_Option:
-      return {S::Failure, "Ipopt rejected the problem definition or an option (internal error; please report)"};
-    case Ipopt::Insufficient_Memory:
-      return {S::Failure, "Ipopt/MUMPS ran out of memory; use a coarser mesh"};
-    case Ipopt::User_Requested_Stop:
-      return {S::Failure, "Ipopt stopped on request"};
-    case Ipopt::Unrecoverable_Exception:
-    case Ipopt::NonIpopt_Exception_Thrown:
-    case Ipopt::Internal_Error:
-      break;
-  }
-  return {S::Failure, fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
-}
-
-// ---------------------------------------------------------------------------------------------
 // The solve.
 
 struct Hooks {
@@ -608,62 +539,6 @@ struct Hooks {
   Real derivative_perturbation = 1e-8;
   std::string* journal = nullptr;
 };
-
-void set(Ipopt::IpoptApplication& app, const std::string& name, const std::string& value) {
-  if (!app.Options()->SetStringValue(name, value))
-    throw std::logic_error(fmt::format("ipopt backend: Ipopt rejected option {} = {}", name, value));
-}
-void set(Ipopt::IpoptApplication& app, const std::string& name, Real value) {
-  if (!app.Options()->SetNumericValue(name, value))
-    throw std::logic_error(fmt::format("ipopt backend: Ipopt rejected option {} = {}", name, value));
-}
-void set(Ipopt::IpoptApplication& app, const std::string& name, int value) {
-  if (!app.Options()->SetIntegerValue(name, value))
-    throw std::logic_error(fmt::format("ipopt backend: Ipopt rejected option {} = {}", name, value));
-}
-
-// [contact.ipopt.options]: pass-through options, after ours so that they override them.
-void apply_raw_options(Ipopt::IpoptApplication& app, const std::vector<RawIpoptOption>& raw) {
-  for (const RawIpoptOption& r : raw) {
-    bool ok = false;
-    switch (r.kind) {
-      case RawIpoptOption::Kind::Integer: ok = app.Options()->SetIntegerValue(r.name, std::stoi(r.text)); break;
-      case RawIpoptOption::Kind::Number: ok = app.Options()->SetNumericValue(r.name, std::stod(r.text)); break;
-      case RawIpoptOption::Kind::String: ok = app.Options()->SetStringValue(r.name, r.text); break;
-    }
-    if (!ok)
-      throw InputError(fmt::format("contact.ipopt.options.{} = {}: Ipopt rejects it (unknown option, wrong type "
-                                   "or value out of range; see Ipopt's option list)",
-                                   r.name, r.text));
-  }
-}
-
-// Ipopt's warm start from a primal-dual point (notes/ipopt-on-debian.md, item 9).
-void set_warm_start(Ipopt::IpoptApplication& app, bool on) {
-  set(app, "warm_start_init_point", std::string(on ? "yes" : "no"));
-  set(app, "mu_init", on ? 1e-6 : 0.1);
-  for (const char* name : {"warm_start_bound_push", "warm_start_bound_frac", "warm_start_slack_bound_push",
-                           "warm_start_slack_bound_frac", "warm_start_mult_bound_push"})
-    set(app, name, on ? 1e-6 : 1e-3);
-}
-
-// Scales of one increment (see the header comment).
-struct Scales {
-  Real force = 1.0;   // F_ref [N/mm]
-  Real length = 1.0;  // l_step [mm]
-};
-
-Scales increment_scales(IncrementProblem& problem, const VecX& x0) {
-  const RollerMotion& r = problem.roller();
-  Real l = std::max(r.dc().norm(), r.radius * std::abs(r.dphi()));
-  const VecX u = problem.full_increment(x0);
-  if (u.size() > 0) l = std::max(l, u.lpNorm<Eigen::Infinity>());
-  for (const auto& c : problem.candidates()) l = std::max(l, -problem.gap(c, x0));
-  Scales s;
-  s.length = std::max(l, 1e-9 * r.radius);
-  s.force = std::max(problem.force_scale(x0), problem.plane_strain_modulus() * s.length);
-  return s;
-}
 
 BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
                               const Hooks& hooks) {
@@ -690,25 +565,7 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
     return result;
   }
 
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-  app->RethrowNonIpoptException(true);
-  set(*app, "sb", std::string("yes"));
-  set(*app, "print_level", o.print_level);
-  set(*app, "linear_solver", std::string("mumps"));
-  set(*app, "hessian_approximation", std::string("exact"));
-  set(*app, "tol", o.tol);
-  set(*app, "max_iter", o.max_iter);
-  set(*app, "mu_strategy", o.mu_strategy);
-  set(*app, "obj_scaling_factor", 1.0 / scales.force);
-  // The unscaled dual safety tolerance (default 1 N/mm) must not be stricter than tol on the
-  // scaled problem for large force scales. The unscaled complementarity max F_N g [N mm] is held
-  // to tol F_ref, so that the reported complementarity (max F_N g / F_ref) ends below tol.
-  set(*app, "dual_inf_tol", std::max(1.0, 100.0 * o.tol * scales.force));
-  set(*app, "compl_inf_tol", o.tol * scales.force);
-  set(*app, "bound_relax_factor", 0.0);
-  set(*app, "honor_original_bounds", std::string("yes"));
-  set(*app, "line_search_method", std::string("penalty"));  // see the header comment
-  apply_raw_options(*app, o.raw);
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
   if (hooks.derivative_test) {
     set(*app, "derivative_test", std::string("second-order"));
     set(*app, "derivative_test_print_all", std::string("no"));
@@ -727,11 +584,10 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   }
 
   const Real mu = problem.roller().friction;
-  std::vector<Real> fbar(n_c, 0.0);
-  for (std::size_t i = 0; i < n_c; ++i) fbar[i] = std::max(cands[i].normal_force_guess, 0.0);
+  NormalForceFixedPoint fixed_point(problem, o, scales.force);
   PassStart start;
   start.x = x0;
-  start.normal = fbar;
+  start.normal = fixed_point.fbar();
   start.tangential.assign(n_c, 0.0);
   for (std::size_t i = 0; i < n_c; ++i) start.tangential[i] = cands[i].tangential_force;
 
@@ -741,14 +597,9 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   double ipopt_time = 0.0;
   int passes = 0;
   bool fixed_point_converged = mu == 0.0 || o.fixed_point == "single";
-  Real last_change = 0.0, last_max = 0.0;
-  Real previous_change = std::numeric_limits<Real>::infinity(), relaxation = 1.0;
   std::string evaluation_error;
   for (int pass = 1; pass <= max_passes; ++pass) {
-    Real fb = 0.0;
-    for (Real f : fbar) fb = std::max(fb, f);
-    const Real force_tol = 1e-6 * std::max(scales.force, fb);  // F_tol (header comment)
-    setup = make_setup(problem, options, fbar, force_tol);
+    setup = make_setup(problem, options, fixed_point.fbar(), fixed_point.force_tol());
     // Pass 1 warm-starts only on request (its guesses may be poor); later passes always start
     // from the previous pass's primal-dual solution, which is close.
     set_warm_start(*app, pass > 1 || o.warm_start);
@@ -782,25 +633,9 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
       result.stats["ipopt_time_s"] = ipopt_time;
       return result;
     }
-    if (mu == 0.0) break;
-    // Fixed point on the normal force.
-    last_change = 0.0;
-    last_max = 0.0;
-    for (std::size_t i = 0; i < n_c; ++i) {
-      last_change = std::max(last_change, std::abs(last.normal[i] - fbar[i]));
-      last_max = std::max(last_max, last.normal[i]);
-    }
-    // Plain substitution while the change at least halves per pass; once it does not (the map
-    // can cycle, e.g. with nodes at the contact edge switching between passes: Cattaneo at
-    // refine 5 repeated a 3-pass cycle until the passes ran out), average the new normal forces
-    // with the previous estimate (Krasnoselskii-Mann), which damps the cycle.
-    if (pass > 1 && last_change > 0.5 * previous_change) relaxation = 0.5;
-    previous_change = last_change;
-    for (std::size_t i = 0; i < n_c; ++i)
-      fbar[i] = std::max((1.0 - relaxation) * fbar[i] + relaxation * last.normal[i], 0.0);
-    if (o.fixed_point == "single") break;
-    if (last_change <= std::max(o.fixed_point_tol * last_max, force_tol) || last_max <= 1e-6 * scales.force) {
-      fixed_point_converged = true;
+    const bool done = fixed_point.update(last.normal);
+    if (done || mu == 0.0 || o.fixed_point == "single") {
+      fixed_point_converged = done;
       break;
     }
     start.x = result.x;
@@ -809,62 +644,15 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
   }
   result.stats["fixed_point_iterations"] = passes;
   result.stats["ipopt_time_s"] = ipopt_time;
+  result.factorizations = result.iterations;  // one KKT factorisation per interior-point iteration
 
-  // Forces, gaps, slips, status per candidate; equilibrium residual at the solution.
-  const VecX& x = result.x;
-  VecX gradient;
-  Real force_scale = scales.force;
-  try {
-    problem.strip_energy(x, &gradient, nullptr);
-    force_scale = std::max(problem.force_scale(x), scales.force);
-  } catch (const NumericalError& error) {
-    result.status = NewtonStatus::Failure;
-    result.message = fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", error.what());
-    return result;
-  }
-  Real fn_max = 0.0;
-  for (std::size_t i = 0; i < n_c; ++i) fn_max = std::max(fn_max, last.normal[i]);
-  const Real force_tol = 1e-6 * std::max(scales.force, fn_max);
-  const Real slip_tol = 1e-6 * scales.length;
   std::vector<bool> has_friction(n_c, false);
   for (const int i : setup.friction) has_friction[i] = true;
-  Real complementarity = 0.0, violation = 0.0;
-  VecX r = gradient;
-  for (std::size_t i = 0; i < n_c; ++i) {
-    const ContactCandidate& c = cands[i];
-    NodeContact& nc = result.contact[i];
-    nc.normal_force = std::max(last.normal[i], 0.0);
-    nc.tangential_force = last.tangential[i];
-    nc.gap = problem.gap(c, x);
-    nc.slip = problem.slip(c, x);
-    if (nc.normal_force <= force_tol && nc.gap > 0.0) {
-      nc.status = ContactStatus::Open;
-    } else {
-      Real tol = slip_tol;
-      if (has_friction[i]) {
-        const Real bound = mu * setup.fbar[i];
-        tol = scales.length * std::max(0.0, 1.0 - std::abs(nc.tangential_force) / bound);
-      }
-      nc.status = std::abs(nc.slip) <= tol ? ContactStatus::Stick : ContactStatus::Slip;
-    }
-    const Vec2 f = nc.normal_force * problem.normal(c, x) + nc.tangential_force * c.tangent;
-    for (int k = 0; k < 2; ++k)
-      if (c.free_dof[k] >= 0) r(c.free_dof[k]) -= f(k);
-    if (c.free_dof[0] >= 0 || c.free_dof[1] >= 0) {
-      complementarity = std::max(complementarity, std::abs(nc.normal_force * nc.gap));
-      violation = std::max(violation, -nc.gap);
-    }
-  }
-  result.residual = r.norm() / force_scale;
-  result.stats["complementarity"] = complementarity / force_scale;
-  result.stats["constraint_violation"] = violation;
+  if (!report_increment(problem, result.x, last.normal, last.tangential, setup.fbar, has_friction, scales, &result))
+    return result;
   if (!fixed_point_converged) {
     result.status = NewtonStatus::NotConverged;
-    result.message = fmt::format(
-        "the friction fixed point on the normal force did not converge in {} passes (contact.ipopt.fixed_point_max): "
-        "max |dF_N| = {:.3g} vs contact.ipopt.fixed_point_tol * max F_N = {:.3g}; use smaller steps, raise "
-        "contact.ipopt.fixed_point_max, or use contact.ipopt.fixed_point = \"single\"",
-        passes, last_change, o.fixed_point_tol * last_max);
+    result.message = fixed_point_message(passes, fixed_point, o);
     return result;
   }
   result.status = NewtonStatus::Converged;

@@ -336,6 +336,7 @@ void read_contact(TomlSection& root, Scene& scene) {
   }
   if (auto p = s->table("ipopt")) {
     IpoptOptions& o = c.ipopt;
+    o.formulation = p->choice_or("formulation", {"condensed", "full"}, o.formulation);
     o.tol = p->real_or("tol", o.tol);
     o.max_iter = static_cast<int>(p->integer_or("max_iter", o.max_iter));
     o.mu_strategy = p->choice_or("mu_strategy", {"adaptive", "monotone"}, o.mu_strategy);

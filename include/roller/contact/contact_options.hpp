@@ -25,6 +25,10 @@ struct RawIpoptOption {
 };
 
 struct IpoptOptions {
+  // "condensed": per linearisation of the strip, one MUMPS factorisation of K_eff condensed onto
+  // the contact dofs, Ipopt on the small dense NLP (contact/ipopt_condensed.cpp; the default).
+  // "full": Ipopt on the whole strip's nonlinear energy, every free dof an NLP variable.
+  std::string formulation = "condensed";
   Real tol = 1e-9;               // Ipopt's tol on the scaled NLP
   int max_iter = 500;
   std::string mu_strategy = "adaptive";  // "adaptive" | "monotone"
