@@ -95,6 +95,7 @@
 
 #include "roller/core/error.hpp"
 #include "ipopt_common.hpp"
+#include "ipopt_condensed.hpp"
 
 namespace roller {
 
@@ -689,7 +690,17 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
     r.message = "no free dofs: nothing to solve";
     return r;
   }
-  return solve_increment(problem, x0, options_, Hooks{});
+  if (options_.ipopt.formulation == "full") return solve_increment(problem, x0, options_, Hooks{});
+  BackendResult condensed = solve_condensed(problem, x0, options_);
+  if (!condensed.stats.count("condensed_failed")) return condensed;
+  // The condensed formulation itself failed (singular interior tangent, no descent, the
+  // linearisations ran out): the full formulation solves the increment from the same start.
+  BackendResult full = solve_increment(problem, x0, options_, Hooks{});
+  full.iterations += condensed.iterations;
+  full.factorizations += condensed.factorizations;
+  full.stats["condensed_fallback"] = 1.0;
+  full.message += fmt::format(" [full formulation after the condensed one failed: {}]", condensed.message);
+  return full;
 }
 
 // Testing hooks. They are not declared in a public header (ipopt_backend.hpp is fixed and keeps

@@ -156,7 +156,9 @@ Real NormalForceFixedPoint::force_tol() const {
 
 bool NormalForceFixedPoint::update(const std::vector<Real>& normal) {
   ++pass_;
-  if (mu_ == 0.0) return true;
+  // "single": Fbar stays the previous increment's F_N (the thesis's explicit variant), also for
+  // the condensed formulation's later linearisations.
+  if (mu_ == 0.0 || o_.fixed_point == "single") return true;
   const Real tol = force_tol();
   last_change_ = 0.0;
   last_max_ = 0.0;
@@ -168,7 +170,6 @@ bool NormalForceFixedPoint::update(const std::vector<Real>& normal) {
   previous_change_ = last_change_;
   for (std::size_t i = 0; i < fbar_.size(); ++i)
     fbar_[i] = std::max((1.0 - relaxation_) * fbar_[i] + relaxation_ * normal[i], 0.0);
-  if (o_.fixed_point == "single") return true;
   return last_change_ <= std::max(o_.fixed_point_tol * last_max_, tol) || last_max_ <= 1e-6 * force_scale_;
 }
 
