@@ -1,15 +1,24 @@
 #!/usr/bin/python3
 """Error against run time, penalty vs interior point (issue 7; docs/benchmarks.md).
 
-usage: /usr/bin/python3 benchmarks/error_vs_time.py [--quick] [--build build] [--out DIR]
-                                                      [--scenes hertz,cattaneo,...] [--check]
+usage: /usr/bin/python3 benchmarks/error_vs_time.py [--quick] [--build DIR] [--out DIR]
+           [--scenes hertz,cattaneo,...] [--refine-max N] [--max-run-seconds S]
+           [--max-reference-seconds S] [--plot-only] [--check]
 
-Runs build/benchmarks/bench_error_time (sweeps of mesh refinement, penalty factor and Ipopt
-tolerance for each scene, timed, errors against a reference), then draws one log-log PNG per
-scene and error measure (error against wall time, one curve per backend and swept parameter,
-the Pareto front marked) into DIR (default out/error_vs_time). --check validates the CSV
-(columns present, errors of converged runs finite, the finer Hertz mesh has the smaller
-pressure error) and exits non-zero when it is not sane.
+Runs DIR/benchmarks/bench_error_time (default DIR: build/ of this checkout; when the program is
+missing it is built first: `bash scripts/build.sh` for build/, a CMake build of the one target
+otherwise). The program sweeps mesh refinement, penalty factor and Ipopt tolerance for each
+scene, times every run and compares it with a reference run (ipopt, one mesh level finer, the
+tightest tolerance; Hertz pressure: the analytic solution). Every run is guarded: a failure, an
+exception or the per-run budget (--max-run-seconds, stopped between steps) ends that run only
+and is recorded as a row with status failed / error / timeout (later, costlier runs of the same
+sweep: skipped). Then one log-log PNG per scene and measure is drawn into --out (default
+out/error_vs_time): error, max penetration or equilibrium residual against wall time, one curve
+per backend and swept parameter, the Pareto front marked; only converged runs are drawn.
+At the end: which error is against what, and the wall time spent per scene.
+--plot-only redraws from an existing CSV. --check validates the CSV (columns present, every
+run converged, errors of converged runs finite, the finer Hertz mesh has the smaller pressure
+error) and exits non-zero when it is not sane.
 """
 import argparse
 import csv
@@ -17,19 +26,39 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLUMNS = ["scene", "backend", "parameter", "value", "refine", "dofs", "converged", "wall_s", "repeats",
-           "iterations", "factorizations", "residual", "max_penetration", "force_error",
-           "pressure_l2_error", "sqrt_i2_error", "tau_xx_error", "reference"]
-ERRORS = {"pressure_l2_error": "pressure-profile L2 error", "force_error": "contact-force error",
-          "sqrt_i2_error": "sqrt(I2) field error", "tau_xx_error": "tau_xx field error"}
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+STUDY_BUDGET_S = 3600.0  # the default study should fit in one hour on 2 cores
+
+COLUMNS = ["scene", "backend", "parameter", "value", "refine", "dofs", "status", "converged", "message",
+           "wall_s", "repeats", "cost_s", "steps", "steps_done", "iterations", "factorizations", "residual_max",
+           "residual_last", "max_penetration", "load_step", "force_error", "pressure_l2_error",
+           "pressure_reference", "final_roller_force", "final_contact_nodes", "final_state",
+           "final_sqrt_i2_error", "final_tau_xx_error", "reference_backend", "reference_refine",
+           "reference_tol", "errors_against"]
+# Measures compared with the reference (error_vs_time.csv column -> label).
+ERRORS = {"pressure_l2_error": "pressure-profile L2 error (load step)",
+          "force_error": "roller-force error (load step)",
+          "final_sqrt_i2_error": "final-step sqrt(I2) field error",
+          "final_tau_xx_error": "final-step tau_xx field error"}
+# Measures of the run itself.
+MEASURES = {"max_penetration": "max penetration over all steps [mm]",
+            "residual_max": "max relative equilibrium residual over all steps"}
 STYLE = {("penalty", "refine"): ("tab:red", "o-"), ("ipopt", "refine"): ("tab:blue", "s-"),
          ("penalty", "penalty_factor"): ("tab:orange", "^--"), ("ipopt", "ipopt_tol"): ("tab:cyan", "v--")}
+
+
+def fnum(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return math.nan
 
 
 def pareto(points):
@@ -42,34 +71,57 @@ def pareto(points):
     return front
 
 
+def reference_row(rows, scene):
+    return next((r for r in rows if r["scene"] == scene and r["parameter"] == "reference"), None)
+
+
+def describe_final(rows, scene):
+    ref = reference_row(rows, scene)
+    if ref is None or not ref.get("final_state"):
+        return ""
+    return ("roller lifted off: residual fields" if ref["final_state"] == "unloaded"
+            else "roller still loaded")
+
+
 def plot(rows, out_dir):
     written = []
     for scene in dict.fromkeys(r["scene"] for r in rows):
-        for key, label in ERRORS.items():
-            sel = [r for r in rows if r["scene"] == scene and r["converged"] == "1"]
-            pts = [(float(r["wall_s"]), float(r[key])) for r in sel]
-            pts = [(t, e) for t, e in pts if math.isfinite(e) and e > 0]
-            if len(pts) < 2:
+        sel = [r for r in rows if r["scene"] == scene and r["status"] == "converged" and r["parameter"] != "reference"]
+        for key, label in list(ERRORS.items()) + list(MEASURES.items()):
+            raw = [(fnum(r["wall_s"]), fnum(r[key])) for r in sel]
+            raw = [(t, e) for t, e in raw if t > 0 and math.isfinite(e) and e >= 0]
+            positive = [e for _, e in raw if e > 0]
+            if len(raw) < 2 or not positive:
                 continue
+            # Exact zeros (ipopt's penetration) cannot sit on a log axis: drawn on a floor line.
+            floor = min(positive) / 10.0
+            has_zero = any(e == 0 for _, e in raw)
             fig, ax = plt.subplots(figsize=(6.4, 4.6))
             for (backend, param), (color, fmt) in STYLE.items():
                 curve = [r for r in sel if r["backend"] == backend and r["parameter"] == param]
-                xy = [(float(r["wall_s"]), float(r[key]), r["value"]) for r in curve]
-                xy = [p for p in xy if math.isfinite(p[1]) and p[1] > 0]
+                xy = [(fnum(r["wall_s"]), fnum(r[key]), r["value"]) for r in curve]
+                xy = [(t, e if e > 0 else floor, v) for t, e, v in xy if t > 0 and math.isfinite(e) and e >= 0]
                 if not xy:
                     continue
                 ax.plot([p[0] for p in xy], [p[1] for p in xy], fmt, color=color,
                         label=f"{backend}: {param.replace('_', ' ')}")
                 for t, e, v in xy:
                     ax.annotate(f"{float(v):g}", (t, e), fontsize=6, xytext=(3, 3), textcoords="offset points")
-            front = pareto(pts)
+            front = pareto([(t, e if e > 0 else floor) for t, e in raw])
             ax.plot([p[0] for p in front], [p[1] for p in front], color="k", lw=2.5, alpha=0.25,
                     label="Pareto front")
+            if has_zero:
+                ax.axhline(floor, color="gray", ls=":", lw=1, label="exactly 0 (drawn here)")
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_xlabel("wall time per run [s]")
             ax.set_ylabel(label)
-            ax.set_title(f"{scene}: {label} against run time")
+            title = f"{scene}: {label}"
+            if key.startswith("final_"):
+                final = describe_final(rows, scene)
+                if final:
+                    title += f"\n({final})"
+            ax.set_title(title, fontsize=10)
             ax.grid(True, which="both", alpha=0.3)
             ax.legend(fontsize=7)
             path = os.path.join(out_dir, f"{scene}_{key}.png")
@@ -86,18 +138,23 @@ def check(rows):
         return ["no rows"]
     missing = [c for c in COLUMNS if c not in rows[0]]
     if missing:
-        problems.append(f"missing columns {missing}")
+        return [f"missing columns {missing}"]
     for r in rows:
-        if r["converged"] != "1":
-            problems.append(f"run did not converge: {r['scene']} {r['backend']} {r['parameter']}={r['value']}")
+        name = f"{r['scene']} {r['backend']} {r['parameter']}={r['value']} refine {r['refine']}"
+        if r["status"] != "converged":
+            problems.append(f"run {r['status']}: {name}: {r['message']}")
             continue
-        for key in list(ERRORS) + ["wall_s", "residual", "max_penetration"]:
-            v = float(r[key])
+        keys = ["wall_s", "residual_max", "residual_last", "max_penetration"]
+        if r["parameter"] != "reference":
+            keys += list(ERRORS)
+        for key in keys:
+            v = fnum(r[key])
             if not math.isfinite(v) or v < 0:
-                problems.append(f"{key} = {r[key]} not finite/non-negative in {r['scene']} {r['backend']} "
-                                f"{r['parameter']}={r['value']}")
-    for backend in ("penalty", "ipopt"):
-        h = sorted((int(r["refine"]), float(r["pressure_l2_error"])) for r in rows
+                problems.append(f"{key} = {r[key]} not finite/non-negative in {name}")
+        if int(r["factorizations"]) <= 0:
+            problems.append(f"no factorisations recorded in {name}")
+    for backend in ("penalty", "ipopt") if any(r["scene"] == "hertz" for r in rows) else ():
+        h = sorted((int(r["refine"]), fnum(r["pressure_l2_error"])) for r in rows
                    if r["scene"] == "hertz" and r["backend"] == backend and r["parameter"] == "refine")
         if len(h) < 2:
             problems.append(f"hertz/{backend}: fewer than two mesh levels")
@@ -106,28 +163,101 @@ def check(rows):
     return problems
 
 
+def summary(rows, default_study, elapsed):
+    print("\nerrors against (per scene):")
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        ref = reference_row(rows, scene)
+        if ref is None:
+            continue
+        final = describe_final(rows, scene) or "reference did not finish"
+        print(f"  {scene}: {ref['errors_against']}; force and pressure at step {ref['load_step']} of "
+              f"{ref['steps']}, fields at the final step ({final})")
+    print("\nwall time per scene [s] (cost = all repeats, loading and post-processing):")
+    print(f"  {'scene':<12} {'reference':>10} {'sweeps':>9} {'total':>9}  runs: conv/failed/error/timeout/skipped")
+    total = 0.0
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        sr = [r for r in rows if r["scene"] == scene]
+        ref = sum(fnum(r["cost_s"]) for r in sr if r["parameter"] == "reference")
+        sweeps = sum(fnum(r["cost_s"]) for r in sr if r["parameter"] != "reference")
+        counts = [sum(1 for r in sr if r["status"] == s and r["parameter"] != "reference")
+                  for s in ("converged", "failed", "error", "timeout", "skipped")]
+        total += ref + sweeps
+        print(f"  {scene:<12} {ref:10.1f} {sweeps:9.1f} {ref + sweeps:9.1f}  {'/'.join(map(str, counts))}")
+    print(f"  {'all':<12} {'':>10} {'':>9} {total:9.1f}  ({total / 60:.1f} min; the program ran {elapsed / 60:.1f} min)")
+    if default_study:
+        verdict = "fits" if elapsed <= STUDY_BUDGET_S else "does NOT fit"
+        print(f"default study: {elapsed / 60:.1f} min, {verdict} in the {STUDY_BUDGET_S / 60:.0f}-minute budget")
+    else:
+        print("(a selection, not the default study: the time above is for this selection only)")
+
+
+def ensure_binary(build, bench):
+    if os.path.isfile(bench) and os.access(bench, os.X_OK):
+        return
+    if os.path.realpath(build) == os.path.realpath(os.path.join(REPO, "build")):
+        print(f"{bench} not found: building roller with `bash scripts/build.sh` (configures and builds build/; "
+              "several minutes on 2 cores)", flush=True)
+        subprocess.run(["bash", os.path.join(REPO, "scripts", "build.sh")], cwd=REPO, check=True)
+    else:
+        print(f"{bench} not found: configuring and building the target bench_error_time in {build}", flush=True)
+        if not os.path.isfile(os.path.join(build, "CMakeCache.txt")):
+            subprocess.run(["cmake", "-S", REPO, "-B", build, "-DCMAKE_BUILD_TYPE=Release"], check=True)
+        subprocess.run(["cmake", "--build", build, "--target", "bench_error_time", "-j", str(os.cpu_count() or 1)],
+                       check=True)
+    if not os.path.isfile(bench):
+        sys.exit(f"error: the build finished but {bench} is still missing")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true")
-    ap.add_argument("--build", default="build")
+    ap.add_argument("--quick", action="store_true", help="Hertz and Cattaneo on coarse meshes (the CTest check)")
+    ap.add_argument("--build", default=os.path.join(REPO, "build"), help="build directory (default: build/)")
     ap.add_argument("--out", default="out/error_vs_time")
-    ap.add_argument("--scenes", default="")
+    ap.add_argument("--scenes", default="", help="comma-separated subset of the plan's scenes")
+    ap.add_argument("--refine-max", type=int, default=0, help="no mesh finer than this (reference included)")
+    ap.add_argument("--max-run-seconds", type=float, default=None,
+                    help="wall-clock budget per run, stopped between steps (program default 120)")
+    ap.add_argument("--max-reference-seconds", type=float, default=None,
+                    help="budget of each scene's reference run (program default 600)")
+    ap.add_argument("--plot-only", action="store_true", help="do not run; redraw from OUT/error_vs_time.csv")
     ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     csv_path = os.path.join(args.out, "error_vs_time.csv")
-    cmd = [os.path.join(args.build, "benchmarks", "bench_error_time"), "--out", csv_path]
-    if args.quick:
-        cmd.append("--quick")
-    if args.scenes:
-        cmd += ["--scenes", args.scenes]
-    print("running:", " ".join(cmd), flush=True)
-    subprocess.run(cmd, check=True)
-    with open(csv_path) as f:
+    elapsed = 0.0
+    if not args.plot_only:
+        bench = os.path.join(args.build, "benchmarks", "bench_error_time")
+        ensure_binary(args.build, bench)
+        cmd = [bench, "--out", csv_path]
+        if args.quick:
+            cmd.append("--quick")
+        if args.scenes:
+            cmd += ["--scenes", args.scenes]
+        if args.refine_max:
+            cmd += ["--refine-max", str(args.refine_max)]
+        if args.max_run_seconds is not None:
+            cmd += ["--max-run-seconds", str(args.max_run_seconds)]
+        if args.max_reference_seconds is not None:
+            cmd += ["--max-reference-seconds", str(args.max_reference_seconds)]
+        print("running:", " ".join(cmd), flush=True)
+        t0 = time.monotonic()
+        rc = subprocess.run(cmd).returncode
+        elapsed = time.monotonic() - t0
+        if rc != 0:
+            print(f"warning: bench_error_time exited with code {rc}; plotting the rows it wrote", file=sys.stderr)
+            if not os.path.isfile(csv_path):
+                return 1
+    with open(csv_path, newline="") as f:
         rows = list(csv.DictReader(f))
+    if rows and "status" not in rows[0]:
+        sys.exit(f"error: {csv_path} is from an older bench_error_time (no status column); rebuild and rerun")
     for path in plot(rows, args.out):
         print("wrote", path)
     print("wrote", csv_path)
+    default_study = not (args.quick or args.scenes or args.refine_max or args.plot_only
+                         or args.max_run_seconds is not None or args.max_reference_seconds is not None)
+    if rows:
+        summary(rows, default_study, elapsed if not args.plot_only else sum(fnum(r["cost_s"]) for r in rows))
     if args.check:
         problems = check(rows)
         for p in problems:
