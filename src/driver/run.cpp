@@ -71,7 +71,8 @@ RunSummary Simulation::run(const RunOptions& options) {
       {"step", "time", "iterations", "residual", "max_penetration", "wall_s", "cuts", "yielded_points",
        "factorizations", "complementarity", "constraint_violation", "fixed_point_iterations", "contact_nodes",
        "a_not_pd_points", "a_lambda_min", "k_eff_positive_definite", "k_eff_negative_pivots", "dt_restore",
-       "kinetic_energy", "suspension_passes", "status"},
+       "kinetic_energy", "suspension_passes", "linearisations", "nlp_solves", "condensed_dofs", "ipopt_time_s",
+       "status"},
       options.resume, steps_done_);
   std::unique_ptr<CsvTable> contact_csv, roller_csv;
   if (scene_.roller) {
@@ -172,7 +173,8 @@ RunSummary Simulation::run(const RunOptions& options) {
                          scene_.output.monitor ? static_cast<Index>(kdef.positive_definite() ? 1 : 0) : not_checked,
                          scene_.output.monitor ? kdef.n_negative : not_checked,
                          std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0, kinetic_energy(),
-                         stat("suspension_passes"), std::string(res.converged ? "converged" : "failed")});
+                         stat("suspension_passes"), stat("linearisations"), stat("nlp_solves"),
+                         stat("condensed_dofs"), stat("ipopt_time_s"), std::string(res.converged ? "converged" : "failed")});
     if (!res.converged) {
       summary.converged = false;
       summary.message = res.message;
