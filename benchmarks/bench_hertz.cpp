@@ -1,7 +1,7 @@
 // Hertz line contact at several mesh levels and contact backends: half-width, peak-pressure and
 // pressure-profile L2 errors against the analytic solution, with wall time (median of repeats).
 // Printed as a Markdown table.
-//   usage: bench_hertz [max_refine=3] [repeats=3] [backends=penalty[,ipopt]]
+//   usage: bench_hertz [max_refine=3] [repeats=3] [backends=penalty[,ipopt]] [min_refine=1]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,12 +23,13 @@ int main(int argc, char** argv) {
   std::vector<std::string> backends;
   std::stringstream list(argc > 3 ? argv[3] : "penalty");
   for (std::string b; std::getline(list, b, ',');) backends.push_back(b);
+  const int min_refine = argc > 4 ? std::max(1, std::atoi(argv[4])) : 1;
 
   std::printf("| backend | refine | dofs | contact nodes | P [N/mm] | a error | p0 error | L2 error | "
               "max penetration [mm] | iterations | wall [s] |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& backend : backends) {
-    for (int refine = 1; refine <= max_refine; ++refine) {
+    for (int refine = min_refine; refine <= max_refine; ++refine) {
       std::vector<double> walls;
       HertzComparison c;
       Index dofs = 0, n_contact = 0;
