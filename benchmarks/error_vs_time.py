@@ -14,8 +14,8 @@ exception or the per-run budget (--max-run-seconds, stopped between steps) ends 
 and is recorded as a row with status failed / error / timeout (later, costlier runs of the same
 sweep: skipped). Then one log-log PNG per scene and measure is drawn into --out (default
 out/error_vs_time): error, max penetration or equilibrium residual against wall time, one curve
-per backend and swept parameter, the Pareto front marked; only converged runs are drawn.
-At the end: which error is against what, and the wall time spent per scene.
+per backend and swept parameter, the Pareto front marked; only converged runs are drawn; plus
+SCENE_overview.png (all six panels of a scene) and tables.md (the CSV as Markdown tables). At the end: which error is against what, and the wall time spent per scene.
 --plot-only redraws from an existing CSV. --check validates the CSV (columns present, every
 run converged, errors of converged runs finite, the finer Hertz mesh has the smaller pressure
 error) and exits non-zero when it is not sane.
@@ -83,53 +83,92 @@ def describe_final(rows, scene):
             else "roller still loaded")
 
 
+def draw_panel(ax, rows, scene, key, label, small=False):
+    """One log-log panel of `key` against wall time for `scene`; False when there is nothing to draw."""
+    sel = [r for r in rows if r["scene"] == scene and r["status"] == "converged" and r["parameter"] != "reference"]
+    raw = [(fnum(r["wall_s"]), fnum(r[key])) for r in sel]
+    raw = [(t, e) for t, e in raw if t > 0 and math.isfinite(e) and e >= 0]
+    positive = [e for _, e in raw if e > 0]
+    if len(raw) < 2 or not positive:
+        return False
+    # Exact zeros (ipopt's penetration) cannot sit on a log axis: drawn on a floor line.
+    floor = min(positive) / 10.0
+    has_zero = any(e == 0 for _, e in raw)
+    for (backend, param), (color, fmt) in STYLE.items():
+        curve = [r for r in sel if r["backend"] == backend and r["parameter"] == param]
+        xy = [(fnum(r["wall_s"]), fnum(r[key]), r["value"]) for r in curve]
+        xy = [(t, e if e > 0 else floor, v) for t, e, v in xy if t > 0 and math.isfinite(e) and e >= 0]
+        if not xy:
+            continue
+        ax.plot([p[0] for p in xy], [p[1] for p in xy], fmt, color=color, label=f"{backend}: {param.replace('_', ' ')}")
+        for t, e, v in xy:
+            ax.annotate(f"{float(v):g}", (t, e), fontsize=5 if small else 6, xytext=(3, 3), textcoords="offset points")
+    front = pareto([(t, e if e > 0 else floor) for t, e in raw])
+    ax.plot([p[0] for p in front], [p[1] for p in front], color="k", lw=2.5, alpha=0.25, label="Pareto front")
+    if has_zero:
+        ax.axhline(floor, color="gray", ls=":", lw=1, label="exactly 0 (drawn here)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per run [s]")
+    ax.set_ylabel(label, fontsize=7 if small else None)
+    title = label if small else f"{scene}: {label}"
+    if key.startswith("final_"):
+        final = describe_final(rows, scene)
+        if final:
+            title += f"\n({final})"
+    ax.set_title(title, fontsize=8 if small else 10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=5 if small else 7)
+    return True
+
+
 def plot(rows, out_dir):
+    """One PNG per scene and measure, and one overview per scene with all its panels."""
     written = []
+    panels = list(ERRORS.items()) + list(MEASURES.items())
     for scene in dict.fromkeys(r["scene"] for r in rows):
-        sel = [r for r in rows if r["scene"] == scene and r["status"] == "converged" and r["parameter"] != "reference"]
-        for key, label in list(ERRORS.items()) + list(MEASURES.items()):
-            raw = [(fnum(r["wall_s"]), fnum(r[key])) for r in sel]
-            raw = [(t, e) for t, e in raw if t > 0 and math.isfinite(e) and e >= 0]
-            positive = [e for _, e in raw if e > 0]
-            if len(raw) < 2 or not positive:
-                continue
-            # Exact zeros (ipopt's penetration) cannot sit on a log axis: drawn on a floor line.
-            floor = min(positive) / 10.0
-            has_zero = any(e == 0 for _, e in raw)
+        for key, label in panels:
             fig, ax = plt.subplots(figsize=(6.4, 4.6))
-            for (backend, param), (color, fmt) in STYLE.items():
-                curve = [r for r in sel if r["backend"] == backend and r["parameter"] == param]
-                xy = [(fnum(r["wall_s"]), fnum(r[key]), r["value"]) for r in curve]
-                xy = [(t, e if e > 0 else floor, v) for t, e, v in xy if t > 0 and math.isfinite(e) and e >= 0]
-                if not xy:
-                    continue
-                ax.plot([p[0] for p in xy], [p[1] for p in xy], fmt, color=color,
-                        label=f"{backend}: {param.replace('_', ' ')}")
-                for t, e, v in xy:
-                    ax.annotate(f"{float(v):g}", (t, e), fontsize=6, xytext=(3, 3), textcoords="offset points")
-            front = pareto([(t, e if e > 0 else floor) for t, e in raw])
-            ax.plot([p[0] for p in front], [p[1] for p in front], color="k", lw=2.5, alpha=0.25,
-                    label="Pareto front")
-            if has_zero:
-                ax.axhline(floor, color="gray", ls=":", lw=1, label="exactly 0 (drawn here)")
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.set_xlabel("wall time per run [s]")
-            ax.set_ylabel(label)
-            title = f"{scene}: {label}"
-            if key.startswith("final_"):
-                final = describe_final(rows, scene)
-                if final:
-                    title += f"\n({final})"
-            ax.set_title(title, fontsize=10)
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7)
-            path = os.path.join(out_dir, f"{scene}_{key}.png")
-            fig.tight_layout()
-            fig.savefig(path, dpi=120)
+            if draw_panel(ax, rows, scene, key, label):
+                path = os.path.join(out_dir, f"{scene}_{key}.png")
+                fig.tight_layout()
+                fig.savefig(path, dpi=120)
+                written.append(path)
             plt.close(fig)
+        fig, axes = plt.subplots(2, 3, figsize=(15, 8.4))
+        drawn = [draw_panel(ax, rows, scene, key, label, small=True) for ax, (key, label) in zip(axes.flat, panels)]
+        for ax, ok in zip(axes.flat, drawn):
+            ax.set_visible(ok)
+        if any(drawn):
+            fig.suptitle(f"{scene}: error against wall time, penalty vs interior point", fontsize=12)
+            fig.tight_layout()
+            path = os.path.join(out_dir, f"{scene}_overview.png")
+            fig.savefig(path, dpi=100)
             written.append(path)
+        plt.close(fig)
     return written
+
+
+def markdown_tables(rows):
+    """The CSV as one Markdown table per scene (for docs/benchmarks.md)."""
+    def g(v):
+        x = fnum(v)
+        return "–" if not math.isfinite(x) else f"{x:.2e}"
+    lines = []
+    for scene in dict.fromkeys(r["scene"] for r in rows):
+        ref = reference_row(rows, scene)
+        lines.append(f"\n**{scene}** (reference: {ref['errors_against'] if ref else 'none'})\n")
+        lines.append("| backend | swept | value | refine | dofs | status | wall [s] | iterations | factorisations | "
+                     "max pen. [mm] | max resid. | force err. | pressure L2 | √I2 err. | τxx err. |")
+        lines.append("|---|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for r in rows:
+            if r["scene"] != scene:
+                continue
+            lines.append(f"| {r['backend']} | {r['parameter']} | {fnum(r['value']):g} | {r['refine']} | {r['dofs']} | "
+                         f"{r['status']} | {fnum(r['wall_s']):.2f} | {r['iterations']} | {r['factorizations']} | "
+                         f"{g(r['max_penetration'])} | {g(r['residual_max'])} | {g(r['force_error'])} | "
+                         f"{g(r['pressure_l2_error'])} | {g(r['final_sqrt_i2_error'])} | {g(r['final_tau_xx_error'])} |")
+    return "\n".join(lines) + "\n"
 
 
 def check(rows):
@@ -254,6 +293,9 @@ def main():
     for path in plot(rows, args.out):
         print("wrote", path)
     print("wrote", csv_path)
+    with open(os.path.join(args.out, "tables.md"), "w") as f:
+        f.write(markdown_tables(rows))
+    print("wrote", os.path.join(args.out, "tables.md"))
     default_study = not (args.quick or args.scenes or args.refine_max or args.plot_only
                          or args.max_run_seconds is not None or args.max_reference_seconds is not None)
     if rows:
