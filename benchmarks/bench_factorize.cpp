@@ -1,6 +1,6 @@
 // Time of one sparse factorisation of the strip's tangent K (free dofs) by MUMPS (LDL^T,
 // analysis + factorisation), the unit of the scaling study (benchmarks/scaling.py). Median of
-// `repeats`. Prints one line: dofs free_dofs nnz_lower seconds.
+// `repeats`. Prints one line: dofs free_dofs nnz_lower seconds mumps_memory_mb.
 //   usage: bench_factorize SCENE.toml [repeats=3] [key=value ...]   (scene overrides)
 #include <algorithm>
 #include <chrono>
@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   SparseMatrix k;
   sim.model().evaluate(VecX::Zero(sim.model().n_dofs()), nullptr, &k);
   std::vector<double> times;
+  Index memory_mb = 0;
   for (int r = 0; r < repeats; ++r) {
     MumpsSolver ldlt;
     const auto t0 = std::chrono::steady_clock::now();
@@ -35,9 +36,10 @@ int main(int argc, char** argv) {
       return 1;
     }
     times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    memory_mb = ldlt.memory_mb();
   }
   std::sort(times.begin(), times.end());
-  std::printf("%ld %ld %ld %.6f\n", static_cast<long>(sim.model().n_dofs()), static_cast<long>(k.rows()),
-              static_cast<long>((k.nonZeros() + k.rows()) / 2), times[times.size() / 2]);
+  std::printf("%ld %ld %ld %.6f %ld\n", static_cast<long>(sim.model().n_dofs()), static_cast<long>(k.rows()),
+              static_cast<long>((k.nonZeros() + k.rows()) / 2), times[times.size() / 2], static_cast<long>(memory_mb));
   return 0;
 }

@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Scaling of one increment with the number of dofs, both backends (issue 7; docs/benchmarks.md).
 
-usage: /usr/bin/python3 benchmarks/scaling.py [--build build] [--out DIR] [--max-dofs 1.4e6]
+usage: /usr/bin/python3 benchmarks/scaling.py [--build build] [--out DIR] [--min-dofs 0] [--max-dofs 1.4e6]
                                               [--backends ipopt,penalty] [--cases hertz,z1] [--timeout 3600]
 
 Cases: Hertz (frictionless, elastic): the whole indentation in ONE increment, cold start; Z1
 (plastic, friction, finite strain): the first rolling increment (step 4, warm from step 3).
-For each mesh size: wall time of that increment (solver.csv wall_s), solver iterations, peak
-memory of the whole process (/usr/bin/time -v), and the time of one MUMPS factorisation of the
+For each mesh size: wall time of that increment (solver.csv wall_s) and of the whole process
+(cold: scene, mesh, earlier steps, output), solver iterations, peak memory of the whole process
+(/usr/bin/time -v), and the time (and MUMPS memory) of one MUMPS analysis + factorisation of the
 strip tangent K (bench_factorize) as the unit. Writes DIR/scaling.csv, DIR/scaling.png and
 prints a Markdown table with the fitted exponent of time against dofs (sizes >= 1e4).
 """
@@ -62,8 +63,12 @@ def run_case(build, label, scene, overrides, step, backend, out, timeout):
         p.communicate()
         return {"status": f"timeout ({timeout:.0f} s)"}
     rss = re.search(r"Maximum resident set size \(kbytes\): (\d+)", stderr)
+    # Whole process, cold: reading the scene, meshing, every step before the measured one, output.
+    elapsed = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", stderr)
     row = {"status": "converged" if p.returncode == 0 else f"exit {p.returncode}",
-           "peak_memory_mb": int(rss.group(1)) / 1024 if rss else float("nan")}
+           "peak_memory_mb": int(rss.group(1)) / 1024 if rss else float("nan"),
+           "process_wall_s": sum(float(x) * 60 ** i for i, x in enumerate(reversed(elapsed.group(1).split(":"))))
+           if elapsed else float("nan")}
     with open(os.path.join(run_dir, "solver.csv")) as f:
         steps = {int(r["step"]): r for r in csv.DictReader(f)}
     if step in steps:
@@ -77,9 +82,11 @@ def run_case(build, label, scene, overrides, step, backend, out, timeout):
 
 
 def factorization_time(build, scene, overrides):
+    """(seconds, MB): one MUMPS analysis + factorisation of K (median of 3) and the memory MUMPS took."""
     p = subprocess.run([os.path.join(build, "benchmarks", "bench_factorize"), scene, "3"] + overrides,
                        capture_output=True, text=True, check=True)
-    return float(p.stdout.split()[3])
+    fields = p.stdout.split()
+    return float(fields[3]), float(fields[4]) if len(fields) > 4 else float("nan")
 
 
 def fit_exponent(points):
@@ -95,14 +102,16 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default="build")
     ap.add_argument("--out", default="out/scaling")
+    ap.add_argument("--min-dofs", type=float, default=0)
     ap.add_argument("--max-dofs", type=float, default=1.4e6)
     ap.add_argument("--backends", default="ipopt,penalty")
     ap.add_argument("--cases", default="hertz,z1")
     ap.add_argument("--timeout", type=float, default=3600)
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    columns = ["case", "backend", "dofs", "status", "wall_s", "iterations", "factorizations", "linearisations",
-               "condensed_dofs", "ipopt_time_s", "peak_memory_mb", "factorization_s", "time_in_factorizations"]
+    columns = ["case", "backend", "dofs", "status", "wall_s", "process_wall_s", "iterations", "factorizations",
+               "linearisations", "condensed_dofs", "ipopt_time_s", "peak_memory_mb", "factorization_s",
+               "factorization_memory_mb", "time_in_factorizations"]
     rows = []
     timed_out = {}
     # Written row by row: a study stopped part-way keeps every size it measured.
@@ -112,9 +121,9 @@ def main():
         for case in args.cases.split(","):
             for label, scene, overrides, step in CASES[case]:
                 n = dofs_of(label, overrides)
-                if n > args.max_dofs:
+                if n > args.max_dofs or n < args.min_dofs:
                     continue
-                unit = factorization_time(args.build, scene, overrides)
+                unit, unit_memory = factorization_time(args.build, scene, overrides)
                 for backend in args.backends.split(","):
                     if (case, backend) in timed_out:  # a larger size would time out as well
                         r = {"status": f"not run: {timed_out[(case, backend)]} timed out"}
@@ -122,7 +131,8 @@ def main():
                         r = run_case(args.build, label, scene, overrides, step, backend, args.out, args.timeout)
                         if r["status"].startswith("timeout"):
                             timed_out[(case, backend)] = f"{n} dofs"
-                    r.update({"case": label, "backend": backend, "factorization_s": unit, "dofs": r.get("dofs", n)})
+                    r.update({"case": label, "backend": backend, "factorization_s": unit,
+                              "factorization_memory_mb": unit_memory, "dofs": r.get("dofs", n)})
                     if "wall_s" in r:
                         r["time_in_factorizations"] = r["wall_s"] / unit
                     rows.append(r)
@@ -130,13 +140,14 @@ def main():
                     f.flush()
                     print(json.dumps(r), flush=True)
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    print("| case | backend | dofs | status | wall [s] | iterations | factorisations | peak memory [MB] | "
-          "factorisation [s] | wall / factorisation |")
-    print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|")
+    print("| case | backend | dofs | status | increment [s] | whole run [s] | iterations | factorisations | "
+          "peak memory [MB] | factorisation [s] | its MUMPS memory [MB] | increment / factorisation |")
+    print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in rows:
         print(f"| {r['case']} | {r['backend']} | {r['dofs']} | {r['status']} | {r.get('wall_s', float('nan')):.3f} | "
-              f"{r.get('iterations', '')} | {r.get('factorizations', float('nan')):.0f} | "
-              f"{r.get('peak_memory_mb', float('nan')):.0f} | {r['factorization_s']:.3f} | "
+              f"{r.get('process_wall_s', float('nan')):.1f} | {r.get('iterations', '')} | "
+              f"{r.get('factorizations', float('nan')):.0f} | {r.get('peak_memory_mb', float('nan')):.0f} | "
+              f"{r['factorization_s']:.3f} | {r['factorization_memory_mb']:.0f} | "
               f"{r.get('time_in_factorizations', float('nan')):.1f} |")
     for case in dict.fromkeys(r["case"] for r in rows):
         for backend in args.backends.split(","):
@@ -144,7 +155,7 @@ def main():
                    and "wall_s" in r and r["status"] == "converged"]
             if pts:
                 ax.loglog(*zip(*pts), "o-", label=f"{case} {backend} (N^{fit_exponent(pts):.2f})")
-        units = sorted({(r["dofs"], r["factorization_s"]) for r in rows if r["case"] == case})
+        units = sorted({(r["dofs"], r["factorization_s"]) for r in rows if r["case"] == case})  # one per size
         ax.loglog(*zip(*units), "k--", alpha=0.5, label=f"{case}: one factorisation of K (N^{fit_exponent(units):.2f})")
     ax.set_xlabel("dofs")
     ax.set_ylabel("wall time of the increment [s]")

@@ -36,6 +36,7 @@ class MumpsSolver {
   // After factorize_with_schur: x_i = A_ii^-1 b_i on the eliminated variables, x_s = 0.
   VecX solve_interior(const VecX& b);
   Index negative_pivots() const;  // Symmetric: negative eigenvalues of the last matrix
+  Index memory_mb() const;        // memory MUMPS allocated for the last factorisation (INFOG(19), MB)
   const std::string& message() const;
 
  private:
