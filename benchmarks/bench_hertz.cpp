@@ -3,7 +3,7 @@
 // against the analytic solution, with wall time (median of repeats).
 // Printed as a Markdown table.
 //   usage: bench_hertz [max_refine=3] [repeats=3] [backends=penalty[,ipopt]] [min_refine=1]
-//                      [scene=problems/hertz.toml]
+//                      [scene=problems/hertz.toml] [key=value ...]   (scene overrides)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   for (std::string b; std::getline(list, b, ',');) backends.push_back(b);
   const int min_refine = argc > 4 ? std::max(1, std::atoi(argv[4])) : 1;
   const std::string scene_path = argc > 5 ? argv[5] : std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml";
+  std::vector<SceneOverride> extra;
+  for (int i = 6; i < argc; ++i) extra.push_back(parse_override(argv[i]));
 
   std::printf("| backend | refine | dofs | contact nodes | P [N/mm] | a error | p0 error | L2 error | "
               "L2 error (averaged) | max penetration [mm] | iterations | wall [s] |\n");
@@ -40,9 +42,10 @@ int main(int argc, char** argv) {
       Real load = 0.0, penetration = 0.0;
       bool ok = true;
       for (int r = 0; r < repeats && ok; ++r) {
-        Scene scene = load_scene(scene_path,
-                                 {{"mesh.refine", std::to_string(refine)},
-                                  {"contact.backend", "\"" + backend + "\""}});
+        std::vector<SceneOverride> overrides{{"mesh.refine", std::to_string(refine)},
+                                             {"contact.backend", "\"" + backend + "\""}};
+        overrides.insert(overrides.end(), extra.begin(), extra.end());
+        Scene scene = load_scene(scene_path, overrides);
         const auto t0 = std::chrono::steady_clock::now();
         Simulation sim(std::move(scene));
         iterations = 0;

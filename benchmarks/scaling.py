@@ -156,7 +156,8 @@ def main():
             if pts:
                 ax.loglog(*zip(*pts), "o-", label=f"{case} {backend} (N^{fit_exponent(pts):.2f})")
         units = sorted({(r["dofs"], r["factorization_s"]) for r in rows if r["case"] == case})  # one per size
-        ax.loglog(*zip(*units), "k--", alpha=0.5, label=f"{case}: one factorisation of K (N^{fit_exponent(units):.2f})")
+        ax.loglog(*zip(*units), "k--" if case == "hertz" else "k:", alpha=0.5,
+                  label=f"{case}: one factorisation of K (N^{fit_exponent(units):.2f})")
     ax.set_xlabel("dofs")
     ax.set_ylabel("wall time of the increment [s]")
     ax.grid(True, which="both", alpha=0.3)
