@@ -19,55 +19,101 @@ StripModel::StripModel(Mesh mesh, MaterialParams material, ElementOptions option
   std::string why;
   if (!material_.is_valid(&why)) throw InputError(why);
   committed_.assign(mesh_.n_elements() * n_points_, initial_state(material_));
-  trial_ = committed_;
-  geometry_ = geometry_for(reference_);
+  check_not_inverted(reference_);
   set_dof_map(DofMap(std::vector<bool>(mesh_.n_dofs(), false)));
 }
 
-std::vector<std::vector<PointGeometry>> StripModel::geometry_for(const std::vector<Vec2>& coordinates) const {
-  std::vector<std::vector<PointGeometry>> geometry(mesh_.n_elements());
+std::vector<PointGeometry> StripModel::point_geometry(Index e, const std::vector<Vec2>& coordinates) const {
   std::vector<Vec2> xe;
-  for (Index e = 0; e < mesh_.n_elements(); ++e) {
-    xe.clear();
-    for (Index a : mesh_.elements[e]) xe.push_back(coordinates[a]);
-    geometry[e] = element_geometry(mesh_.element_type, xe, e);
+  xe.reserve(mesh_.elements[e].size());
+  for (Index a : mesh_.elements[e]) xe.push_back(coordinates[a]);
+  return element_geometry(mesh_.element_type, xe, e);
+}
+
+void StripModel::check_not_inverted(const std::vector<Vec2>& coordinates) const {
+  for (Index e = 0; e < mesh_.n_elements(); ++e) point_geometry(e, coordinates);
+}
+
+// Nodes sharing an element with each node (itself included), sorted: offsets `start` (n_nodes
+// + 1) into `adjacent`. Built by counting then filling, so the memory is one Index per
+// node-node coupling, not the 16 bytes per element-matrix entry a triplet list would need.
+static void node_adjacency(const Mesh& mesh, std::vector<Index>& start, std::vector<Index>& adjacent) {
+  const Index n = mesh.n_nodes();
+  std::vector<Index> bound(n + 1, 0);
+  for (const auto& element : mesh.elements)
+    for (Index a : element) bound[a + 1] += static_cast<Index>(element.size());
+  for (Index a = 0; a < n; ++a) bound[a + 1] += bound[a];
+  adjacent.assign(bound[n], 0);
+  std::vector<Index> fill(bound.begin(), bound.end() - 1);
+  for (const auto& element : mesh.elements)
+    for (Index a : element)
+      for (Index c : element) adjacent[fill[a]++] = c;
+  start.assign(n + 1, 0);
+  Index kept = 0;
+  for (Index a = 0; a < n; ++a) {
+    Index* first = adjacent.data() + bound[a];
+    std::sort(first, adjacent.data() + bound[a + 1]);
+    Index* last = std::unique(first, adjacent.data() + bound[a + 1]);
+    kept = static_cast<Index>(std::copy(first, last, adjacent.data() + kept) - adjacent.data());
+    start[a + 1] = kept;
   }
-  return geometry;
+  adjacent.resize(kept);
+  adjacent.shrink_to_fit();
 }
 
 void StripModel::set_dof_map(DofMap dofs) {
   dofs_ = std::move(dofs);
-  std::vector<Triplet> triplets;
-  for (const auto& element : mesh_.elements)
-    for (Index a : element)
-      for (Index c : element)
-        for (int i = 0; i < 2; ++i)
-          for (int j = 0; j < 2; ++j) {
-            const Index r = dofs_.free_index(2 * a + i), k = dofs_.free_index(2 * c + j);
-            if (r >= 0 && k >= 0) triplets.emplace_back(static_cast<int>(r), static_cast<int>(k), 0.0);
-          }
-  pattern_.resize(dofs_.n_free(), dofs_.n_free());
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
+  std::vector<Index> start, adjacent;
+  node_adjacency(mesh_, start, adjacent);
+
+  // Compressed columns over the free dofs. Free indices grow with the dof number and the
+  // neighbours of a node are sorted, so each column's rows come out sorted.
+  const Index n_free = dofs_.n_free();
+  outer_.assign(n_free + 1, 0);
+  inner_.clear();
+  for (Index k = 0; k < n_free; ++k) {
+    const Index c = dofs_.free_dofs()[k] / 2;
+    for (Index s = start[c]; s < start[c + 1]; ++s)
+      for (int i = 0; i < 2; ++i) {
+        const Index r = dofs_.free_index(2 * adjacent[s] + i);
+        if (r >= 0) inner_.push_back(static_cast<int>(r));
+      }
+    outer_[k + 1] = static_cast<int>(inner_.size());
+  }
+  inner_.shrink_to_fit();
 
   // Value slot of each element-matrix entry, found once so assembly is a plain scatter.
-  scatter_.assign(mesh_.n_elements(), {});
+  const Index n = 2 * nodes_per_element(mesh_.element_type);
+  scatter_.assign(static_cast<std::size_t>(mesh_.n_elements() * n * n), -1);
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     const auto& element = mesh_.elements[e];
-    const Index n = 2 * static_cast<Index>(element.size());
-    auto& slots = scatter_[e];
-    slots.assign(n * n, -1);
+    int* slots = scatter_.data() + e * n * n;
     for (Index p = 0; p < n; ++p)
       for (Index q = 0; q < n; ++q) {
         const Index r = dofs_.free_index(2 * element[p / 2] + p % 2);
         const Index k = dofs_.free_index(2 * element[q / 2] + q % 2);
         if (r < 0 || k < 0) continue;
-        const int* begin = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[k];
-        const int* end = pattern_.innerIndexPtr() + pattern_.outerIndexPtr()[k + 1];
+        const int* begin = inner_.data() + outer_[k];
+        const int* end = inner_.data() + outer_[k + 1];
         const int* it = std::lower_bound(begin, end, static_cast<int>(r));
-        slots[p * n + q] = static_cast<int>(it - pattern_.innerIndexPtr());
+        slots[p * n + q] = static_cast<int>(it - inner_.data());
       }
   }
+}
+
+void StripModel::zero_hessian(SparseMatrix& h) const {
+  const Index n = dofs_.n_free();
+  const bool same = h.rows() == n && h.cols() == n && h.isCompressed() &&
+                    h.nonZeros() == static_cast<Index>(inner_.size()) &&
+                    std::equal(outer_.begin(), outer_.end(), h.outerIndexPtr()) &&
+                    std::equal(inner_.begin(), inner_.end(), h.innerIndexPtr());
+  if (!same) {
+    h = SparseMatrix(n, n);
+    h.resizeNonZeros(static_cast<Index>(inner_.size()));
+    std::copy(outer_.begin(), outer_.end(), h.outerIndexPtr());
+    std::copy(inner_.begin(), inner_.end(), h.innerIndexPtr());
+  }
+  std::fill_n(h.valuePtr(), h.nonZeros(), 0.0);
 }
 
 ElementVector StripModel::element_values(Index e, const VecX& u) const {
@@ -81,28 +127,35 @@ ElementVector StripModel::element_values(Index e, const VecX& u) const {
 }
 
 Real StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_free) {
+  return evaluate_states(u, gradient, hessian_free, nullptr);
+}
+
+Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
+                                 std::vector<MaterialState>* trial) {
   if (!u.allFinite())
     throw NumericalError("the displacement increment contains NaN or Inf: the solver diverged; "
                          "use smaller steps");
   if (gradient) gradient->setZero(n_dofs());
-  if (hessian_free) {
-    *hessian_free = pattern_;
-    std::fill_n(hessian_free->valuePtr(), hessian_free->nonZeros(), 0.0);
-  }
+  if (hessian_free) zero_hessian(*hessian_free);
   Real energy = 0.0;
   n_yielded_ = 0;
   ElementInput in;
   in.type = mesh_.element_type;
   ElementOutput out;
+  if (trial) trial->resize(committed_.size());
+  std::vector<Vec2> xe(nodes_per_element(mesh_.element_type));  // buffers reused by every element
+  std::vector<PointGeometry> geometry;
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     const auto& element = mesh_.elements[e];
-    in.geometry = &geometry_[e];
+    for (std::size_t a = 0; a < element.size(); ++a) xe[a] = reference_[element[a]];
+    element_geometry(mesh_.element_type, xe, e, geometry);
+    in.geometry = &geometry;
     in.committed = &committed_[e * n_points_];
     in.displacement = element_values(e, u);
     evaluate_element(options_, material_, in, gradient != nullptr, hessian_free != nullptr, out);
     energy += out.energy;
     for (int q = 0; q < n_points_; ++q) {
-      trial_[e * n_points_ + q] = out.points[q].trial;
+      if (trial) (*trial)[e * n_points_ + q] = out.points[q].trial;
       n_yielded_ += out.points[q].yielded ? 1 : 0;
     }
     if (gradient)
@@ -111,8 +164,8 @@ Real StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_f
         (*gradient)(2 * element[a] + 1) += out.residual(2 * a + 1);
       }
     if (hessian_free) {
-      const auto& slots = scatter_[e];
       const Index n = out.tangent.rows();
+      const int* slots = scatter_.data() + e * n * n;
       Real* values = hessian_free->valuePtr();
       for (Index p = 0; p < n; ++p)
         for (Index q = 0; q < n; ++q)
@@ -125,29 +178,26 @@ Real StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_f
 }
 
 void StripModel::commit(const VecX& u) {
-  evaluate(u, nullptr, nullptr);  // the trial states at exactly this u
+  std::vector<MaterialState> trial;
+  evaluate_states(u, nullptr, nullptr, &trial);  // the trial states at exactly this u
   const bool finite = options_.kinematics == Kinematics::Finite;
   // Everything that can fail (an element inverted in the new configuration) is computed before
   // any member changes, so a throw leaves the committed state as it was.
   std::vector<Vec2> reference = reference_;
-  std::vector<std::vector<PointGeometry>> geometry;
   if (finite) {
     for (Index a = 0; a < mesh_.n_nodes(); ++a) reference[a] += Vec2(u(2 * a), u(2 * a + 1));
-    geometry = geometry_for(reference);
+    check_not_inverted(reference);
     for (Index e = 0; e < mesh_.n_elements(); ++e) {
-      const auto f = deformation_gradients(geometry_[e], element_values(e, u));
+      const auto f = deformation_gradients(point_geometry(e, reference_), element_values(e, u));
       for (int q = 0; q < n_points_; ++q) {
-        MaterialState& s = trial_[e * n_points_ + q];
+        MaterialState& s = trial[e * n_points_ + q];
         s.stress = push_forward(f[q], s.stress);
       }
     }
   }
-  committed_ = trial_;
+  committed_ = std::move(trial);
   total_displacement_ += u;
-  if (finite) {
-    reference_ = std::move(reference);
-    geometry_ = std::move(geometry);
-  }
+  if (finite) reference_ = std::move(reference);
 }
 
 void StripModel::restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states) {
@@ -156,12 +206,10 @@ void StripModel::restore(std::vector<Vec2> reference, VecX total_displacement, s
     throw InputError(fmt::format("the saved state does not fit this mesh: it has {} nodes and {} integration "
                                  "points, the mesh {} and {} (same [mesh] and refine needed)",
                                  reference.size(), states.size(), mesh_.n_nodes(), committed_.size()));
-  auto geometry = geometry_for(reference);
+  check_not_inverted(reference);
   reference_ = std::move(reference);
-  geometry_ = std::move(geometry);
   total_displacement_ = std::move(total_displacement);
   committed_ = std::move(states);
-  trial_ = committed_;
 }
 
 std::vector<Vec2> StripModel::current_coordinates() const {
@@ -190,7 +238,7 @@ SparseMatrix StripModel::mass_matrix(bool lumped) const {
   std::vector<Triplet> triplets;
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     const auto& element = mesh_.elements[e];
-    const ElementMatrix me = element_mass(mesh_.element_type, geometry_[e], material_.density, lumped);
+    const ElementMatrix me = element_mass(mesh_.element_type, point_geometry(e, reference_), material_.density, lumped);
     for (Index p = 0; p < me.rows(); ++p)
       for (Index q = 0; q < me.cols(); ++q)
         if (me(p, q) != 0.0)
@@ -204,8 +252,8 @@ SparseMatrix StripModel::mass_matrix(bool lumped) const {
 
 Real StripModel::volume() const {
   Real v = 0.0;
-  for (const auto& g : geometry_)
-    for (const auto& p : g) v += p.weight;
+  for (Index e = 0; e < mesh_.n_elements(); ++e)
+    for (const auto& p : point_geometry(e, reference_)) v += p.weight;
   return v;
 }
 

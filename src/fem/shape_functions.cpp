@@ -37,18 +37,26 @@ void reference_shape(ElementType t, const ReferencePoint& p, NodeValues& n, Node
   }
 }
 
-std::vector<ReferencePoint> rule(ElementType t) {
-  if (t == ElementType::T3) return {{1.0 / 3.0, 1.0 / 3.0, 0.5}};
-  const Real g = 1.0 / std::sqrt(3.0);
-  return {{-g, -g, 1.0}, {g, -g, 1.0}, {g, g, 1.0}, {-g, g, 1.0}};
+const std::vector<ReferencePoint>& rule(ElementType t) {
+  static const std::vector<ReferencePoint> t3{{1.0 / 3.0, 1.0 / 3.0, 0.5}};
+  static const Real g = 1.0 / std::sqrt(3.0);
+  static const std::vector<ReferencePoint> q4{{-g, -g, 1.0}, {g, -g, 1.0}, {g, g, 1.0}, {-g, g, 1.0}};
+  return t == ElementType::T3 ? t3 : q4;
 }
 
 }  // namespace
 
 std::vector<PointGeometry> element_geometry(ElementType t, const std::vector<Vec2>& coordinates,
                                             Index element_id) {
-  const auto points = rule(t);
-  std::vector<PointGeometry> out(points.size());
+  std::vector<PointGeometry> out;
+  element_geometry(t, coordinates, element_id, out);
+  return out;
+}
+
+void element_geometry(ElementType t, const std::vector<Vec2>& coordinates, Index element_id,
+                      std::vector<PointGeometry>& out) {
+  const auto& points = rule(t);
+  out.resize(points.size());
   NodeGradients dn;
   for (std::size_t q = 0; q < points.size(); ++q) {
     PointGeometry& g = out[q];
@@ -65,7 +73,6 @@ std::vector<PointGeometry> element_geometry(ElementType t, const std::vector<Vec
     g.gradients = dn * jac.inverse();
     g.weight = det * points[q].weight;
   }
-  return out;
 }
 
 }  // namespace roller

@@ -67,10 +67,18 @@ class StripModel {
   Real volume() const;
 
  private:
-  // Integration-point geometry of every element in the given configuration (throws
-  // NumericalError naming an inverted element).
-  std::vector<std::vector<PointGeometry>> geometry_for(const std::vector<Vec2>& coordinates) const;
+  // Integration-point geometry of element e in the given configuration, recomputed when needed
+  // rather than stored (at 1.3e6 dofs it would hold 370 MB through every factorisation).
+  // Throws NumericalError naming an inverted element.
+  std::vector<PointGeometry> point_geometry(Index e, const std::vector<Vec2>& coordinates) const;
+  void check_not_inverted(const std::vector<Vec2>& coordinates) const;
+  // evaluate(), and the trial states at u when `trial` is given (only commit needs them, so
+  // they are not kept between evaluations).
+  Real evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
+                       std::vector<MaterialState>* trial);
   ElementVector element_values(Index e, const VecX& u) const;
+  // Gives `h` the Hessian's sparsity (reusing it when it already has it) with zero values.
+  void zero_hessian(SparseMatrix& h) const;
 
   Mesh mesh_;
   MaterialParams material_;
@@ -78,14 +86,15 @@ class StripModel {
   int n_points_;
   std::vector<Vec2> reference_;
   VecX total_displacement_;
-  std::vector<std::vector<PointGeometry>> geometry_;  // per element, start-of-increment
   std::vector<MaterialState> committed_;
-  std::vector<MaterialState> trial_;
   Index n_yielded_ = 0;
 
   DofMap dofs_;
-  SparseMatrix pattern_;                       // free x free, values zero
-  std::vector<std::vector<int>> scatter_;      // per element: value slot of (i,j) or -1
+  // Sparsity of the Hessian over the free dofs (compressed columns, full symmetric storage).
+  std::vector<int> outer_, inner_;
+  // Value slot of entry (i, j) of each element matrix, or -1 (constrained dof): element e's
+  // slots start at e * n * n, n = 2 * nodes per element.
+  std::vector<int> scatter_;
 };
 
 }  // namespace roller
