@@ -82,22 +82,27 @@ void StripModel::set_dof_map(DofMap dofs) {
   }
   inner_.shrink_to_fit();
 
-  // Value slot of each element-matrix entry, found once so assembly is a plain scatter.
-  const Index n = 2 * nodes_per_element(mesh_.element_type);
-  scatter_.assign(static_cast<std::size_t>(mesh_.n_elements() * n * n), -1);
+  // Value slots, found once so assembly is a plain scatter. Rows 2a and 2a+1 of a node are
+  // adjacent in every column, so one slot per (node a, node c, column dof j) of an element
+  // locates its 2x2 block: the first free row of node a in column 2c+j (-1: column
+  // constrained or node a fully constrained). Half the memory of one slot per matrix entry.
+  const Index m = nodes_per_element(mesh_.element_type);
+  scatter_.assign(static_cast<std::size_t>(mesh_.n_elements() * m * m * 2), -1);
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     const auto& element = mesh_.elements[e];
-    int* slots = scatter_.data() + e * n * n;
-    for (Index p = 0; p < n; ++p)
-      for (Index q = 0; q < n; ++q) {
-        const Index r = dofs_.free_index(2 * element[p / 2] + p % 2);
-        const Index k = dofs_.free_index(2 * element[q / 2] + q % 2);
-        if (r < 0 || k < 0) continue;
-        const int* begin = inner_.data() + outer_[k];
-        const int* end = inner_.data() + outer_[k + 1];
-        const int* it = std::lower_bound(begin, end, static_cast<int>(r));
-        slots[p * n + q] = static_cast<int>(it - inner_.data());
-      }
+    int* slots = scatter_.data() + e * m * m * 2;
+    for (Index pa = 0; pa < m; ++pa)
+      for (Index pc = 0; pc < m; ++pc)
+        for (int j = 0; j < 2; ++j) {
+          const Index k = dofs_.free_index(2 * element[pc] + j);
+          Index r = dofs_.free_index(2 * element[pa]);
+          if (r < 0) r = dofs_.free_index(2 * element[pa] + 1);
+          if (k < 0 || r < 0) continue;
+          const int* begin = inner_.data() + outer_[k];
+          const int* end = inner_.data() + outer_[k + 1];
+          const int* it = std::lower_bound(begin, end, static_cast<int>(r));
+          slots[(pa * m + pc) * 2 + j] = static_cast<int>(it - inner_.data());
+        }
   }
 }
 
@@ -164,12 +169,20 @@ Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* he
         (*gradient)(2 * element[a] + 1) += out.residual(2 * a + 1);
       }
     if (hessian_free) {
-      const Index n = out.tangent.rows();
-      const int* slots = scatter_.data() + e * n * n;
+      const Index m = static_cast<Index>(element.size());
+      const int* slots = scatter_.data() + e * m * m * 2;
       Real* values = hessian_free->valuePtr();
-      for (Index p = 0; p < n; ++p)
-        for (Index q = 0; q < n; ++q)
-          if (slots[p * n + q] >= 0) values[slots[p * n + q]] += out.tangent(p, q);
+      for (Index pa = 0; pa < m; ++pa) {
+        const bool x_free = !dofs_.is_constrained(2 * element[pa]);
+        const bool y_free = !dofs_.is_constrained(2 * element[pa] + 1);
+        for (Index pc = 0; pc < m; ++pc)
+          for (int j = 0; j < 2; ++j) {
+            const int slot = slots[(pa * m + pc) * 2 + j];
+            if (slot < 0) continue;
+            if (x_free) values[slot] += out.tangent(2 * pa, 2 * pc + j);
+            if (y_free) values[slot + (x_free ? 1 : 0)] += out.tangent(2 * pa + 1, 2 * pc + j);
+          }
+      }
     }
   }
   if (!std::isfinite(energy))

@@ -92,8 +92,8 @@ class StripModel {
   DofMap dofs_;
   // Sparsity of the Hessian over the free dofs (compressed columns, full symmetric storage).
   std::vector<int> outer_, inner_;
-  // Value slot of entry (i, j) of each element matrix, or -1 (constrained dof): element e's
-  // slots start at e * n * n, n = 2 * nodes per element.
+  // Value slot of the first free row of node a in column dof (c, j) of each element, or -1:
+  // element e's slots start at e * m * m * 2, m = nodes per element (set_dof_map).
   std::vector<int> scatter_;
 };
 
