@@ -99,7 +99,7 @@ std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& optio
                                                      const NewtonOptions& newton) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError(why);
-  if (options.backend == "ipopt") return std::make_unique<IpoptBackend>(options);
+  if (options.backend == "ipopt") return std::make_unique<IpoptBackend>(options, newton.linear);
   return std::make_unique<PenaltyBackend>(options, newton);
 }
 

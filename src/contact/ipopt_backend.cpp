@@ -664,7 +664,8 @@ BackendResult solve_increment(IncrementProblem& problem, const VecX& x0, const C
 
 }  // namespace
 
-IpoptBackend::IpoptBackend(ContactOptions options) : options_(std::move(options)) {
+IpoptBackend::IpoptBackend(ContactOptions options, LinearSolverOptions linear)
+    : options_(std::move(options)), linear_(std::move(linear)) {
   std::string why;
   if (!options_.ipopt.is_valid(&why)) throw InputError(why);
   if (!options_.ipopt.raw.empty()) {
@@ -691,7 +692,7 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
     return r;
   }
   if (options_.ipopt.formulation == "full") return solve_increment(problem, x0, options_, Hooks{});
-  BackendResult condensed = solve_condensed(problem, x0, options_);
+  BackendResult condensed = solve_condensed(problem, x0, options_, linear_);
   if (!condensed.stats.count("condensed_failed")) return condensed;
   // The condensed formulation itself failed (singular interior tangent, no descent, the
   // linearisations ran out): the full formulation solves the increment from the same start.

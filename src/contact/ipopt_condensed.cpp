@@ -378,7 +378,8 @@ BackendResult failed(BackendResult result, NewtonStatus status, std::string mess
 
 }  // namespace
 
-BackendResult solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options) {
+BackendResult solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
+                              const LinearSolverOptions& linear) {
   const IpoptOptions& o = options.ipopt;
   const auto& cands = problem.candidates();
   const std::size_t n_c = cands.size();
@@ -412,7 +413,7 @@ BackendResult solve_condensed(IncrementProblem& problem, const VecX& x0, const C
   }
   std::vector<Real> fbar_used = fixed_point.fbar();
   std::vector<bool> has_friction(n_c, false);
-  MumpsSolver solver(MumpsSolver::Symmetry::Symmetric);
+  MumpsSolver solver(MumpsSolver::Symmetry::Symmetric, linear);
   Condensation cond;
   cond.working = working_set(problem, x, reach, {});
   const int max_passes = (mu > 0.0 && o.fixed_point == "converge") ? o.fixed_point_max : 1;

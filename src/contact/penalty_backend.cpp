@@ -127,9 +127,11 @@ std::vector<Stiffness> penalty_stiffnesses(const IncrementProblem& p, Real facto
 // sliding friction, and LU as the fallback when LDL^T fails (solver/sparse_solver.hpp).
 // The solvers persist between calls so that MUMPS's symbolic analysis is redone only when the
 // Jacobian's pattern changes (it is fixed within an increment).
-bool solve_linear(const Evaluation& e, VecX& d) {
+bool solve_linear(const Evaluation& e, const LinearSolverOptions& linear, VecX& d) {
   thread_local SparseSolver ldlt(MumpsSolver::Symmetry::Symmetric);
   thread_local SparseSolver lu(MumpsSolver::Symmetry::General);
+  ldlt.configure(linear);
+  lu.configure(linear);
   if (e.symmetric) {
     if (ldlt.factorize(e.jacobian)) {
       d = ldlt.solve(-e.residual);
@@ -204,7 +206,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       break;
     }
     ++result.factorizations;
-    if (!solve_linear(e, d)) {
+    if (!solve_linear(e, newton_.linear, d)) {
       result.message = "penalty Newton: the tangent matrix is singular (missing supports, or a "
                        "mechanism); check the boundary conditions";
       return result;

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <filesystem>
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -194,6 +196,18 @@ void read_newton(TomlSection& root, Scene& scene) {
   s->finish();
 }
 
+void read_linear_solver(TomlSection& root, Scene& scene) {
+  auto s = root.table("linear_solver");
+  if (!s) return;
+  LinearSolverOptions& l = scene.newton.linear;
+  l.out_of_core = s->boolean("out_of_core").value_or(l.out_of_core);
+  l.ordering = s->choice_or("ordering", {"auto", "amd", "metis"}, l.ordering);
+  l.directory = s->string("directory").value_or(l.directory);
+  std::string why;
+  if (!l.is_valid(&why)) s->fail_invalid(why, {});
+  s->finish();
+}
+
 void read_output(TomlSection& root, Scene& scene) {
   auto s = root.table("output");
   if (!s) return;
@@ -380,7 +394,7 @@ Scene scene_from_table(const toml::table& table, const std::filesystem::path& fi
   Scene scene;
   scene.file = file;
   TomlSection root(table, "", file);
-  root.allow({"name", "title", "kinematics", "mesh", "material", "steps", "newton", "output",
+  root.allow({"name", "title", "kinematics", "mesh", "material", "steps", "newton", "linear_solver", "output",
               "displacement", "load", "roller", "contact", "dynamics", "restart"});
   root.finish();
   scene.name = root.string("name").value_or(file.stem().string());
@@ -391,6 +405,7 @@ Scene scene_from_table(const toml::table& table, const std::filesystem::path& fi
   read_mesh(root, scene);
   read_steps(root, scene);
   read_newton(root, scene);
+  read_linear_solver(root, scene);
   read_output(root, scene);
   read_dynamics(root, scene);
   read_restart(root, scene);
@@ -474,6 +489,24 @@ Real Ramp::at_step(int step) const {
   if (step >= ramp_last) return value;
   if (step < ramp_first) return 0.0;
   return value * static_cast<Real>(step - ramp_first + 1) / static_cast<Real>(ramp_last - ramp_first + 1);
+}
+
+bool LinearSolverOptions::is_valid(std::string* why) const {
+  auto bad = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (ordering != "auto" && ordering != "amd" && ordering != "metis")
+    return bad(fmt::format("linear_solver.ordering = \"{}\": expected \"auto\", \"amd\" or \"metis\"", ordering));
+  if (!directory.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(directory, ec))
+      return bad(fmt::format("linear_solver.directory = \"{}\": expected an existing directory (for the "
+                             "out-of-core factor files)", directory));
+    if (directory.size() > 250)
+      return bad(fmt::format("linear_solver.directory = \"{}\": MUMPS takes at most 250 characters", directory));
+  }
+  return true;
 }
 
 bool NewtonOptions::is_valid(std::string* why) const {

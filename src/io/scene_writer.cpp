@@ -78,6 +78,9 @@ std::string scene_to_toml(const Scene& scene) {
   root.insert("newton", toml::table{{"max_iterations", static_cast<int64_t>(scene.newton.max_iterations)},
                                     {"residual_tolerance", scene.newton.residual_tolerance},
                                     {"line_search", scene.newton.line_search}});
+  root.insert("linear_solver", toml::table{{"out_of_core", scene.newton.linear.out_of_core},
+                                           {"ordering", scene.newton.linear.ordering},
+                                           {"directory", scene.newton.linear.directory}});
   toml::array save_states;
   for (int step : scene.output.save_states) save_states.push_back(static_cast<int64_t>(step));
   root.insert("output", toml::table{{"every", static_cast<int64_t>(scene.output.every)},

@@ -1,5 +1,6 @@
 #include "roller/solver/mumps_factorization.hpp"
 
+#include <cstdio>
 #include <vector>
 
 #include <dmumps_c.h>
@@ -25,6 +26,7 @@ struct MumpsSolver::Impl {
   // resident memory until it is touched: 20 or 50 gave the same 3.38 GB peak on a 1.3e6-dof
   // Hertz increment.
   int workspace_percent = 50;
+  LinearSolverOptions options;
   std::string message;
 
   void call(int job) {
@@ -39,21 +41,31 @@ struct MumpsSolver::Impl {
     id.icntl[13] = workspace_percent;  // ICNTL(14)
     id.icntl[18] = schur_list.empty() ? 0 : 1;  // ICNTL(19): centralised Schur complement, by rows
     id.icntl[25] = 0;   // ICNTL(26): with a Schur complement, solve the interior problem only
+    id.icntl[21] = options.out_of_core ? 1 : 0;  // ICNTL(22): factors on disk
+    // ICNTL(7): 7 = MUMPS chooses (METIS here), 0 = AMD, 5 = METIS.
+    id.icntl[6] = options.ordering == "amd" ? 0 : options.ordering == "metis" ? 5 : 7;
   }
   bool factorize(const SparseMatrix& a, std::vector<MUMPS_INT> schur_vars);
   bool failed(const char* what) {
     if (id.infog[0] >= 0) return false;
-    message = fmt::format("MUMPS {} failed: INFOG(1) = {}, INFOG(2) = {}{}", what, id.infog[0], id.infog[1],
-                          id.infog[0] == -10 ? " (numerically singular matrix)" : "");
+    const int info = id.infog[0];
+    const char* why = info == -10 ? " (numerically singular matrix)"
+                      : info == -13 ? " (out of memory: a coarser mesh, or [linear_solver] out_of_core = true)"
+                      : info <= -90 ? " (out-of-core files: is [linear_solver] directory writable, with room?)"
+                                    : "";
+    message = fmt::format("MUMPS {} failed: INFOG(1) = {}, INFOG(2) = {}{}", what, info, id.infog[1], why);
     return true;
   }
 };
 
-MumpsSolver::MumpsSolver(Symmetry symmetry) : impl_(std::make_unique<Impl>()) {
+MumpsSolver::MumpsSolver(Symmetry symmetry, const LinearSolverOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
   impl_->id.comm_fortran = kUseCommWorld;
   impl_->id.par = 1;
   impl_->id.sym = symmetry == Symmetry::Symmetric ? 2 : 0;
   impl_->call(-1);
+  if (!options.directory.empty())
+    std::snprintf(impl_->id.ooc_tmpdir, sizeof impl_->id.ooc_tmpdir, "%s", options.directory.c_str());
   impl_->settings();
   impl_->initialised = impl_->id.infog[0] >= 0;
 }

@@ -14,9 +14,11 @@ namespace {
 // Solves H d = -g by LDL^T (solver/sparse_solver.hpp; indefinite allowed: geometric stiffness
 // under compression); when the result is not a descent direction the Hessian is shifted (Levenberg)
 // until it is.
-bool newton_direction(const SparseMatrix& h, const VecX& g, VecX& d, int& factorizations) {
+bool newton_direction(const SparseMatrix& h, const VecX& g, const LinearSolverOptions& linear, VecX& d,
+                      int& factorizations) {
   // Persistent: MUMPS's symbolic analysis is redone only when the pattern changes.
   thread_local SparseSolver solver(MumpsSolver::Symmetry::Symmetric);
+  solver.configure(linear);
   Real shift = 0.0;
   const Real diag_scale = h.diagonal().cwiseAbs().maxCoeff();
   for (int attempt = 0; attempt < 8; ++attempt) {
@@ -68,7 +70,7 @@ NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOp
           it, report.residual, options.residual_tolerance);
       return report;
     }
-    if (!newton_direction(h, g, d, report.factorizations)) {
+    if (!newton_direction(h, g, options.linear, d, report.factorizations)) {
       report.message = "the tangent stiffness could not be factorised into a descent direction "
                        "(singular or strongly indefinite: a mechanism, missing supports, or loss "
                        "of monotonicity); check the boundary conditions or use smaller steps";

@@ -2,10 +2,18 @@
 
 namespace roller {
 
+void SparseSolver::configure(const LinearSolverOptions& options) {
+  if (options.out_of_core == options_.out_of_core && options.directory == options_.directory &&
+      options.ordering == options_.ordering)
+    return;
+  options_ = options;
+  mumps_.reset();
+}
+
 bool SparseSolver::factorize(const SparseMatrix& a) {
   use_mumps_ = a.rows() >= kMumpsFromUnknowns;
   if (use_mumps_) {
-    if (!mumps_) mumps_ = std::make_unique<MumpsSolver>(symmetry_);
+    if (!mumps_) mumps_ = std::make_unique<MumpsSolver>(symmetry_, options_);
     return mumps_->factorize(a);
   }
   // Eigen: the analysis is redone when the size or the number of entries changes.

@@ -2,6 +2,8 @@
 // message that names the file, the key, the value and what was expected.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -166,4 +168,29 @@ TEST_CASE("contact.ipopt.options pass Ipopt options through and reject unknown o
   CHECK_NOTHROW(Simulation(ok));
   const Scene bad = load_scene(base, {{"contact.backend", "\"ipopt\""}, {"contact.ipopt.options.mumps_pivot_ordr", "0"}});
   CHECK_THROWS_WITH(Simulation(bad), Catch::Contains("contact.ipopt.options.mumps_pivot_ordr = 0: Ipopt rejects it"));
+}
+
+TEST_CASE("[linear_solver] selects MUMPS's ordering and out-of-core mode, checked before computing", "[io][scene]") {
+  using Catch::Contains;
+  const Scene plain = parse_scene(kGood, "good.toml");
+  CHECK_FALSE(plain.newton.linear.out_of_core);
+  CHECK(plain.newton.linear.ordering == "auto");
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  const Scene s = parse_scene(kGood + "[linear_solver]\nout_of_core = true\nordering = \"amd\"\ndirectory = \"" + dir + "\"\n",
+                              "good.toml");
+  CHECK(s.newton.linear.out_of_core);
+  CHECK(s.newton.linear.ordering == "amd");
+  CHECK(s.newton.linear.directory == dir);
+  // The resolved scene keeps them.
+  const Scene back = parse_scene(scene_to_toml(s), "resolved.toml");
+  CHECK(back.newton.linear.out_of_core);
+  CHECK(back.newton.linear.ordering == "amd");
+  CHECK(back.newton.linear.directory == dir);
+  // Errors name the key, the value and what was expected.
+  CHECK_THAT(error_of(kGood, {{"linear_solver.ordering", "nested"}}),
+             Contains("linear_solver.ordering = 'nested'") && Contains("\"amd\""));
+  CHECK_THAT(error_of(kGood, {{"linear_solver.directory", "/nonexistent/ooc"}}),
+             Contains("linear_solver.directory") && Contains("/nonexistent/ooc") && Contains("existing directory"));
+  CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_core", "3"}}), Contains("linear_solver.out_of_core"));
+  CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_cor", "true"}}), Contains("did you mean 'linear_solver.out_of_core'"));
 }

@@ -1,5 +1,6 @@
 // MUMPS wrapper: an indefinite symmetric system with its inertia, and an unsymmetric one.
 #include <algorithm>
+#include <filesystem>
 
 #include <catch2/catch.hpp>
 
@@ -109,11 +110,24 @@ TEST_CASE("MumpsSolver Schur complement and interior solve equal the dense block
   const MatX a_ii = block(interior, interior), a_is = block(interior, schur);
   const MatX s_dense = block(schur, schur) - a_is.transpose() * a_ii.ldlt().solve(a_is);
 
+  // In core with each ordering, and out of core (factors in files under `ooc`, removed when the
+  // solver ends).
+  const std::filesystem::path ooc = std::filesystem::temp_directory_path() / "roller_test_mumps_ooc";
+  std::filesystem::remove_all(ooc);
+  std::filesystem::create_directories(ooc);
+  std::vector<LinearSolverOptions> variants(4);
+  variants[1].ordering = "amd";
+  variants[2].ordering = "metis";
+  variants[3].out_of_core = true;
+  variants[3].directory = ooc.string();
+  for (const LinearSolverOptions& options : variants)
   for (const auto symmetry : {MumpsSolver::Symmetry::Symmetric, MumpsSolver::Symmetry::General}) {
-    MumpsSolver solver(symmetry);
+    INFO("ordering " << options.ordering << ", out of core " << options.out_of_core);
+    MumpsSolver solver(symmetry, options);
     MatX s;
     for (Real scale : {1.0, 3.0}) {  // second pass reuses the analysis
       REQUIRE(solver.factorize_with_schur(scale * a, schur, &s));
+      if (options.out_of_core) CHECK_FALSE(std::filesystem::is_empty(ooc));  // the factors are on disk
       CHECK((s - scale * s_dense).norm() < 1e-12 * scale * s_dense.norm());
     }
     const VecX b = VecX::LinSpaced(n, -1.0, 2.0);
@@ -128,4 +142,6 @@ TEST_CASE("MumpsSolver Schur complement and interior solve equal the dense block
     const VecX x_full = solver.solve(a * b);
     CHECK((x_full - b).norm() < 1e-10 * b.norm());
   }
+  CHECK(std::filesystem::is_empty(ooc));
+  std::filesystem::remove_all(ooc);
 }

@@ -10,12 +10,13 @@ namespace roller {
 
 class IpoptBackend : public ContactBackend {
  public:
-  explicit IpoptBackend(ContactOptions options);
+  explicit IpoptBackend(ContactOptions options, LinearSolverOptions linear = {});
   std::string name() const override { return "ipopt"; }
 
  private:
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
   ContactOptions options_;
+  LinearSolverOptions linear_;  // the condensed formulation's MUMPS
 };
 
 }  // namespace roller

@@ -13,13 +13,14 @@
 #include <vector>
 
 #include "roller/core/types.hpp"
+#include "roller/solver/linear_solver_options.hpp"
 
 namespace roller {
 
 class MumpsSolver {
  public:
   enum class Symmetry { Symmetric, General };
-  explicit MumpsSolver(Symmetry symmetry = Symmetry::Symmetric);
+  explicit MumpsSolver(Symmetry symmetry = Symmetry::Symmetric, const LinearSolverOptions& options = {});
   ~MumpsSolver();
   MumpsSolver(const MumpsSolver&) = delete;
   MumpsSolver& operator=(const MumpsSolver&) = delete;

@@ -21,12 +21,15 @@ constexpr Index kMumpsFromUnknowns = 20000;
 class SparseSolver {
  public:
   explicit SparseSolver(MumpsSolver::Symmetry symmetry) : symmetry_(symmetry) {}
+  // MUMPS's options for the next factorisations (a new MUMPS instance when they change).
+  void configure(const LinearSolverOptions& options);
   // Factorises `a` (symmetric: only its lower triangle matters for MUMPS). False on failure.
   bool factorize(const SparseMatrix& a);
   VecX solve(const VecX& b);
 
  private:
   MumpsSolver::Symmetry symmetry_;
+  LinearSolverOptions options_;
   bool use_mumps_ = false;
   std::unique_ptr<MumpsSolver> mumps_;
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;

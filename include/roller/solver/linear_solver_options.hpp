@@ -1,0 +1,20 @@
+#pragma once
+// Options of the sparse direct solver MUMPS (scene table [linear_solver]; docs/scenes.md), used
+// by every factorisation of the strip's tangent: Newton without contact, the penalty backend,
+// the condensed ipopt backend. (The "full" ipopt formulation factorises through Ipopt's own
+// MUMPS interface, which these options do not reach.)
+#include <string>
+
+namespace roller {
+
+struct LinearSolverOptions {
+  // Factors written to disk (MUMPS out-of-core, ICNTL(22) = 1): resident memory drops to the
+  // active fronts (a 1.3e6-dof Hertz increment: 2.70 -> 1.54 GB peak) for some time reading
+  // them back in each solve.
+  bool out_of_core = false;
+  std::string directory;            // where the out-of-core files go ("" = MUMPS's default, /tmp)
+  std::string ordering = "auto";    // fill-reducing ordering: "auto" (MUMPS chooses) | "amd" | "metis"
+  bool is_valid(std::string* why) const;
+};
+
+}  // namespace roller
