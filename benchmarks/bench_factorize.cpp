@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   std::vector<double> times;
   Index memory_mb = 0;
   for (int r = 0; r < repeats; ++r) {
-    MumpsSolver ldlt;
+    MumpsSolver ldlt(MumpsSolver::Symmetry::Symmetric, sim.scene().newton.linear);  // [linear_solver]
     const auto t0 = std::chrono::steady_clock::now();
     if (!ldlt.factorize(k)) {
       std::fprintf(stderr, "%s\n", ldlt.message().c_str());

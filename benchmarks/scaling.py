@@ -3,6 +3,7 @@
 
 usage: /usr/bin/python3 benchmarks/scaling.py [--build build] [--out DIR] [--min-dofs 0] [--max-dofs 1.4e6]
                                               [--backends ipopt,penalty] [--cases hertz,z1] [--timeout 3600]
+                                              [--set KEY=VALUE ...]
 
 Cases: Hertz (frictionless, elastic): the whole indentation in ONE increment, cold start; Z1
 (plastic, friction, finite strain): the first rolling increment (step 4, warm from step 3).
@@ -11,6 +12,8 @@ For each mesh size: wall time of that increment (solver.csv wall_s) and of the w
 (/usr/bin/time -v), and the time (and MUMPS memory) of one MUMPS analysis + factorisation of the
 strip tangent K (bench_factorize) as the unit. Writes DIR/scaling.csv, DIR/scaling.png and
 prints a Markdown table with the fitted exponent of time against dofs (sizes >= 1e4).
+--set adds scene overrides to every run and to the unit factorisation, e.g.
+--set linear_solver.out_of_core=true (docs/benchmarks.md, memory).
 """
 import argparse
 import csv
@@ -107,6 +110,7 @@ def main():
     ap.add_argument("--backends", default="ipopt,penalty")
     ap.add_argument("--cases", default="hertz,z1")
     ap.add_argument("--timeout", type=float, default=3600)
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="scene override for every run")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     columns = ["case", "backend", "dofs", "status", "wall_s", "process_wall_s", "iterations", "factorizations",
@@ -120,6 +124,7 @@ def main():
         w.writeheader()
         for case in args.cases.split(","):
             for label, scene, overrides, step in CASES[case]:
+                overrides = overrides + args.set
                 n = dofs_of(label, overrides)
                 if n > args.max_dofs or n < args.min_dofs:
                     continue
