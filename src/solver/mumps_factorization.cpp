@@ -42,7 +42,7 @@ struct MumpsSolver::Impl {
     id.icntl[18] = schur_list.empty() ? 0 : 1;  // ICNTL(19): centralised Schur complement, by rows
     id.icntl[25] = 0;   // ICNTL(26): with a Schur complement, solve the interior problem only
     id.icntl[21] = options.out_of_core ? 1 : 0;  // ICNTL(22): factors on disk
-    // ICNTL(7): 7 = MUMPS chooses (METIS here), 0 = AMD, 5 = METIS.
+    // ICNTL(7): 7 = MUMPS chooses, 0 = AMD, 5 = METIS.
     id.icntl[6] = options.ordering == "amd" ? 0 : options.ordering == "metis" ? 5 : 7;
   }
   bool factorize(const SparseMatrix& a, std::vector<MUMPS_INT> schur_vars);
