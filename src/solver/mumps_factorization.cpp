@@ -1,5 +1,6 @@
 #include "roller/solver/mumps_factorization.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <vector>
 
@@ -60,6 +61,7 @@ struct MumpsSolver::Impl {
 
 MumpsSolver::MumpsSolver(Symmetry symmetry, const LinearSolverOptions& options) : impl_(std::make_unique<Impl>()) {
   impl_->options = options;
+  impl_->workspace_percent = options.workspace_percent;
   impl_->id.comm_fortran = kUseCommWorld;
   impl_->id.par = 1;
   impl_->id.sym = symmetry == Symmetry::Symmetric ? 2 : 0;
@@ -127,7 +129,7 @@ bool MumpsSolver::Impl::factorize(const SparseMatrix& a, std::vector<MUMPS_INT> 
   // counterparts): more headroom and factorise again, up to 16x MUMPS's estimate.
   while ((m.id.infog[0] == -8 || m.id.infog[0] == -9 || m.id.infog[0] == -14 || m.id.infog[0] == -15) &&
          m.workspace_percent < 1600) {
-    m.workspace_percent *= 2;
+    m.workspace_percent = std::max(2 * m.workspace_percent, 20);
     m.id.icntl[13] = m.workspace_percent;
     m.call(2);
   }
@@ -174,6 +176,8 @@ VecX MumpsSolver::solve(const VecX& b) {
 Index MumpsSolver::negative_pivots() const { return impl_->id.infog[11]; }
 
 Index MumpsSolver::memory_mb() const { return impl_->id.infog[18]; }
+
+int MumpsSolver::workspace_percent() const { return impl_->workspace_percent; }
 
 const std::string& MumpsSolver::message() const { return impl_->message; }
 

@@ -38,6 +38,7 @@ class MumpsSolver {
   VecX solve_interior(const VecX& b);
   Index negative_pivots() const;  // Symmetric: negative eigenvalues of the last matrix
   Index memory_mb() const;        // memory MUMPS allocated for the last factorisation (INFOG(19), MB)
+  int workspace_percent() const;  // ICNTL(14) now: the option's start, doubled per workspace overrun
   const std::string& message() const;
 
  private:
