@@ -43,8 +43,8 @@ int run_scene(const RunArgs& args) {
   options.progress = &std::cout;
   options.resume = args.resume;
   const roller::RunSummary summary = sim.run(options);
-  std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations); results in {}\n",
-                           summary.message, summary.wall_s, summary.iterations_total, out);
+  std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations, peak memory {:.0f} MiB); results in {}\n",
+                           summary.message, summary.wall_s, summary.iterations_total, summary.peak_memory_mb, out);
   return summary.converged ? 0 : 1;
 }
 

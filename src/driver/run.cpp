@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/resource.h>
+
 #include "roller/analysis/monotonicity.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
@@ -25,6 +27,14 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Peak resident memory of this process [MiB] (Linux reports ru_maxrss in KiB): what
+// /usr/bin/time -v prints, so users see whether a mesh needs [linear_solver] out_of_core.
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 // A table created afresh, or continued after the resumed step.
@@ -216,6 +226,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   }
   if (summary.converged) save_state(options.out_dir / "state_final.cbor");
   summary.wall_s = seconds_since(t_start);
+  summary.peak_memory_mb = peak_memory_mb();
   if (summary.converged) summary.message = fmt::format("{} steps converged", summary.steps_done);
 
   nlohmann::json j;
@@ -232,6 +243,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   j["suspension"] = suspension_.has_value();
   j["converged"] = summary.converged;
   j["wall_s"] = summary.wall_s;
+  j["peak_memory_mb"] = summary.peak_memory_mb;
   j["iterations_total"] = summary.iterations_total;
   j["cuts_total"] = summary.cuts_total;
   j["max_penetration"] = summary.max_penetration;

@@ -11,6 +11,8 @@
 
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -56,7 +58,12 @@ TEST_CASE("roller run: the default scene runs end to end and writes its results"
   const std::string csv = read(out / "solver.csv");
   CHECK_THAT(csv, Catch::StartsWith("step,time,iterations,residual,max_penetration,wall_s"));
   CHECK_THAT(csv, Catch::Contains("k_eff_positive_definite"));
-  CHECK_THAT(read(out / "summary.json"), Catch::Contains("\"converged\": true"));
+  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  CHECK(summary["converged"] == true);
+  // Peak memory of the process: more than the mesh and less than this machine has.
+  CHECK(summary["peak_memory_mb"].get<double>() > 1.0);
+  CHECK(summary["peak_memory_mb"].get<double>() < 24.0 * 1024.0);
+  CHECK_THAT(r.output, Catch::Contains("peak memory"));
   fs::remove_all(out);
 }
 

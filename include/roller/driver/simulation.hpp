@@ -32,6 +32,7 @@ struct RunSummary {
   int iterations_total = 0;
   int cuts_total = 0;
   double wall_s = 0.0;
+  double peak_memory_mb = 0.0;  // the process's peak resident memory so far [MiB]
   Real max_penetration = 0.0;
   std::string message;
 };
