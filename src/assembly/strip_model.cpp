@@ -23,11 +23,19 @@ StripModel::StripModel(Mesh mesh, MaterialParams material, ElementOptions option
   set_dof_map(DofMap(std::vector<bool>(mesh_.n_dofs(), false)));
 }
 
+void StripModel::point_geometry(Index e, const std::vector<Vec2>& coordinates, std::vector<Vec2>& xe,
+                                std::vector<PointGeometry>& out) const {
+  const auto& element = mesh_.elements[e];
+  xe.resize(element.size());
+  for (std::size_t a = 0; a < element.size(); ++a) xe[a] = coordinates[element[a]];
+  element_geometry(mesh_.element_type, xe, e, out);
+}
+
 std::vector<PointGeometry> StripModel::point_geometry(Index e, const std::vector<Vec2>& coordinates) const {
   std::vector<Vec2> xe;
-  xe.reserve(mesh_.elements[e].size());
-  for (Index a : mesh_.elements[e]) xe.push_back(coordinates[a]);
-  return element_geometry(mesh_.element_type, xe, e);
+  std::vector<PointGeometry> out;
+  point_geometry(e, coordinates, xe, out);
+  return out;
 }
 
 void StripModel::check_not_inverted(const std::vector<Vec2>& coordinates) const {
@@ -148,12 +156,11 @@ Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* he
   in.type = mesh_.element_type;
   ElementOutput out;
   if (trial) trial->resize(committed_.size());
-  std::vector<Vec2> xe(nodes_per_element(mesh_.element_type));  // buffers reused by every element
+  std::vector<Vec2> xe;  // buffers reused by every element
   std::vector<PointGeometry> geometry;
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     const auto& element = mesh_.elements[e];
-    for (std::size_t a = 0; a < element.size(); ++a) xe[a] = reference_[element[a]];
-    element_geometry(mesh_.element_type, xe, e, geometry);
+    point_geometry(e, reference_, xe, geometry);
     in.geometry = &geometry;
     in.committed = &committed_[e * n_points_];
     in.displacement = element_values(e, u);

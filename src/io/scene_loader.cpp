@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <filesystem>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -201,7 +200,7 @@ void read_linear_solver(TomlSection& root, Scene& scene) {
   if (!s) return;
   LinearSolverOptions& l = scene.newton.linear;
   l.out_of_core = s->boolean("out_of_core").value_or(l.out_of_core);
-  l.ordering = s->choice_or("ordering", {"auto", "amd", "metis"}, l.ordering);
+  l.ordering = s->choice_or("ordering", LinearSolverOptions::orderings(), l.ordering);
   l.directory = s->string("directory").value_or(l.directory);
   std::string why;
   if (!l.is_valid(&why)) s->fail_invalid(why, {});
@@ -491,13 +490,20 @@ Real Ramp::at_step(int step) const {
   return value * static_cast<Real>(step - ramp_first + 1) / static_cast<Real>(ramp_last - ramp_first + 1);
 }
 
+const std::vector<std::string>& LinearSolverOptions::orderings() {
+  static const std::vector<std::string> names{"auto", "amd", "metis"};
+  return names;
+}
+
 bool LinearSolverOptions::is_valid(std::string* why) const {
   auto bad = [why](const std::string& m) {
     if (why) *why = m;
     return false;
   };
-  if (ordering != "auto" && ordering != "amd" && ordering != "metis")
-    return bad(fmt::format("linear_solver.ordering = \"{}\": expected \"auto\", \"amd\" or \"metis\"", ordering));
+  const auto& known = orderings();
+  if (std::find(known.begin(), known.end(), ordering) == known.end())
+    return bad(fmt::format("linear_solver.ordering = \"{}\": expected one of \"{}\"", ordering,
+                           fmt::join(known, "\", \"")));
   if (!directory.empty()) {
     std::error_code ec;
     if (!std::filesystem::is_directory(directory, ec))

@@ -71,6 +71,9 @@ class StripModel {
   // rather than stored (at 1.3e6 dofs it would hold 370 MB through every factorisation).
   // Throws NumericalError naming an inverted element.
   std::vector<PointGeometry> point_geometry(Index e, const std::vector<Vec2>& coordinates) const;
+  // The same into `out`, with `xe` for the element's coordinates (buffers reused over a loop).
+  void point_geometry(Index e, const std::vector<Vec2>& coordinates, std::vector<Vec2>& xe,
+                      std::vector<PointGeometry>& out) const;
   void check_not_inverted(const std::vector<Vec2>& coordinates) const;
   // evaluate(), and the trial states at u when `trial` is given (only commit needs them, so
   // they are not kept between evaluations).

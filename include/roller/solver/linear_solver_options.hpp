@@ -4,6 +4,7 @@
 // the condensed ipopt backend. (The "full" ipopt formulation factorises through Ipopt's own
 // MUMPS interface, which these options do not reach.)
 #include <string>
+#include <vector>
 
 namespace roller {
 
@@ -18,6 +19,7 @@ struct LinearSolverOptions {
   // delayed pivots; doubled on each overrun (not a scene key: the retry makes it self-tuning).
   int workspace_percent = 50;
   bool is_valid(std::string* why) const;
+  static const std::vector<std::string>& orderings();  // the accepted values of `ordering`
 };
 
 }  // namespace roller
