@@ -27,12 +27,17 @@ Real integrate_pressure(const HertzSolution& h, Real x0, Real x1, Weight w) {
   return sum * dt / 3.0;
 }
 
+// Half the distance between the neighbours of sample i (one-sided at the ends).
+Real tributary_length(const std::vector<PressureSample>& s, std::size_t i) {
+  return 0.5 * ((i + 1 < s.size() ? s[i + 1].x : s[i].x) - (i > 0 ? s[i - 1].x : s[i].x));
+}
+
 // Relative discrete L2 norm of p_h - p_ref with weights = tributary lengths.
 template <class Reference>
 Real relative_l2(const std::vector<PressureSample>& s, Reference ref) {
   Real num = 0, den = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const Real w = 0.5 * ((i + 1 < s.size() ? s[i + 1].x : s[i].x) - (i > 0 ? s[i - 1].x : s[i].x));
+    const Real w = tributary_length(s, i);
     const Real r = ref(i);
     num += w * (s[i].p - r) * (s[i].p - r);
     den += w * r * r;
@@ -110,7 +115,7 @@ HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, R
   for (const auto& s : samples) x.push_back(s.x);
   const std::vector<Real> force = hertz_nodal_forces(c.analytic, x);
   c.l2_error_averaged = relative_l2(samples, [&](std::size_t i) {
-    const Real tributary = 0.5 * ((i + 1 < x.size() ? x[i + 1] : x[i]) - (i > 0 ? x[i - 1] : x[i]));
+    const Real tributary = tributary_length(samples, i);
     return tributary > 0.0 ? force[i] / tributary : 0.0;
   });
   return c;

@@ -21,12 +21,12 @@ struct MumpsSolver::Impl {
   std::vector<double> schur;         // size_schur^2, by rows
   bool initialised = false;
   bool analysed = false;
-  // ICNTL(14): percentage added to the workspace MUMPS estimates in the analysis, for delayed
-  // pivots of an indefinite K. When they overrun it anyway, the factorisation is retried with
-  // twice the headroom (kept for the next factorisations of this solver). The headroom costs no
-  // resident memory until it is touched: 20 or 50 gave the same 3.38 GB peak on a 1.3e6-dof
-  // Hertz increment.
-  int workspace_percent = 50;
+  // ICNTL(14) now: percentage added to the workspace MUMPS estimates in the analysis, for
+  // delayed pivots of an indefinite K; starts at options.workspace_percent. When they overrun it
+  // anyway, the factorisation is retried with twice the headroom (kept for the next
+  // factorisations of this solver). The headroom costs no resident memory until it is touched:
+  // 20 or 50 gave the same peak on a 1.3e6-dof Hertz increment.
+  int workspace_percent = 0;
   LinearSolverOptions options;
   std::string message;
 

@@ -3,9 +3,7 @@
 namespace roller {
 
 void SparseSolver::configure(const LinearSolverOptions& options) {
-  if (options.out_of_core == options_.out_of_core && options.directory == options_.directory &&
-      options.ordering == options_.ordering)
-    return;
+  if (options == options_) return;
   options_ = options;
   mumps_.reset();
 }

@@ -9,6 +9,27 @@
 
 using namespace roller;
 
+namespace {
+
+// Symmetric matrix on the 5-point stencil of a g x g grid: `diagonal(k)` on the diagonal, `off`
+// between grid neighbours.
+template <class Diagonal>
+SparseMatrix grid_matrix(int g, Diagonal diagonal, Real off) {
+  std::vector<Triplet> t;
+  for (int i = 0; i < g; ++i)
+    for (int j = 0; j < g; ++j) {
+      const int k = i * g + j;
+      t.emplace_back(k, k, diagonal(k));
+      if (i + 1 < g) t.emplace_back(k + g, k, off), t.emplace_back(k, k + g, off);
+      if (j + 1 < g) t.emplace_back(k + 1, k, off), t.emplace_back(k, k + 1, off);
+    }
+  SparseMatrix a(g * g, g * g);
+  a.setFromTriplets(t.begin(), t.end());
+  return a;
+}
+
+}  // namespace
+
 TEST_CASE("MumpsSolver (symmetric) solves a symmetric indefinite system and counts negative pivots", "[solver]") {
   // Tridiagonal 1D Laplacian shifted by -0.5: eigenvalues 2 - 2cos(k pi/(n+1)) - 0.5, three
   // of them negative for n = 20.
@@ -86,16 +107,7 @@ TEST_CASE("SparseSolver solves below and above the MUMPS threshold alike", "[sol
 TEST_CASE("MumpsSolver Schur complement and interior solve equal the dense block formulas", "[solver]") {
   // A 2D 5-point Laplacian plus a diagonal shift (SPD), Schur variables scattered through it.
   const int g = 7, n = g * g;
-  std::vector<Triplet> t;
-  for (int i = 0; i < g; ++i)
-    for (int j = 0; j < g; ++j) {
-      const int r = i * g + j;
-      t.emplace_back(r, r, 4.2 + 0.01 * r);
-      if (i + 1 < g) t.emplace_back(r, r + g, -1.0), t.emplace_back(r + g, r, -1.0);
-      if (j + 1 < g) t.emplace_back(r, r + 1, -1.0), t.emplace_back(r + 1, r, -1.0);
-    }
-  SparseMatrix a(n, n);
-  a.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix a = grid_matrix(g, [](int k) { return 4.2 + 0.01 * k; }, -1.0);
   const std::vector<Index> schur = {3, 17, 18, 40, 5};
   std::vector<Index> interior;
   for (Index k = 0; k < n; ++k)
@@ -151,17 +163,8 @@ TEST_CASE("MumpsSolver retries a factorisation whose delayed pivots overrun the 
   // pivoting rejects most diagonal pivots and delays them up the tree, which MUMPS's analysis (on
   // the pattern) cannot foresee. With no headroom (ICNTL(14) = 0) the first attempt overruns
   // (INFOG(1) = -9, measured) and the wrapper raises the headroom until it fits.
-  const int g = 20, n = g * g;
-  std::vector<Triplet> t;
-  for (int i = 0; i < g; ++i)
-    for (int j = 0; j < g; ++j) {
-      const int k = i * g + j;
-      t.emplace_back(k, k, 1e-8 * (k % 3 - 1));
-      if (i + 1 < g) t.emplace_back(k + g, k, 1.0), t.emplace_back(k, k + g, 1.0);
-      if (j + 1 < g) t.emplace_back(k + 1, k, 1.0), t.emplace_back(k, k + 1, 1.0);
-    }
-  SparseMatrix a(n, n);
-  a.setFromTriplets(t.begin(), t.end());
+  const int n = 20 * 20;
+  const SparseMatrix a = grid_matrix(20, [](int k) { return 1e-8 * (k % 3 - 1); }, 1.0);
   LinearSolverOptions options;
   options.workspace_percent = 0;
   MumpsSolver ldlt(MumpsSolver::Symmetry::Symmetric, options);

@@ -19,6 +19,10 @@ struct LinearSolverOptions {
   // delayed pivots; doubled on each overrun (not a scene key: the retry makes it self-tuning).
   int workspace_percent = 50;
   bool is_valid(std::string* why) const;
+  bool operator==(const LinearSolverOptions& o) const {
+    return out_of_core == o.out_of_core && directory == o.directory && ordering == o.ordering &&
+           workspace_percent == o.workspace_percent;
+  }
   static const std::vector<std::string>& orderings();  // the accepted values of `ordering`
 };
 
