@@ -19,10 +19,32 @@ const char* to_string(ContactStatus s) {
   return "?";
 }
 
+std::string BackendStats::brief() const {
+  std::string s;
+  auto add = [&s](const char* name, double value) {
+    if (value != 0.0) s += fmt::format("{}{} {:.3g}", s.empty() ? "" : ", ", name, value);
+  };
+  add("complementarity", complementarity);
+  add("constraint_violation", constraint_violation);
+  add("fixed_point_iterations", fixed_point_iterations);
+  add("nlp_solves", nlp_solves);
+  add("nlp_variables", nlp_variables);
+  add("nlp_constraints", nlp_constraints);
+  add("linearisations", linearisations);
+  add("condensed_dofs", condensed_dofs);
+  add("ipopt_time_s", ipopt_time_s);
+  add("acceptable_level", acceptable_level ? 1.0 : 0.0);
+  add("condensed_fallback", condensed_fallback ? 1.0 : 0.0);
+  add("active_set_passes", active_set_passes);
+  add("penalty_stages", penalty_stages);
+  return s;
+}
+
 std::string BackendResult::brief_report() const {
   std::string s = fmt::format("{} in {} iterations, |r|/F {:.2e}, max penetration {:.2e} mm",
                               converged() ? "converged" : "FAILED", iterations, residual, max_penetration);
-  for (const auto& [k, v] : stats) s += fmt::format(", {} {:.3g}", k, v);
+  const std::string details = stats.brief();
+  if (!details.empty()) s += ", " + details;
   if (!converged()) s += ": " + message;
   return s;
 }
@@ -65,29 +87,17 @@ bool IpoptOptions::is_valid(std::string* why) const {
     if (why) *why = m;
     return false;
   };
-  if (formulation != "condensed" && formulation != "full")
-    return bad(fmt::format("contact.ipopt.formulation = \"{}\": expected \"condensed\" or \"full\"", formulation));
   if (!(tol > 0.0 && tol < 1.0)) return bad(fmt::format("contact.ipopt.tol = {}: must be in (0, 1)", tol));
   if (max_iter < 1) return bad(fmt::format("contact.ipopt.max_iter = {}: must be >= 1", max_iter));
-  if (mu_strategy != "adaptive" && mu_strategy != "monotone")
-    return bad(fmt::format("contact.ipopt.mu_strategy = \"{}\": expected \"adaptive\" or \"monotone\"", mu_strategy));
   if (print_level < 0 || print_level > 12)
     return bad(fmt::format("contact.ipopt.print_level = {}: expected 0..12", print_level));
-  if (friction != "split" && friction != "regularized")
-    return bad(fmt::format("contact.ipopt.friction = \"{}\": expected \"split\" or \"regularized\"", friction));
   if (!(regularization > 0.0)) return bad(fmt::format("contact.ipopt.regularization = {}: must be > 0", regularization));
-  if (fixed_point != "converge" && fixed_point != "single")
-    return bad(fmt::format("contact.ipopt.fixed_point = \"{}\": expected \"converge\" or \"single\"", fixed_point));
   if (!(fixed_point_tol > 0.0)) return bad(fmt::format("contact.ipopt.fixed_point_tol = {}: must be > 0", fixed_point_tol));
   if (fixed_point_max < 1) return bad(fmt::format("contact.ipopt.fixed_point_max = {}: must be >= 1", fixed_point_max));
   return true;
 }
 
 bool ContactOptions::is_valid(std::string* why) const {
-  if (backend != "penalty" && backend != "ipopt") {
-    if (why) *why = fmt::format("contact.backend = \"{}\": expected \"penalty\" or \"ipopt\"", backend);
-    return false;
-  }
   if (!(friction >= 0.0 && friction <= 10.0)) {
     if (why) *why = fmt::format("contact.friction = {}: expected 0 <= mu <= 10", friction);
     return false;
@@ -99,7 +109,7 @@ std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& optio
                                                      const NewtonOptions& newton) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError(why);
-  if (options.backend == "ipopt") return std::make_unique<IpoptBackend>(options, newton.linear);
+  if (options.backend == ContactBackendKind::Ipopt) return std::make_unique<IpoptBackend>(options, newton.linear);
   return std::make_unique<PenaltyBackend>(options, newton);
 }
 

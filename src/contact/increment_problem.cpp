@@ -22,16 +22,4 @@ Vec2 IncrementProblem::increment(const ContactCandidate& c, const VecX& x) const
   return u;
 }
 
-Real IncrementProblem::gap(const ContactCandidate& c, const VecX& x) const {
-  return (position(c, x) - roller_.end.centre).norm() - roller_.radius;
-}
-
-Vec2 IncrementProblem::normal(const ContactCandidate& c, const VecX& x) const {
-  return (position(c, x) - roller_.end.centre).normalized();
-}
-
-Real IncrementProblem::slip(const ContactCandidate& c, const VecX& x) const {
-  return c.tangent.dot(increment(c, x) - roller_.dc()) - roller_.radius * roller_.dphi();
-}
-
 }  // namespace roller

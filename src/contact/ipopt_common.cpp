@@ -68,7 +68,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
   set(*app, "hessian_approximation", std::string("exact"));
   set(*app, "tol", o.tol);
   set(*app, "max_iter", o.max_iter);
-  set(*app, "mu_strategy", o.mu_strategy);
+  set(*app, "mu_strategy", std::string(enum_name(o.mu_strategy)));
   set(*app, "obj_scaling_factor", 1.0 / scales.force);
   // The unscaled dual safety tolerance (default 1 N/mm) must not be stricter than tol on the
   // scaled problem for large force scales. The unscaled complementarity max F_N g [N mm] is held
@@ -143,44 +143,6 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
   return {S::Failure, fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
 }
 
-NormalForceFixedPoint::NormalForceFixedPoint(const IncrementProblem& problem, const IpoptOptions& o, Real force_scale)
-    : o_(o), mu_(problem.roller().friction), force_scale_(force_scale) {
-  for (const auto& c : problem.candidates()) fbar_.push_back(std::max(c.normal_force_guess, 0.0));
-}
-
-Real NormalForceFixedPoint::force_tol() const {
-  Real fb = 0.0;
-  for (const Real f : fbar_) fb = std::max(fb, f);
-  return 1e-6 * std::max(force_scale_, fb);
-}
-
-bool NormalForceFixedPoint::update(const std::vector<Real>& normal) {
-  ++pass_;
-  // "single": Fbar stays the previous increment's F_N (the thesis's explicit variant), also for
-  // the condensed formulation's later linearisations.
-  if (mu_ == 0.0 || o_.fixed_point == "single") return true;
-  const Real tol = force_tol();
-  last_change_ = 0.0;
-  last_max_ = 0.0;
-  for (std::size_t i = 0; i < fbar_.size(); ++i) {
-    last_change_ = std::max(last_change_, std::abs(normal[i] - fbar_[i]));
-    last_max_ = std::max(last_max_, normal[i]);
-  }
-  if (previous_change_ < 1e300 && last_change_ > 0.5 * previous_change_) relaxation_ = 0.5;
-  previous_change_ = last_change_;
-  for (std::size_t i = 0; i < fbar_.size(); ++i)
-    fbar_[i] = std::max((1.0 - relaxation_) * fbar_[i] + relaxation_ * normal[i], 0.0);
-  return last_change_ <= std::max(o_.fixed_point_tol * last_max_, tol) || last_max_ <= 1e-6 * force_scale_;
-}
-
-std::string fixed_point_message(int passes, const NormalForceFixedPoint& fixed_point, const IpoptOptions& o) {
-  return fmt::format(
-      "the friction fixed point on the normal force did not converge in {} passes (contact.ipopt.fixed_point_max): "
-      "max |dF_N| = {:.3g} vs contact.ipopt.fixed_point_tol * max F_N = {:.3g}; use smaller steps, raise "
-      "contact.ipopt.fixed_point_max, or use contact.ipopt.fixed_point = \"single\"",
-      passes, fixed_point.last_change(), o.fixed_point_tol * fixed_point.last_max());
-}
-
 bool report_increment(IncrementProblem& problem, const VecX& x, const std::vector<Real>& normal,
                       const std::vector<Real>& tangential, const std::vector<Real>& fbar,
                       const std::vector<bool>& has_friction, const Scales& scales, BackendResult* result) {
@@ -221,7 +183,7 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
       }
       nc.status = std::abs(nc.slip) <= tol ? ContactStatus::Stick : ContactStatus::Slip;
     }
-    const Vec2 f = nc.normal_force * problem.normal(c, x) + nc.tangential_force * c.tangent;
+    const Vec2 f = contact_force(nc.normal_force, nc.tangential_force, problem.normal(c, x), c.tangent);
     for (int k = 0; k < 2; ++k)
       if (c.free_dof[k] >= 0) r(c.free_dof[k]) -= f(k);
     if (c.free_dof[0] >= 0 || c.free_dof[1] >= 0) {
@@ -230,8 +192,8 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
     }
   }
   result->residual = r.norm() / force_scale;
-  result->stats["complementarity"] = complementarity / force_scale;
-  result->stats["constraint_violation"] = violation;
+  result->stats.complementarity = complementarity / force_scale;
+  result->stats.constraint_violation = violation;
   return true;
 }
 

@@ -6,10 +6,14 @@
 
 namespace roller::ipopt_detail {
 
-// Solves one increment; result.stats["condensed_failed"] = 1 marks a failure of the formulation
-// itself (singular strip tangent, no descent, linearisations ran out), after which the caller
-// may retry with the full formulation.
-BackendResult solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                              const LinearSolverOptions& linear);
+struct CondensedOutcome {
+  BackendResult result;
+  // The formulation itself failed (singular strip tangent, no descent, linearisations ran out):
+  // the caller may solve the increment with the full formulation instead.
+  bool formulation_failed = false;
+};
+
+CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
+                                 const LinearSolverOptions& linear);
 
 }  // namespace roller::ipopt_detail

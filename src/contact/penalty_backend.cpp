@@ -25,11 +25,12 @@ constexpr Real kMaxRoundoffResidual = 1e-3;
 NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, const Stiffness& k,
                           const VecX& x, Mat2* block, const NodeContact* frozen = nullptr) {
   NodeContact s;
-  const Vec2 d = p.position(c, x) - p.roller().end.centre;
+  const Vec2 u = p.increment(c, x);
+  const Vec2 d = p.from_centre(c, u);
   const Real rho = d.norm();
   const Vec2 n = d / rho;
   s.gap = rho - p.roller().radius;
-  s.slip = p.slip(c, x);
+  s.slip = p.slip_for(c, u);
   if (block) block->setZero();
   if (frozen ? frozen->status == ContactStatus::Open : s.gap >= 0.0) return s;  // open: no force
   s.normal_force = -k.normal * s.gap;
@@ -97,8 +98,7 @@ void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
     const Real floor_i = 10.0 * std::numeric_limits<Real>::epsilon() * k[i].normal *
                          (p.position(c, x) - p.roller().end.centre).norm();
     floor2 += floor_i * floor_i;
-    const Vec2 n = p.normal(c, x);
-    const Vec2 f = s.normal_force * n + s.tangential_force * c.tangent;
+    const Vec2 f = contact_force(s.normal_force, s.tangential_force, p.normal(c, x), c.tangent);
     contact_norm2 += f.squaredNorm();
     if (s.status == ContactStatus::Slip && p.roller().friction > 0.0) e.symmetric = false;
     for (int a = 0; a < 2; ++a) {
@@ -286,7 +286,7 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
         r.factorizations = spent_factorizations;
         r.contact = natural.contact;
         r.residual = natural.residual.norm() / std::max(natural.scale, 1e-300);
-        r.stats["active_set_passes"] = pass;
+        r.stats.active_set_passes = pass;
         return r;
       }
       // Update; a slip that reverses its direction goes through stick first (otherwise two
@@ -305,7 +305,7 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
     BackendResult direct = newton_stage(problem, k_target, x, newton_.residual_tolerance);
     direct.iterations += spent;
     direct.factorizations += spent_factorizations;
-    direct.stats["penalty_stages"] = 1.0;
+    direct.stats.penalty_stages = 1;
     if (direct.converged() || target <= 10.0 * kFirstStageFactor) return direct;
     spent = direct.iterations;
     spent_factorizations = direct.factorizations;
@@ -325,7 +325,7 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
                                                       : std::max(1e-6, newton_.residual_tolerance));
     r.iterations += total.iterations;
     r.factorizations += total.factorizations;
-    r.stats["penalty_stages"] = static_cast<Real>(stage + 1);
+    r.stats.penalty_stages = stage + 1;
     total = std::move(r);
     if (!total.converged()) {
       total.message = fmt::format("stage {} of {} (penalty factor {:.3g}): {}", stage + 1, factors.size(),

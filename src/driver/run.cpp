@@ -129,10 +129,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     summary.iterations_total += res.iterations;
     summary.cuts_total += res.cuts;
     summary.max_penetration = std::max(summary.max_penetration, res.max_penetration);
-    auto stat = [&](const char* key) {
-      const auto it = res.last.stats.find(key);
-      return it == res.last.stats.end() ? 0.0 : it->second;
-    };
+    const BackendStats& stats = res.last.stats;
     Index n_contact = 0;
     for (const auto& c : contact_) n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
     const Index n_yielded = model_->n_yielded_last();  // before the monitor re-evaluates the strip
@@ -176,15 +173,15 @@ RunSummary Simulation::run(const RunOptions& options) {
     const Index not_checked = -1;
     solver_csv->add_row({static_cast<Index>(step), step * dt, static_cast<Index>(res.iterations), res.last.residual,
                          res.max_penetration, wall, static_cast<Index>(res.cuts), n_yielded,
-                         static_cast<Index>(res.factorizations), stat("complementarity"),
-                         stat("constraint_violation"), stat("fixed_point_iterations"), n_contact,
+                         static_cast<Index>(res.factorizations), stats.complementarity,
+                         stats.constraint_violation, static_cast<Real>(stats.fixed_point_iterations), n_contact,
                          scene_.output.monitor ? mono.n_not_pd : not_checked,
                          std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0,
                          scene_.output.monitor ? static_cast<Index>(kdef.positive_definite() ? 1 : 0) : not_checked,
                          scene_.output.monitor ? kdef.n_negative : not_checked,
                          std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0, kinetic_energy(),
-                         stat("suspension_passes"), stat("linearisations"), stat("nlp_solves"),
-                         stat("condensed_dofs"), stat("ipopt_time_s"), std::string(res.converged ? "converged" : "failed")});
+                         static_cast<Real>(res.last.suspension_passes), static_cast<Real>(stats.linearisations), static_cast<Real>(stats.nlp_solves),
+                         static_cast<Real>(stats.condensed_dofs), stats.ipopt_time_s, std::string(res.converged ? "converged" : "failed")});
     if (!res.converged) {
       summary.converged = false;
       summary.message = res.message;
@@ -231,7 +228,7 @@ RunSummary Simulation::run(const RunOptions& options) {
 
   nlohmann::json j;
   j["scene"] = scene_.name;
-  j["backend"] = scene_.roller ? scene_.contact.backend : "none";
+  j["backend"] = scene_.roller ? enum_name(scene_.contact.backend) : "none";
   j["ndof"] = model_->n_dofs();
   j["n_free_dofs"] = model_->dof_map().n_free();
   j["n_elements"] = model_->mesh().n_elements();

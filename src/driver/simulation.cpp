@@ -128,8 +128,8 @@ void Simulation::record_contact(const std::vector<ContactCandidate>& candidates,
     rec.contact = nc;
     rec.tributary_length = c.tributary_length;
     rec.element_size = c.element_size;
-    const Vec2 n = (rec.position - pose_.centre).normalized();
-    rec.force = nc.normal_force * n + nc.tangential_force * c.tangent;
+    rec.force = contact_force(nc.normal_force, nc.tangential_force, (rec.position - pose_.centre).normalized(),
+                              c.tangent);
     contact_.push_back(rec);
     if (nc.status != ContactStatus::Open) history_[c.node] = nc;
   }
@@ -178,7 +178,7 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     motion.start = pose_;
     motion.end = roller_pose(*scene_.roller, start_centre(), s_to);
     motion.friction = scene_.contact.friction;
-    if (scene_.contact.predictor == "arc") {
+    if (scene_.contact.predictor == IncrementPredictor::Arc) {
       // Thesis §4.2.3: nodes the extrapolated predictor puts inside the roller start on its
       // surface at the arc position (4.25) instead.
       apply_arc_predictor(candidate_nodes_, model_->current_coordinates(), model_->dof_map(), motion, predictor);
@@ -201,13 +201,15 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
           const ContactCandidate& c = candidates[i];
           const Vec2 xi = c.position + Vec2(uw(2 * c.node), uw(2 * c.node + 1));
           const Vec2 n = (xi - motion.end.centre).normalized();
-          fy -= (contact_result.contact[i].normal_force * n + contact_result.contact[i].tangential_force * c.tangent).y();
+          fy -= contact_force(contact_result.contact[i].normal_force, contact_result.contact[i].tangential_force, n,
+                              c.tangent)
+                    .y();
         }
         return fy;
       };
       const CouplingResult cr =
           couple_suspension(*suspension_, suspension_->deflection(), force_at, 1e-10 * motion.radius, 40);
-      inc.stats["suspension_passes"] = cr.iterations;
+      inc.suspension_passes = cr.iterations;
       if (!cr.converged) {
         inc.converged = false;
         inc.message = cr.message;
@@ -215,7 +217,7 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
       deflection = cr.deflection;
     }
     inc.max_penetration = contact_result.max_penetration;
-    inc.stats.insert(contact_result.stats.begin(), contact_result.stats.end());
+    inc.stats = contact_result.stats;
     if (inc.converged) u = energy.full_increment(contact_result.x);
   }
   if (!inc.converged) return inc;

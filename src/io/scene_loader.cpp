@@ -338,10 +338,10 @@ void read_contact(TomlSection& root, Scene& scene) {
   if (!s) return;
   if (!scene.roller) s->fail("backend", "a [contact] table needs a [roller]");
   ContactOptions& c = scene.contact;
-  c.backend = s->choice_or("backend", {"penalty", "ipopt"}, c.backend);
+  c.backend = s->enum_or("backend", c.backend);
   c.friction = s->real_or("friction", c.friction);
   c.candidates = s->string("candidates").value_or(c.candidates);
-  c.predictor = s->choice_or("predictor", {"extrapolate", "arc"}, c.predictor);
+  c.predictor = s->enum_or("predictor", c.predictor);
   if (auto p = s->table("penalty")) {
     c.penalty.factor = p->real_or("factor", c.penalty.factor);
     c.penalty.tangential_factor = p->real_or("tangential_factor", c.penalty.tangential_factor);
@@ -349,15 +349,15 @@ void read_contact(TomlSection& root, Scene& scene) {
   }
   if (auto p = s->table("ipopt")) {
     IpoptOptions& o = c.ipopt;
-    o.formulation = p->choice_or("formulation", {"condensed", "full"}, o.formulation);
+    o.formulation = p->enum_or("formulation", o.formulation);
     o.tol = p->real_or("tol", o.tol);
     o.max_iter = static_cast<int>(p->integer_or("max_iter", o.max_iter));
-    o.mu_strategy = p->choice_or("mu_strategy", {"adaptive", "monotone"}, o.mu_strategy);
+    o.mu_strategy = p->enum_or("mu_strategy", o.mu_strategy);
     o.print_level = static_cast<int>(p->integer_or("print_level", o.print_level));
     o.warm_start = p->boolean("warm_start").value_or(o.warm_start);
-    o.friction = p->choice_or("friction", {"split", "regularized"}, o.friction);
+    o.friction = p->enum_or("friction", o.friction);
     o.regularization = p->real_or("regularization", o.regularization);
-    o.fixed_point = p->choice_or("fixed_point", {"converge", "single"}, o.fixed_point);
+    o.fixed_point = p->enum_or("fixed_point", o.fixed_point);
     o.fixed_point_tol = p->real_or("fixed_point_tol", o.fixed_point_tol);
     o.fixed_point_max = static_cast<int>(p->integer_or("fixed_point_max", o.fixed_point_max));
     if (auto raw = p->table("options")) {

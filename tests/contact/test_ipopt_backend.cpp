@@ -88,16 +88,16 @@ RollerMotion roller_motion(Vec2 start, Vec2 end, Real radius, Real mu, Real dphi
 
 ContactOptions ipopt_options(const std::string& friction = "split", const std::string& formulation = "condensed") {
   ContactOptions o;
-  o.backend = "ipopt";
-  o.ipopt.friction = friction;
-  o.ipopt.formulation = formulation;
+  o.backend = ContactBackendKind::Ipopt;
+  o.ipopt.friction = parse_enum<IpoptFriction>(friction).value();
+  o.ipopt.formulation = parse_enum<IpoptFormulation>(formulation).value();
   return o;
 }
 
 // NLP solves of an increment: the full formulation solves one per fixed-point pass, the condensed
 // one per pass and linearisation.
 Real nlp_solves(const BackendResult& r) {
-  return r.stats.count("nlp_solves") ? r.stats.at("nlp_solves") : r.stats.at("fixed_point_iterations");
+  return r.stats.nlp_solves;
 }
 
 // Reactions: internal forces at the constrained dofs of the last strip evaluation.
@@ -271,18 +271,18 @@ TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium, F_
   INFO(r.brief_report());
   REQUIRE(r.converged());
   REQUIRE(r.contact.size() == inc.problem.candidates().size());
-  CHECK(r.stats.at("fixed_point_iterations") == 1);
-  CHECK(r.stats.count("nlp_variables") == 1);
+  CHECK(r.stats.fixed_point_iterations == 1);
+  CHECK(r.stats.nlp_variables > 0);
   if (formulation == "full") {
-    CHECK(r.stats.at("nlp_variables") == inc.problem.n_free());  // mu = 0: no friction variables
+    CHECK(r.stats.nlp_variables == inc.problem.n_free());  // mu = 0: no friction variables
   } else {
-    CHECK(r.stats.at("nlp_variables") == r.stats.at("condensed_dofs"));
-    CHECK(r.stats.at("nlp_variables") < 0.2 * inc.problem.n_free());  // the contact dofs only
-    CHECK(r.factorizations == r.stats.at("linearisations"));
+    CHECK(r.stats.nlp_variables == r.stats.condensed_dofs);
+    CHECK(r.stats.nlp_variables < 0.2 * inc.problem.n_free());  // the contact dofs only
+    CHECK(r.factorizations == r.stats.linearisations);
   }
-  CHECK(r.stats.at("constraint_violation") < 1e-8 * kRadius);
+  CHECK(r.stats.constraint_violation < 1e-8 * kRadius);
   CHECK(r.max_penetration < 1e-8 * kRadius);
-  CHECK(r.stats.at("complementarity") < ContactOptions().ipopt.tol);
+  CHECK(r.stats.complementarity < ContactOptions().ipopt.tol);
   CHECK(r.residual < 1e-8);
 
   // Sign of the multipliers: the roller pushes the nodes under it down (F_N > 0, n_y < 0).
@@ -342,8 +342,8 @@ TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gi
     REQUIRE(r.contact.size() == 41);
     // Full: every candidate; condensed: the working set (gap within 0.25 l_step = 0.025 mm of the
     // roller), empty here: the roller ends 0.1 mm above the strip.
-    if (formulation == "full") CHECK(r.stats.at("nlp_constraints") == 41);
-    else CHECK(r.stats.at("nlp_constraints") == 0);
+    if (formulation == "full") CHECK(r.stats.nlp_constraints == 41);
+    else CHECK(r.stats.nlp_constraints == 0);
     // Interior-point multipliers of inactive constraints are ~ barrier / gap, not exactly 0:
     // their complementarity F_N g is at Ipopt's tolerance (scaled by F_ref = E* |dc|), which
     // makes them ~1e-9 of the forces a 0.1 mm step could produce.
@@ -367,8 +367,8 @@ TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gi
     INFO(r.brief_report());
     REQUIRE(r.converged());
     CHECK(r.contact.empty());
-    CHECK(r.stats.at("nlp_constraints") == 0);
-    CHECK(r.stats.at("nlp_variables") == (formulation == "full" ? inc.problem.n_free() : 0));
+    CHECK(r.stats.nlp_constraints == 0);
+    CHECK(r.stats.nlp_variables == (formulation == "full" ? inc.problem.n_free() : 0));
     CHECK(r.x.lpNorm<Eigen::Infinity>() == 0.0);
   }
 }
@@ -445,8 +445,8 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     INFO(r.brief_report());
     REQUIRE(r.converged());
     CHECK(nlp_solves(r) >= 2);
-    CHECK(r.stats.at("fixed_point_iterations") <= o.ipopt.fixed_point_max);
-    CHECK(r.stats.at("constraint_violation") < 1e-8 * kRadius);
+    CHECK(r.stats.fixed_point_iterations <= o.ipopt.fixed_point_max);
+    CHECK(r.stats.constraint_violation < 1e-8 * kRadius);
     CHECK(r.residual < 1e-8);
     int n_slip = 0;
     check_coulomb(inc->problem, r, mu, o.ipopt.fixed_point_tol, dx, &n_slip);
@@ -476,11 +476,11 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
   SECTION("single pass (the thesis's explicit variant)") {
     auto inc = s.slide(dx);
     ContactOptions o = ipopt_options("split", formulation);
-    o.ipopt.fixed_point = "single";
+    o.ipopt.fixed_point = FixedPointRule::Single;
     const BackendResult r = IpoptBackend(o).solve(inc->problem, VecX::Zero(inc->problem.n_free()));
     INFO(r.brief_report());
     REQUIRE(r.converged());
-    CHECK(r.stats.at("fixed_point_iterations") == 1);
+    CHECK(r.stats.fixed_point_iterations == 1);
     // The friction bound comes from the guesses (the press's F_N), not from this step's F_N.
     for (std::size_t i = 0; i < r.contact.size(); ++i)
       CHECK(std::abs(r.contact[i].tangential_force) <=
@@ -517,6 +517,6 @@ TEST_CASE("ipopt: make_contact_backend builds the ipopt backend", "[ipopt]") {
   const auto backend = make_contact_backend(ipopt_options(), NewtonOptions{});
   CHECK(backend->name() == "ipopt");
   ContactOptions bad = ipopt_options();
-  bad.ipopt.friction = "exact";
+  bad.ipopt.tol = 2.0;  // outside (0, 1)
   CHECK_THROWS_AS(make_contact_backend(bad, NewtonOptions{}), InputError);
 }

@@ -11,7 +11,7 @@ TEST_CASE("thesis scenes Z1 and Z2 run end to end (ipopt, refine 1)", "[contact]
   for (const char* name : {"z1_outf05", "z1_outf10", "z2_infini", "z2_large"}) {
     SECTION(name) {
       const Simulation sim = test::run_scene(name);
-      CHECK(sim.scene().contact.backend == "ipopt");
+      CHECK(sim.scene().contact.backend == ContactBackendKind::Ipopt);
       int in_contact = 0;
       for (const auto& c : sim.contact()) {
         in_contact += c.contact.status != ContactStatus::Open ? 1 : 0;

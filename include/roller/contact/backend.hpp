@@ -2,7 +2,6 @@
 // Contact backends: solve one IncrementProblem (DESIGN "ContactBackend"). The non-virtual
 // solve() validates, times and checks the result (no NaN leaves a backend); the private
 // do_solve() is backend specific. Backends report failure; the driver decides to cut the step.
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +24,25 @@ struct NodeContact {
   ContactStatus status = ContactStatus::Open;
 };
 
+// What a backend measured in one increment: named fields, not a string map (the idea of Drake's
+// SolverDetails). A backend leaves the fields it does not measure at zero.
+struct BackendStats {
+  Real complementarity = 0.0;       // ipopt: max |F_N g| / F_ref
+  Real constraint_violation = 0.0;  // ipopt: max penetration of the constrained candidates [mm]
+  int fixed_point_iterations = 0;   // ipopt: friction passes (condensed: on the last linearisation)
+  int nlp_solves = 0;               // ipopt: NLP solves of the increment
+  int nlp_variables = 0;            // ipopt: size of the last NLP
+  int nlp_constraints = 0;
+  int linearisations = 0;           // ipopt, condensed formulation: linearisations of the strip
+  int condensed_dofs = 0;           // ipopt, condensed formulation: contact dofs of the last one
+  double ipopt_time_s = 0.0;        // ipopt: time inside Ipopt
+  bool acceptable_level = false;    // ipopt: Ipopt stopped at its acceptable level
+  bool condensed_fallback = false;  // ipopt: the full formulation solved what the condensed could not
+  int active_set_passes = 0;        // penalty: passes of the frozen-status Newton
+  int penalty_stages = 0;           // penalty: stages of the raised penalty
+  std::string brief() const;        // the non-zero fields, for messages
+};
+
 struct BackendResult {
   NewtonStatus status = NewtonStatus::Failure;
   std::string message;
@@ -35,8 +53,7 @@ struct BackendResult {
   Real residual = 0.0;              // relative equilibrium residual at the solution
   Real max_penetration = 0.0;       // max(0, -min gap) [mm]
   double wall_s = 0.0;
-  std::map<std::string, Real> stats;  // backend-specific: complementarity, constraint_violation,
-                                      // fixed_point_iterations, ...
+  BackendStats stats;
   bool converged() const { return status == NewtonStatus::Converged; }
   std::string brief_report() const;
 };

@@ -4,10 +4,56 @@
 #include <string>
 #include <vector>
 
+#include "roller/core/enum_names.hpp"
 #include "roller/core/types.hpp"
 #include "roller/solver/newton_options.hpp"
 
 namespace roller {
+
+enum class ContactBackendKind { Ipopt, Penalty };
+// Condensed: per linearisation of the strip, one MUMPS factorisation of K_eff condensed onto the
+// contact dofs, Ipopt on the small dense NLP (contact/ipopt_condensed.cpp; the default).
+// Full: Ipopt on the whole strip's nonlinear energy, every free dof an NLP variable.
+enum class IpoptFormulation { Condensed, Full };
+enum class MuStrategy { Adaptive, Monotone };  // Ipopt's barrier update
+// Split: v_T = s+ - s-, exact; Regularized: sqrt(v_T^2 + eps^2).
+enum class IpoptFriction { Split, Regularized };
+// Converge: Coulomb (the normal-force fixed point iterated); Single: one pass with the previous
+// increment's F_N (the thesis's explicit variant).
+enum class FixedPointRule { Converge, Single };
+// Start of each increment: the previous increment scaled, or then the thesis's arc rule (4.25).
+enum class IncrementPredictor { Extrapolate, Arc };
+
+template <>
+struct EnumNames<ContactBackendKind> {
+  static constexpr std::array<std::pair<ContactBackendKind, const char*>, 2> names{
+      {{ContactBackendKind::Ipopt, "ipopt"}, {ContactBackendKind::Penalty, "penalty"}}};
+};
+template <>
+struct EnumNames<IpoptFormulation> {
+  static constexpr std::array<std::pair<IpoptFormulation, const char*>, 2> names{
+      {{IpoptFormulation::Condensed, "condensed"}, {IpoptFormulation::Full, "full"}}};
+};
+template <>
+struct EnumNames<MuStrategy> {
+  static constexpr std::array<std::pair<MuStrategy, const char*>, 2> names{
+      {{MuStrategy::Adaptive, "adaptive"}, {MuStrategy::Monotone, "monotone"}}};
+};
+template <>
+struct EnumNames<IpoptFriction> {
+  static constexpr std::array<std::pair<IpoptFriction, const char*>, 2> names{
+      {{IpoptFriction::Split, "split"}, {IpoptFriction::Regularized, "regularized"}}};
+};
+template <>
+struct EnumNames<FixedPointRule> {
+  static constexpr std::array<std::pair<FixedPointRule, const char*>, 2> names{
+      {{FixedPointRule::Converge, "converge"}, {FixedPointRule::Single, "single"}}};
+};
+template <>
+struct EnumNames<IncrementPredictor> {
+  static constexpr std::array<std::pair<IncrementPredictor, const char*>, 2> names{
+      {{IncrementPredictor::Extrapolate, "extrapolate"}, {IncrementPredictor::Arc, "arc"}}};
+};
 
 struct PenaltyOptions {
   Real factor = 1e3;             // kappa_N = factor * E* * l_i / h_i  (per candidate)
@@ -25,18 +71,15 @@ struct RawIpoptOption {
 };
 
 struct IpoptOptions {
-  // "condensed": per linearisation of the strip, one MUMPS factorisation of K_eff condensed onto
-  // the contact dofs, Ipopt on the small dense NLP (contact/ipopt_condensed.cpp; the default).
-  // "full": Ipopt on the whole strip's nonlinear energy, every free dof an NLP variable.
-  std::string formulation = "condensed";
+  IpoptFormulation formulation = IpoptFormulation::Condensed;
   Real tol = 1e-9;               // Ipopt's tol on the scaled NLP
   int max_iter = 500;
-  std::string mu_strategy = "adaptive";  // "adaptive" | "monotone"
+  MuStrategy mu_strategy = MuStrategy::Adaptive;
   int print_level = 0;
   bool warm_start = false;
-  std::string friction = "split";        // "split" (v_T = s+ - s-, exact) | "regularized"
+  IpoptFriction friction = IpoptFriction::Split;
   Real regularization = 1e-8;            // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only
-  std::string fixed_point = "converge";  // "converge" (Coulomb) | "single" (thesis's explicit variant)
+  FixedPointRule fixed_point = FixedPointRule::Converge;
   Real fixed_point_tol = 1e-6;           // relative change of F_N that ends the fixed point (changes
                                          // below a pass's multiplier resolution end it too)
   int fixed_point_max = 30;
@@ -45,11 +88,10 @@ struct IpoptOptions {
 };
 
 struct ContactOptions {
-  std::string backend = "ipopt";  // "ipopt" (the main method) | "penalty"
+  ContactBackendKind backend = ContactBackendKind::Ipopt;  // ipopt: the main method
   Real friction = 0.0;              // Coulomb mu
   std::string candidates = "contact";  // node set of contact candidates
-  std::string predictor = "extrapolate";  // start of each increment: "extrapolate" (the previous
-                                          // increment scaled) | "arc" (then the thesis's arc rule (4.25))
+  IncrementPredictor predictor = IncrementPredictor::Extrapolate;
   PenaltyOptions penalty;
   IpoptOptions ipopt;
   bool is_valid(std::string* why) const;

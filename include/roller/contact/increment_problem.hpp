@@ -40,6 +40,11 @@ struct RollerMotion {
   Real dphi() const { return end.angle - start.angle; }
 };
 
+// The force of the roller on a strip node: F_N along the normal plus F_T along the tangent.
+inline Vec2 contact_force(Real normal_force, Real tangential_force, const Vec2& normal, const Vec2& tangent) {
+  return normal_force * normal + tangential_force * tangent;
+}
+
 class IncrementProblem {
  public:
   IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates,
@@ -59,12 +64,21 @@ class IncrementProblem {
   Real youngs_modulus() const { return youngs_modulus_; }
   Real plane_strain_modulus() const;  // E* = E / (1 - nu^2)
 
-  // Kinematics of candidate c at free values x (see the header comment).
+  // Kinematics of candidate c for a node increment u (see the header comment): the one place
+  // where gap, normal and slip are computed; the NLP formulations map their variables to u.
+  Vec2 from_centre(const ContactCandidate& c, const Vec2& u) const { return (c.position + u) - roller_.end.centre; }
+  Real gap_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).norm() - roller_.radius; }
+  Vec2 normal_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).normalized(); }
+  Real slip_for(const ContactCandidate& c, const Vec2& u) const {
+    return c.tangent.dot(u - roller_.dc()) - roller_.radius * roller_.dphi();
+  }
+
+  // The same at free values x.
   Vec2 increment(const ContactCandidate& c, const VecX& x) const;
   Vec2 position(const ContactCandidate& c, const VecX& x) const { return c.position + increment(c, x); }
-  Real gap(const ContactCandidate& c, const VecX& x) const;
-  Vec2 normal(const ContactCandidate& c, const VecX& x) const;
-  Real slip(const ContactCandidate& c, const VecX& x) const;
+  Real gap(const ContactCandidate& c, const VecX& x) const { return gap_for(c, increment(c, x)); }
+  Vec2 normal(const ContactCandidate& c, const VecX& x) const { return normal_for(c, increment(c, x)); }
+  Real slip(const ContactCandidate& c, const VecX& x) const { return slip_for(c, increment(c, x)); }
 
  private:
   IncrementEnergy& strip_;

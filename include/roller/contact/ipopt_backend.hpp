@@ -1,5 +1,5 @@
 #pragma once
-// The main backend (SPEC §1, §2.7): each increment is a nonlinear program solved by the
+// The main backend (docs/model.md, "Contact"): each increment is a nonlinear program solved by the
 // interior-point code Ipopt with MUMPS. Variables: free-dof increments (+ friction
 // auxiliaries); objective: the strip's incremental potential plus the friction dissipation;
 // constraints: the exact gaps g_i(u) >= 0. Contact forces are the constraint multipliers.

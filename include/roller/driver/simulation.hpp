@@ -91,7 +91,8 @@ class Simulation {
     int factorizations = 0;
     Real residual = 0.0;
     Real max_penetration = 0.0;
-    std::map<std::string, Real> stats;
+    BackendStats stats;         // of the last contact solve
+    int suspension_passes = 0;  // passes coupling the suspension with the contact
     std::string message;
   };
   Increment advance(Real s_from, Real s_to);

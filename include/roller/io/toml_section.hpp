@@ -10,6 +10,7 @@
 
 #include <toml++/toml.h>
 
+#include "roller/core/enum_names.hpp"
 #include "roller/core/types.hpp"
 
 namespace roller {
@@ -37,6 +38,14 @@ class TomlSection {
   // One of `choices`; the error lists them.
   std::string choice_or(const std::string& key, const std::vector<std::string>& choices,
                         const std::string& fallback);
+  // An option enum by its names (core/enum_names.hpp); the error lists them.
+  template <class E>
+  E enum_or(const std::string& key, E fallback) {
+    const auto value = string(key);
+    if (!value) return fallback;
+    if (const auto e = parse_enum<E>(*value)) return *e;
+    fail(key, "expected " + enum_choices<E>());
+  }
 
   // Throws InputError for the first key that was never read.
   void finish() const;

@@ -1,0 +1,103 @@
+#include "friction_passes.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <IpSolveStatistics.hpp>
+#include <fmt/format.h>
+
+#include "ipopt_common.hpp"
+
+namespace roller::ipopt_detail {
+
+NormalForceFixedPoint::NormalForceFixedPoint(const IncrementProblem& problem, const IpoptOptions& o, Real force_scale)
+    : o_(o), mu_(problem.roller().friction), force_scale_(force_scale) {
+  for (const auto& c : problem.candidates()) fbar_.push_back(std::max(c.normal_force_guess, 0.0));
+}
+
+Real NormalForceFixedPoint::force_tol() const {
+  Real fb = 0.0;
+  for (const Real f : fbar_) fb = std::max(fb, f);
+  return 1e-6 * std::max(force_scale_, fb);
+}
+
+bool NormalForceFixedPoint::update(const std::vector<Real>& normal) {
+  // Single: Fbar stays the previous increment's F_N (the thesis's explicit variant), also for
+  // the condensed formulation's later linearisations.
+  if (!iterated()) return true;
+  const Real tol = force_tol();
+  last_change_ = 0.0;
+  last_max_ = 0.0;
+  for (std::size_t i = 0; i < fbar_.size(); ++i) {
+    last_change_ = std::max(last_change_, std::abs(normal[i] - fbar_[i]));
+    last_max_ = std::max(last_max_, normal[i]);
+  }
+  if (previous_change_ < 1e300 && last_change_ > 0.5 * previous_change_) relaxation_ = 0.5;
+  previous_change_ = last_change_;
+  for (std::size_t i = 0; i < fbar_.size(); ++i)
+    fbar_[i] = std::max((1.0 - relaxation_) * fbar_[i] + relaxation_ * normal[i], 0.0);
+  return last_change_ <= std::max(o_.fixed_point_tol * last_max_, tol) || last_max_ <= 1e-6 * force_scale_;
+}
+
+std::string NormalForceFixedPoint::failure_message(int passes) const {
+  return fmt::format(
+      "the friction fixed point on the normal force did not converge in {} passes (contact.ipopt.fixed_point_max): "
+      "max |dF_N| = {:.3g} vs contact.ipopt.fixed_point_tol * max F_N = {:.3g}; use smaller steps, raise "
+      "contact.ipopt.fixed_point_max, or use contact.ipopt.fixed_point = \"single\"",
+      passes, last_change_, o_.fixed_point_tol * last_max_);
+}
+
+FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective& objective,
+                                     const IncrementProblem& problem, const std::vector<RowMap>& rows,
+                                     NormalForceFixedPoint& fixed_point, NlpStart start, int max_passes,
+                                     bool warm_first, const IpoptOptions& o) {
+  const std::size_t n_c = problem.candidates().size();
+  const Real mu = problem.roller().friction;
+  FrictionPasses out;
+  for (int pass = 1; pass <= max_passes; ++pass) {
+    const ContactRows contact(problem, rows, friction_terms(rows, fixed_point.fbar(), mu, fixed_point.force_tol(), o),
+                              objective.n());
+    // Pass 1 warm-starts only on request (its guesses may be poor); later passes always start
+    // from the previous pass's primal-dual solution, which is close.
+    set_warm_start(app, pass > 1 || warm_first);
+    Ipopt::SmartPtr<ContactTnlp> nlp = new ContactTnlp(objective, contact, start);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Ipopt::ApplicationReturnStatus status = app.OptimizeTNLP(GetRawPtr(nlp));
+    out.ipopt_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.passes = pass;
+    int iterations = 0;
+    if (IsValid(app.Statistics())) iterations = app.Statistics()->IterationCount();
+    out.iterations += iterations;
+    out.nlp_variables = contact.n_variables();
+    out.nlp_constraints = contact.n_constraints();
+    if (nlp->solution().finalized) out.last = nlp->solution();
+    if (status == Ipopt::Solved_To_Acceptable_Level) out.acceptable_level = true;
+    const StatusText st = map_status(status, iterations, o, objective.evaluation_error());
+    if (st.status != NewtonStatus::Converged || !nlp->solution().finalized) {
+      out.status = st.status == NewtonStatus::Converged ? NewtonStatus::Failure : st.status;
+      out.message = st.status == NewtonStatus::Converged ? "Ipopt returned no solution" : st.message;
+      return out;
+    }
+    out.normal.assign(n_c, 0.0);
+    out.tangential.assign(n_c, 0.0);
+    out.has_friction.assign(n_c, false);
+    out.fbar = fixed_point.fbar();
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      out.normal[rows[k].candidate] = out.last.forces.normal[k];
+      out.tangential[rows[k].candidate] = out.last.forces.tangential[k];
+    }
+    out.friction = contact.friction();
+    for (const int k : out.friction.rows) out.has_friction[rows[k].candidate] = true;
+    const bool done = fixed_point.update(out.normal);
+    if (done || !fixed_point.iterated()) {
+      out.fixed_point_converged = done;
+      break;
+    }
+    start.primal = out.last.z.head(objective.n());
+    start.guess = out.last.forces;
+  }
+  return out;
+}
+
+}  // namespace roller::ipopt_detail

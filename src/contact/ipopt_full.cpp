@@ -1,0 +1,217 @@
+#include "ipopt_full.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <stdexcept>
+
+#include <IpIpoptApplication.hpp>
+#include <IpJournalist.hpp>
+#include <fmt/format.h>
+
+#include "friction_passes.hpp"
+#include "ipopt_common.hpp"
+#include "roller/core/error.hpp"
+
+namespace roller::ipopt_detail {
+
+namespace {
+
+// Collects Ipopt's journal output (used by the derivative-checker hook).
+class StringJournal : public Ipopt::Journal {
+ public:
+  StringJournal(std::string* out, Ipopt::EJournalLevel level) : Ipopt::Journal("roller-string", level), out_(out) {}
+
+ protected:
+  void PrintImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* str) override { out_->append(str); }
+  void PrintfImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* format, va_list ap) override {
+    char buffer[4096];
+    std::vsnprintf(buffer, sizeof buffer, format, ap);
+    out_->append(buffer);
+  }
+  void FlushBufferImpl() override {}
+
+ private:
+  std::string* out_;
+};
+
+}  // namespace
+
+StripObjective::StripObjective(IncrementProblem& problem, const VecX& x0)
+    : problem_(problem), x_(VecX::Zero(problem.n_free())) {
+  VecX g;
+  SparseMatrix h;
+  problem.strip_energy(x0, &g, &h);
+  h.makeCompressed();
+  const int* outer = h.outerIndexPtr();
+  const int* inner = h.innerIndexPtr();
+  for (int k = 0; k < h.outerSize(); ++k)
+    for (int q = outer[k]; q < outer[k + 1]; ++q)
+      if (inner[q] >= k) {
+        slot_.push_back(q);
+        row_.push_back(inner[q]);
+        col_.push_back(k);
+      }
+  inner_.assign(inner, inner + h.nonZeros());
+  outer_.assign(outer, outer + h.outerSize() + 1);
+}
+
+bool StripObjective::update(const Real* d) {
+  if (cache_valid_ && std::equal(d, d + n(), x_.data())) return cache_ok_;
+  x_ = Eigen::Map<const VecX>(d, n());
+  cache_valid_ = true;
+  try {
+    energy_ = problem_.strip_energy(x_, &gradient_, nullptr);
+    cache_ok_ = std::isfinite(energy_) && gradient_.allFinite();
+    if (!cache_ok_) evaluation_error_ = "the strip energy or its gradient is not finite";
+  } catch (const NumericalError& error) {
+    evaluation_error_ = error.what();
+    cache_ok_ = false;
+  }
+  return cache_ok_;
+}
+
+bool StripObjective::value(const Real* d, Real& f) {
+  if (!update(d)) return false;
+  f = energy_;
+  return true;
+}
+
+bool StripObjective::gradient(const Real* d, Real* g) {
+  if (!update(d)) return false;
+  std::copy(gradient_.data(), gradient_.data() + n(), g);
+  return true;
+}
+
+void StripObjective::hessian_structure(int* row, int* col) const {
+  std::copy(row_.begin(), row_.end(), row);
+  std::copy(col_.begin(), col_.end(), col);
+}
+
+bool StripObjective::hessian_values(const Real* d, Real obj_factor, Real* values) {
+  if (obj_factor == 0.0) {
+    std::fill_n(values, slot_.size(), 0.0);
+    return true;
+  }
+  try {
+    problem_.strip_energy(Eigen::Map<const VecX>(d, n()), nullptr, &hessian_);
+  } catch (const NumericalError& error) {
+    evaluation_error_ = error.what();
+    return false;
+  }
+  const bool same_pattern = hessian_.isCompressed() && static_cast<std::size_t>(hessian_.nonZeros()) == inner_.size() &&
+                            std::equal(outer_.begin(), outer_.end(), hessian_.outerIndexPtr()) &&
+                            std::equal(inner_.begin(), inner_.end(), hessian_.innerIndexPtr());
+  if (!same_pattern)
+    throw std::logic_error("ipopt backend: the strip Hessian's sparsity pattern changed between evaluations");
+  const Real* h = hessian_.valuePtr();
+  for (std::size_t e = 0; e < slot_.size(); ++e) values[e] = obj_factor * h[slot_[e]];
+  return true;
+}
+
+std::vector<RowMap> full_rows(const IncrementProblem& problem) {
+  std::vector<RowMap> rows;
+  const auto& cands = problem.candidates();
+  for (std::size_t i = 0; i < cands.size(); ++i) {
+    const ContactCandidate& c = cands[i];
+    if (c.free_dof[0] < 0 && c.free_dof[1] < 0) continue;  // its gap cannot change: no row
+    RowMap r;
+    r.candidate = static_cast<int>(i);
+    for (int a = 0; a < 2; ++a) {
+      r.slot[a] = static_cast<int>(c.free_dof[a]);
+      r.base(a) = c.free_dof[a] >= 0 ? 0.0 : c.prescribed(a);
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+NlpStart full_start(const IncrementProblem& problem, const std::vector<RowMap>& rows, const VecX& x0) {
+  NlpStart start;
+  start.primal = x0;
+  for (const RowMap& r : rows) {
+    const ContactCandidate& c = problem.candidates()[r.candidate];
+    start.guess.normal.push_back(std::max(c.normal_force_guess, 0.0));
+    start.guess.tangential.push_back(c.tangential_force);
+  }
+  return start;
+}
+
+BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
+                         const FullHooks& hooks) {
+  const IpoptOptions& o = options.ipopt;
+  BackendResult result;
+  result.x = x0;
+  result.contact.assign(problem.candidates().size(), NodeContact{});
+
+  Scales scales;
+  std::unique_ptr<StripObjective> objective;
+  try {
+    objective = std::make_unique<StripObjective>(problem, x0);
+    scales = increment_scales(problem, x0);
+  } catch (const NumericalError& error) {
+    result.status = NewtonStatus::Failure;
+    result.message = fmt::format("ipopt backend: the strip cannot be evaluated at the start vector ({}); "
+                                 "use smaller steps", error.what());
+    return result;
+  }
+
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
+  if (hooks.derivative_test) {
+    set(*app, "derivative_test", std::string("second-order"));
+    set(*app, "derivative_test_print_all", std::string("no"));
+    set(*app, "derivative_test_perturbation", hooks.derivative_perturbation);
+    set(*app, "point_perturbation_radius", 0.0);  // check at x0 itself, not at a random point
+    set(*app, "max_iter", 0);
+  }
+  if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": never read ./ipopt.opt
+    result.status = NewtonStatus::Failure;
+    result.message = "ipopt backend: Ipopt failed to initialise";
+    return result;
+  }
+  if (hooks.journal) {
+    Ipopt::SmartPtr<Ipopt::Journal> j = new StringJournal(hooks.journal, Ipopt::J_WARNING);
+    app->Jnlst()->AddJournal(j);
+  }
+
+  NormalForceFixedPoint fixed_point(problem, o, scales.force);
+  const std::vector<RowMap> rows = full_rows(problem);
+  const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
+  const FrictionPasses passes = solve_friction_passes(*app, *objective, problem, rows, fixed_point,
+                                                      full_start(problem, rows, x0), max_passes, o.warm_start, o);
+  result.iterations = passes.iterations;
+  result.stats.fixed_point_iterations = passes.passes;
+  result.stats.nlp_solves = passes.passes;
+  result.stats.nlp_variables = passes.nlp_variables;
+  result.stats.nlp_constraints = passes.nlp_constraints;
+  result.stats.ipopt_time_s = passes.ipopt_time_s;
+  result.stats.acceptable_level = passes.acceptable_level;
+  if (passes.last.finalized) result.x = passes.last.z.head(problem.n_free());
+  if (hooks.derivative_test) {
+    result.status = NewtonStatus::NotConverged;
+    result.message = "derivative test only";
+    return result;
+  }
+  if (passes.status != NewtonStatus::Converged) {
+    result.status = passes.status;
+    result.message = passes.message;
+    if (problem.roller().friction > 0.0) result.message += fmt::format(" (friction fixed-point pass {})", passes.passes);
+    return result;
+  }
+  result.factorizations = result.iterations;  // one KKT factorisation per interior-point iteration
+  if (!report_increment(problem, result.x, passes.normal, passes.tangential, passes.fbar, passes.has_friction, scales,
+                        &result))
+    return result;
+  if (!passes.fixed_point_converged) {
+    result.status = NewtonStatus::NotConverged;
+    result.message = fixed_point.failure_message(passes.passes);
+    return result;
+  }
+  result.status = NewtonStatus::Converged;
+  result.message = fmt::format("Ipopt converged in {} iterations ({} fixed-point pass{})", result.iterations,
+                               passes.passes, passes.passes == 1 ? "" : "es");
+  return result;
+}
+
+}  // namespace roller::ipopt_detail
