@@ -76,9 +76,13 @@
 // recover from that) and is reported with the cause.
 #include "roller/contact/ipopt_backend.hpp"
 
+#include <cstdarg>
+#include <cstdio>
+#include <memory>
 #include <stdexcept>
 
 #include <IpIpoptApplication.hpp>
+#include <IpJournalist.hpp>
 #include <fmt/format.h>
 
 #include "friction_passes.hpp"
@@ -135,24 +139,97 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
 // the interface); tests/contact/test_ipopt_backend.cpp declares them itself.
 namespace ipopt_testing {
 
-// Runs Ipopt's derivative checker ("second-order") on the full formulation's NLP of the first
-// fixed-point pass at x0 (Fbar = the candidates' normal_force_guess) and returns its journal.
+namespace {
+
+// Collects Ipopt's journal output (the derivative checker's report).
+class StringJournal : public Ipopt::Journal {
+ public:
+  StringJournal(std::string* out, Ipopt::EJournalLevel level) : Ipopt::Journal("roller-string", level), out_(out) {}
+
+ protected:
+  void PrintImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* str) override { out_->append(str); }
+  void PrintfImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* format, va_list ap) override {
+    char buffer[4096];
+    std::vsnprintf(buffer, sizeof buffer, format, ap);
+    out_->append(buffer);
+  }
+  void FlushBufferImpl() override {}
+
+ private:
+  std::string* out_;
+};
+
+// The NLP of the first fixed-point pass at x0 (Fbar = the candidates' normal_force_guess) as the
+// backend builds it: for the full formulation every free dof a variable; for the condensed one
+// the first linearisation's working set and model.
+struct FirstPassNlp {
+  FirstPassNlp(IncrementProblem& problem, const VecX& x0, const ContactOptions& options)
+      : solver(MumpsSolver::Symmetry::Symmetric) {
+    VecX g;
+    SparseMatrix k;
+    problem.strip_energy(x0, &g, &k);
+    scales = increment_scales(problem, x0);
+    std::vector<RowMap> rows;
+    if (options.ipopt.formulation == IpoptFormulation::Full) {
+      objective = std::make_unique<StripObjective>(problem, x0);
+      rows = full_rows(problem);
+      start = full_start(problem, rows, x0);
+    } else {
+      if (!condense(problem, initial_working_set(problem, x0, scales.length), x0, g, k, solver, &condensation))
+        throw NumericalError("FirstPassNlp: the condensation failed: " + solver.message());
+      objective = std::make_unique<QuadraticModel>(condensation);
+      rows = condensation.rows;
+      start.primal = VecX::Zero(objective->n());
+      for (const RowMap& r : rows) {
+        start.guess.normal.push_back(std::max(problem.candidates()[r.candidate].normal_force_guess, 0.0));
+        start.guess.tangential.push_back(problem.candidates()[r.candidate].tangential_force);
+      }
+    }
+    const NormalForceFixedPoint fixed_point(problem, options.ipopt, scales.force);
+    contact = std::make_unique<ContactRows>(
+        problem, rows,
+        friction_terms(rows, fixed_point.fbar(), problem.roller().friction, fixed_point.force_tol(), options.ipopt),
+        objective->n());
+    tnlp = new ContactTnlp(*objective, *contact, start);
+  }
+  MumpsSolver solver;
+  Condensation condensation;
+  Scales scales;
+  std::unique_ptr<NlpObjective> objective;
+  std::unique_ptr<ContactRows> contact;
+  NlpStart start;
+  Ipopt::SmartPtr<ContactTnlp> tnlp;
+};
+
+}  // namespace
+
+// Runs Ipopt's derivative checker ("second-order") on the first pass's NLP at its start point
+// and returns its journal output.
 std::string derivative_checker_output(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
                                       double perturbation) {
+  FirstPassNlp nlp(problem, x0, options);
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(options.ipopt, nlp.scales);
+  set(*app, "derivative_test", std::string("second-order"));
+  set(*app, "derivative_test_print_all", std::string("no"));
+  set(*app, "derivative_test_perturbation", perturbation);
+  set(*app, "point_perturbation_radius", 0.0);  // check at the start point itself
+  set(*app, "max_iter", 0);
+  if (app->Initialize("") != Ipopt::Solve_Succeeded) throw std::logic_error("derivative_checker_output: Initialize");
   std::string out;
-  FullHooks hooks;
-  hooks.derivative_test = true;
-  hooks.derivative_perturbation = perturbation;
-  hooks.journal = &out;
-  solve_full(problem, x0, options, hooks);
+  Ipopt::SmartPtr<Ipopt::Journal> journal = new StringJournal(&out, Ipopt::J_WARNING);
+  app->Jnlst()->AddJournal(journal);
+  app->OptimizeTNLP(GetRawPtr(nlp.tnlp));
   return out;
 }
 
-// Dense evaluation of an NLP at z (all NLP variables; z of size 0 only returns the sizes):
-// objective f, its gradient, constraints, Jacobian, Hessian of the Lagrangian
-// obj_factor * f + lambda . g (both triangles filled).
-void evaluate_tnlp(ContactTnlp& nlp, const VecX& z, double obj_factor, const VecX& lambda, long* n_variables,
-                   long* n_constraints, double* f, VecX* grad_f, VecX* g, MatX* jacobian, MatX* hessian) {
+// Dense evaluation of the first pass's NLP at z (all NLP variables; z of size 0 only returns
+// the sizes): objective f, its gradient, constraints, Jacobian, Hessian of the Lagrangian
+// obj_factor * f + lambda . g (both triangles filled). The NLP is built at x0 = 0.
+void evaluate_nlp(IncrementProblem& problem, const ContactOptions& options, const VecX& z, double obj_factor,
+                  const VecX& lambda, long* n_variables, long* n_constraints, double* f, VecX* grad_f, VecX* g,
+                  MatX* jacobian, MatX* hessian) {
+  FirstPassNlp first(problem, VecX::Zero(problem.n_free()), options);
+  ContactTnlp& nlp = *first.tnlp;
   IIndex n, m, nnz_j, nnz_h;
   Ipopt::TNLP::IndexStyleEnum style;
   nlp.get_nlp_info(n, m, nnz_j, nnz_h, style);
@@ -183,23 +260,6 @@ void evaluate_tnlp(ContactTnlp& nlp, const VecX& z, double obj_factor, const Vec
     (*hessian)(hr[e], hc[e]) += hv[e];
     if (hr[e] != hc[e]) (*hessian)(hc[e], hr[e]) += hv[e];
   }
-}
-
-// The full formulation's NLP of the first pass (Fbar = the candidates' normal_force_guess).
-void evaluate_nlp(IncrementProblem& problem, const ContactOptions& options, const VecX& z, double obj_factor,
-                  const VecX& lambda, long* n_variables, long* n_constraints, double* f, VecX* grad_f, VecX* g,
-                  MatX* jacobian, MatX* hessian) {
-  const VecX x0 = VecX::Zero(problem.n_free());
-  StripObjective objective(problem, z.size() > 0 ? VecX(z.head(problem.n_free())) : x0);
-  const Scales scales = increment_scales(problem, x0);
-  const NormalForceFixedPoint fixed_point(problem, options.ipopt, scales.force);
-  const std::vector<RowMap> rows = full_rows(problem);
-  const ContactRows contact(
-      problem, rows, friction_terms(rows, fixed_point.fbar(), problem.roller().friction, fixed_point.force_tol(), options.ipopt),
-      objective.n());
-  const NlpStart start = full_start(problem, rows, x0);
-  ContactTnlp nlp(objective, contact, start);
-  evaluate_tnlp(nlp, z, obj_factor, lambda, n_variables, n_constraints, f, grad_f, g, jacobian, hessian);
 }
 
 }  // namespace ipopt_testing

@@ -68,43 +68,6 @@ constexpr int kMaxBacktracks = 12;
 // and spent 28 of its 35 s in Ipopt; with 0.25 l_step 236 candidates, 2.2 of 7.6 s, same result.
 constexpr Real kReach = 0.25;
 
-// The condensed model q_C(d_C) = gc.d_C + d_C.S.d_C/2 of one linearisation as the NLP's
-// objective; its dense lower triangle, row by row, holds the contact curvature too.
-class QuadraticModel : public NlpObjective {
- public:
-  QuadraticModel(const MatX& schur, const VecX& gradient) : schur_(schur), gradient_(gradient) {}
-  int n() const override { return static_cast<int>(gradient_.size()); }
-  bool value(const Real* d, Real& f) override {
-    const Eigen::Map<const VecX> dv(d, n());
-    f = gradient_.dot(dv) + 0.5 * dv.dot(schur_ * dv);
-    return true;
-  }
-  bool gradient(const Real* d, Real* g) override {
-    Eigen::Map<VecX>(g, n()) = gradient_ + schur_ * Eigen::Map<const VecX>(d, n());
-    return true;
-  }
-  int hessian_nnz() const override { return n() * (n() + 1) / 2; }
-  void hessian_structure(int* row, int* col) const override {
-    int e = 0;
-    for (int r = 0; r < n(); ++r)
-      for (int c = 0; c <= r; ++c, ++e) {
-        row[e] = r;
-        col[e] = c;
-      }
-  }
-  bool hessian_values(const Real* /*d*/, Real obj_factor, Real* values) override {
-    int e = 0;
-    for (int r = 0; r < n(); ++r)
-      for (int c = 0; c <= r; ++c, ++e) values[e] = obj_factor * schur_(r, c);
-    return true;
-  }
-  int hessian_position(int r, int c) const override { return r * (r + 1) / 2 + c; }
-
- private:
-  const MatX& schur_;
-  const VecX& gradient_;
-};
-
 // Candidates in the working set: a free dof and (gap at x within `reach`, or a normal force in
 // the previous increment, or already in).
 std::vector<int> working_set(const IncrementProblem& problem, const VecX& x, Real reach, const std::vector<int>& old) {
@@ -118,26 +81,6 @@ std::vector<int> working_set(const IncrementProblem& problem, const VecX& x, Rea
     if (in[i] || c.normal_force_guess > 0.0 || problem.gap(c, x) <= reach) out.push_back(static_cast<int>(i));
   }
   return out;
-}
-
-// The working candidates as NLP rows: their free dofs numbered in order (d_C), their increment at x.
-std::vector<RowMap> condensed_rows(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x,
-                                   std::vector<Index>* dofs) {
-  std::vector<RowMap> rows;
-  dofs->clear();
-  for (const int i : working) {
-    const ContactCandidate& c = problem.candidates()[i];
-    RowMap r;
-    r.candidate = i;
-    r.base = problem.increment(c, x);
-    for (int a = 0; a < 2; ++a)
-      if (c.free_dof[a] >= 0) {
-        r.slot[a] = static_cast<int>(dofs->size());
-        dofs->push_back(c.free_dof[a]);
-      }
-    rows.push_back(r);
-  }
-  return rows;
 }
 
 // Merit of a point: strip energy + friction (with the pass's weights) + nu * penetration.
@@ -161,6 +104,63 @@ CondensedOutcome formulation_failed(BackendResult result, NewtonStatus status, s
 }
 
 }  // namespace
+
+bool QuadraticModel::value(const Real* d, Real& f) {
+  const Eigen::Map<const VecX> dv(d, n());
+  f = c_.gradient.dot(dv) + 0.5 * dv.dot(c_.schur * dv);
+  return true;
+}
+
+bool QuadraticModel::gradient(const Real* d, Real* g) {
+  Eigen::Map<VecX>(g, n()) = c_.gradient + c_.schur * Eigen::Map<const VecX>(d, n());
+  return true;
+}
+
+void QuadraticModel::hessian_structure(int* row, int* col) const {
+  int e = 0;
+  for (int r = 0; r < n(); ++r)
+    for (int c = 0; c <= r; ++c, ++e) {
+      row[e] = r;
+      col[e] = c;
+    }
+}
+
+bool QuadraticModel::hessian_values(const Real* /*d*/, Real obj_factor, Real* values) {
+  int e = 0;
+  for (int r = 0; r < n(); ++r)
+    for (int c = 0; c <= r; ++c, ++e) values[e] = obj_factor * c_.schur(r, c);
+  return true;
+}
+
+std::vector<int> initial_working_set(const IncrementProblem& problem, const VecX& x0, Real length_scale) {
+  return working_set(problem, x0, kReach * length_scale, {});
+}
+
+bool condense(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x, const VecX& g,
+              const SparseMatrix& k, MumpsSolver& solver, Condensation* out) {
+  // The working candidates as NLP rows: their free dofs numbered in order (d_C), their increment at x.
+  out->rows.clear();
+  out->dofs.clear();
+  for (const int i : working) {
+    const ContactCandidate& c = problem.candidates()[i];
+    RowMap r;
+    r.candidate = i;
+    r.base = problem.increment(c, x);
+    for (int a = 0; a < 2; ++a)
+      if (c.free_dof[a] >= 0) {
+        r.slot[a] = static_cast<int>(out->dofs.size());
+        out->dofs.push_back(c.free_dof[a]);
+      }
+    out->rows.push_back(r);
+  }
+  if (!solver.factorize_with_schur(k, out->dofs, &out->schur)) return false;
+  const VecX y = solver.solve_interior(-g);
+  const VecX ky = k * y;
+  const auto m = static_cast<Index>(out->dofs.size());
+  out->gradient.resize(m);
+  for (Index s = 0; s < m; ++s) out->gradient(s) = g(out->dofs[s]) + ky(out->dofs[s]);
+  return true;
+}
 
 CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
                                  const LinearSolverOptions& linear) {
@@ -198,10 +198,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     tangential[i] = cands[i].tangential_force;
   }
   MumpsSolver solver(MumpsSolver::Symmetry::Symmetric, linear);
-  std::vector<int> working = working_set(problem, x, reach, {});
-  std::vector<Index> dofs;
-  MatX schur;
-  VecX gc;
+  std::vector<int> working = initial_working_set(problem, x, scales.length);
+  Condensation cond;
   const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
   int linearisations = 0, passes_last = 0;
   bool converged = false, fixed_point_converged = false;
@@ -210,19 +208,16 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   for (int outer = 1; outer <= kMaxLinearisations && !converged; ++outer) {
     linearisations = outer;
     // Condensation of K onto the working candidates' free dofs.
-    const std::vector<RowMap> rows = condensed_rows(problem, working, x, &dofs);
-    if (!solver.factorize_with_schur(k_eff, dofs, &schur))
+    if (!condense(problem, working, x, g, k_eff, solver, &cond))
       return formulation_failed(
           result, NewtonStatus::Failure,
           fmt::format("ipopt backend (condensed): the strip tangent cannot be factorised on its interior dofs ({}): "
                       "the strip is held against rigid-body motion only through contact",
                       solver.message()));
     ++result.factorizations;
-    const VecX y = solver.solve_interior(-g);
-    const VecX ky = k_eff * y;
+    const std::vector<RowMap>& rows = cond.rows;
+    const std::vector<Index>& dofs = cond.dofs;
     const auto m = static_cast<Index>(dofs.size());
-    gc.resize(m);
-    for (Index s = 0; s < m; ++s) gc(s) = g(dofs[s]) + ky(dofs[s]);
 
     // Friction fixed point on this linearisation (Tresca passes on the dense NLP). Far from
     // convergence one pass per linearisation suffices (Fbar follows the linearisations); the
@@ -244,7 +239,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
         start.guess.normal.push_back(normal[r.candidate]);
         start.guess.tangential.push_back(tangential[r.candidate]);
       }
-      QuadraticModel model(schur, gc);
+      QuadraticModel model(cond);
       const int passes_here = outer > 1 && model_error <= 1e-3 ? max_passes : 1;
       const FrictionPasses passes = solve_friction_passes(*app, model, problem, rows, fixed_point, std::move(start),
                                                           passes_here, outer > 1 && o.warm_start, o);
@@ -351,7 +346,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   result.x = x;
   result.stats.fixed_point_iterations = passes_last;  // Coulomb passes on the last linearisation
   result.stats.linearisations = linearisations;
-  result.stats.condensed_dofs = static_cast<int>(dofs.size());
+  result.stats.condensed_dofs = static_cast<int>(cond.dofs.size());
   if (!report_increment(problem, x, normal, tangential, fbar_used, has_friction, scales, &result))
     return {std::move(result), true};
   if (!converged) {

@@ -1,10 +1,50 @@
 #pragma once
 // The "condensed" formulation of the interior-point backend (contact.ipopt.formulation; the
 // default). See ipopt_condensed.cpp.
+#include <vector>
+
+#include "contact_tnlp.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/solver/linear_solver_options.hpp"
+#include "roller/solver/mumps_factorization.hpp"
 
 namespace roller::ipopt_detail {
+
+// One linearisation condensed onto the working candidates' free dofs d_C (ipopt_condensed.cpp,
+// header comment): the rows of the contact NLP, the free dof of each entry of d_C, the Schur
+// complement S and the condensed gradient gc.
+struct Condensation {
+  std::vector<RowMap> rows;
+  std::vector<Index> dofs;
+  MatX schur;
+  VecX gradient;
+};
+
+// Condenses the strip's gradient g and tangent k at x onto the working candidates; false when
+// the tangent cannot be factorised on the interior dofs (solver.message() says why). The solver
+// keeps the factors for the interior solves of the step.
+bool condense(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x, const VecX& g,
+              const SparseMatrix& k, MumpsSolver& solver, Condensation* out);
+
+// The condensed model q_C(d_C) = gc.d_C + d_C.S.d_C/2 as the NLP's objective; its dense lower
+// triangle, row by row, holds the contact curvature too.
+class QuadraticModel : public NlpObjective {
+ public:
+  explicit QuadraticModel(const Condensation& c) : c_(c) {}
+  int n() const override { return static_cast<int>(c_.gradient.size()); }
+  bool value(const Real* d, Real& f) override;
+  bool gradient(const Real* d, Real* g) override;
+  int hessian_nnz() const override { return n() * (n() + 1) / 2; }
+  void hessian_structure(int* row, int* col) const override;
+  bool hessian_values(const Real* d, Real obj_factor, Real* values) override;
+  int hessian_position(int r, int c) const override { return r * (r + 1) / 2 + c; }
+
+ private:
+  const Condensation& c_;
+};
+
+// The working set at the start of an increment (ipopt_condensed.cpp, header comment).
+std::vector<int> initial_working_set(const IncrementProblem& problem, const VecX& x0, Real length_scale);
 
 struct CondensedOutcome {
   BackendResult result;

@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <stdexcept>
 
 #include <IpIpoptApplication.hpp>
-#include <IpJournalist.hpp>
 #include <fmt/format.h>
 
 #include "friction_passes.hpp"
@@ -15,28 +12,6 @@
 #include "roller/core/error.hpp"
 
 namespace roller::ipopt_detail {
-
-namespace {
-
-// Collects Ipopt's journal output (used by the derivative-checker hook).
-class StringJournal : public Ipopt::Journal {
- public:
-  StringJournal(std::string* out, Ipopt::EJournalLevel level) : Ipopt::Journal("roller-string", level), out_(out) {}
-
- protected:
-  void PrintImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* str) override { out_->append(str); }
-  void PrintfImpl(Ipopt::EJournalCategory, Ipopt::EJournalLevel, const char* format, va_list ap) override {
-    char buffer[4096];
-    std::vsnprintf(buffer, sizeof buffer, format, ap);
-    out_->append(buffer);
-  }
-  void FlushBufferImpl() override {}
-
- private:
-  std::string* out_;
-};
-
-}  // namespace
 
 StripObjective::StripObjective(IncrementProblem& problem, const VecX& x0)
     : problem_(problem), x_(VecX::Zero(problem.n_free())) {
@@ -138,8 +113,7 @@ NlpStart full_start(const IncrementProblem& problem, const std::vector<RowMap>& 
   return start;
 }
 
-BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                         const FullHooks& hooks) {
+BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const ContactOptions& options) {
   const IpoptOptions& o = options.ipopt;
   BackendResult result;
   result.x = x0;
@@ -158,21 +132,10 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   }
 
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
-  if (hooks.derivative_test) {
-    set(*app, "derivative_test", std::string("second-order"));
-    set(*app, "derivative_test_print_all", std::string("no"));
-    set(*app, "derivative_test_perturbation", hooks.derivative_perturbation);
-    set(*app, "point_perturbation_radius", 0.0);  // check at x0 itself, not at a random point
-    set(*app, "max_iter", 0);
-  }
   if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": never read ./ipopt.opt
     result.status = NewtonStatus::Failure;
     result.message = "ipopt backend: Ipopt failed to initialise";
     return result;
-  }
-  if (hooks.journal) {
-    Ipopt::SmartPtr<Ipopt::Journal> j = new StringJournal(hooks.journal, Ipopt::J_WARNING);
-    app->Jnlst()->AddJournal(j);
   }
 
   NormalForceFixedPoint fixed_point(problem, o, scales.force);
@@ -188,11 +151,6 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   result.stats.ipopt_time_s = passes.ipopt_time_s;
   result.stats.acceptable_level = passes.acceptable_level;
   if (passes.last.finalized) result.x = passes.last.z.head(problem.n_free());
-  if (hooks.derivative_test) {
-    result.status = NewtonStatus::NotConverged;
-    result.message = "derivative test only";
-    return result;
-  }
   if (passes.status != NewtonStatus::Converged) {
     result.status = passes.status;
     result.message = passes.message;

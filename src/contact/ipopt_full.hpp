@@ -45,14 +45,6 @@ std::vector<RowMap> full_rows(const IncrementProblem& problem);
 // x0 and the candidates' previous forces.
 NlpStart full_start(const IncrementProblem& problem, const std::vector<RowMap>& rows, const VecX& x0);
 
-// Test hooks: Ipopt's derivative checker on the first pass at x0 instead of a solve.
-struct FullHooks {
-  bool derivative_test = false;
-  Real derivative_perturbation = 1e-8;
-  std::string* journal = nullptr;  // receives Ipopt's journal output
-};
-
-BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                         const FullHooks& hooks = {});
+BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const ContactOptions& options);
 
 }  // namespace roller::ipopt_detail

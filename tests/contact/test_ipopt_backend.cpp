@@ -151,10 +151,12 @@ MatX central_difference(const Fun& fun, const VecX& z, Real h) {
 }  // namespace
 
 TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their finite differences", "[ipopt]") {
+  const std::string formulation = GENERATE("full", "condensed");
   for (const std::string friction : {"none", "split", "regularized"}) {
     SECTION(friction) {
+      INFO("formulation " << formulation);
       SmallPressed s(2.1e5, friction == "none" ? 0.0 : 0.3);
-      ContactOptions o = ipopt_options(friction == "regularized" ? "regularized" : "split");
+      ContactOptions o = ipopt_options(friction == "regularized" ? "regularized" : "split", formulation);
       o.ipopt.regularization = 1e-2;  // resolvable by the difference step below
       IncrementProblem& p = s.inc.problem;
       long n = 0, m = 0;
@@ -162,29 +164,40 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
       VecX grad, g;
       MatX jac, hess;
       ipopt_testing::evaluate_nlp(p, o, VecX(), 1.0, VecX(), &n, &m, &f, &grad, &g, &jac, &hess);
-      const Index n_active = static_cast<Index>(p.candidates().size());
       const Index n_friction = friction == "split" ? 3 : 0;  // guesses on the nodes at x = 3, 4, 5
-      REQUIRE(m == n_active + n_friction);
-      REQUIRE(n == p.n_free() + 2 * n_friction);
+      const Index n_primal = n - 2 * n_friction;                // free dofs, or the condensed contact dofs
+      const Index n_rows = m - n_friction;
+      if (formulation == "full") {
+        REQUIRE(n_rows == static_cast<Index>(p.candidates().size()));
+        REQUIRE(n_primal == p.n_free());
+      } else {
+        // The working set: the candidates near the roller (those with guesses among them), each
+        // with its free dofs; a small part of the strip.
+        REQUIRE(n_rows >= 3);
+        REQUIRE(n_primal >= 2 * n_rows - 2);
+        REQUIRE(n_primal < p.n_free() / 2);
+      }
 
       // A generic point: x, positive auxiliaries, multipliers ~ contact forces (negative).
       std::mt19937 rng(11);
       std::uniform_real_distribution<Real> u(0.1, 1.0);
       VecX z(n);
-      z.head(p.n_free()) = s.x;
-      for (Index k = p.n_free(); k < n; ++k) z(k) = 1e-3 * u(rng);
+      z.head(n_primal) = s.x.head(n_primal);
+      for (Index k = n_primal; k < n; ++k) z(k) = 1e-3 * u(rng);
       VecX lambda(m);
       for (Index k = 0; k < m; ++k) lambda(k) = -1e3 * u(rng);
       const Real sigma = 0.7;
       ipopt_testing::evaluate_nlp(p, o, z, sigma, lambda, &n, &m, &f, &grad, &g, &jac, &hess);
 
       // Constraint values are the problem's own kinematics (increment_problem.hpp).
-      const VecX xf = z.head(p.n_free());
-      for (Index k = 0; k < n_active; ++k) CHECK(g(k) == Approx(p.gap(p.candidates()[k], xf)).margin(1e-14));
-      for (Index j = 0; j < n_friction; ++j) {
-        const auto& c = p.candidates()[3 + j];  // friction candidates are the ones with guesses
-        REQUIRE(c.normal_force_guess > 0.0);
-        CHECK(g(n_active + j) == Approx(p.slip(c, xf) - z(p.n_free() + j) + z(p.n_free() + n_friction + j)).margin(1e-14));
+      if (formulation == "full") {
+        const VecX xf = z.head(p.n_free());
+        for (Index k = 0; k < n_rows; ++k) CHECK(g(k) == Approx(p.gap(p.candidates()[k], xf)).margin(1e-14));
+        for (Index j = 0; j < n_friction; ++j) {
+          const auto& c = p.candidates()[3 + j];  // friction candidates are the ones with guesses
+          REQUIRE(c.normal_force_guess > 0.0);
+          CHECK(g(n_rows + j) == Approx(p.slip(c, xf) - z(p.n_free() + j) + z(p.n_free() + n_friction + j)).margin(1e-14));
+        }
       }
 
       auto objective = [&](const VecX& zz) {
@@ -231,14 +244,16 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
 }
 
 TEST_CASE("ipopt derivative checker (second order) reports no errors, with and without friction", "[ipopt]") {
+  const std::string formulation = GENERATE("full", "condensed");
   // Ipopt's checker uses forward differences with a relative tolerance floored at an absolute
   // 1 (|exact - approx| / max(|approx|, 1) < 1e-4): its truncation error h K / 2 must stay below
   // 1e-4, so the strip is soft here (E = 2.1e3: K ~ 4e3 N/mm/mm). The stiff strip is covered by
   // the central-difference test above.
   for (const std::string friction : {"none", "split", "regularized"}) {
     SECTION(friction) {
+      INFO("formulation " << formulation);
       SmallPressed s(2.1e3, friction == "none" ? 0.0 : 0.3);
-      ContactOptions o = ipopt_options(friction == "regularized" ? "regularized" : "split");
+      ContactOptions o = ipopt_options(friction == "regularized" ? "regularized" : "split", formulation);
       o.ipopt.regularization = 1e-2;
       const std::string out = ipopt_testing::derivative_checker_output(s.inc.problem, s.x, o, 1e-8);
       INFO(out);
