@@ -1,8 +1,17 @@
 #!/usr/bin/env bash
 # Quick start 2: install dependencies, build, run every test through CTest.
-# Extra arguments go to ctest (e.g. -L fast, -R mesh).
+# Options: --fast (only the tests labelled fast, ~1 min), --slow (only the slow ones); other
+# arguments go to ctest (e.g. -R mesh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+ctest_args=()
+for a in "$@"; do
+  case "$a" in
+    --fast) ctest_args+=(-L fast) ;;
+    --slow) ctest_args+=(-L slow) ;;
+    *) ctest_args+=("$a") ;;
+  esac
+done
 bash scripts/install-deps.sh
 bash scripts/build.sh
-ctest --test-dir build --output-on-failure -j "$(nproc)" "$@"
+ctest --test-dir build --output-on-failure -j "$(nproc)" "${ctest_args[@]}"

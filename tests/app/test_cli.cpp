@@ -94,7 +94,7 @@ TEST_CASE("roller run: a step that cannot converge stops the run with code 1, co
   fs::remove_all(out);
 }
 
-TEST_CASE("roller run --resume continues a shortened run to the same results as an uninterrupted one", "[app][restart]") {
+TEST_CASE("roller run --resume continues a shortened run to the same results as an uninterrupted one", "[app][restart][slow]") {
   // Z4 has strip inertia and a suspended roller: the Houbolt histories must survive the break.
   const fs::path whole = fs::temp_directory_path() / ("roller_cli_whole_" + std::to_string(::getpid()));
   const fs::path split = fs::temp_directory_path() / ("roller_cli_split_" + std::to_string(::getpid()));

@@ -22,7 +22,7 @@ HertzComparison hertz_errors(const std::string& scene, int refine) {
 
 }  // namespace
 
-TEST_CASE("Hertz p0: a (1-2nu) coupling floor at nu = 0.3, converged to Hertz at nu = 0.49", "[contact][hertz]") {
+TEST_CASE("Hertz p0: a (1-2nu) coupling floor at nu = 0.3, converged to Hertz at nu = 0.49", "[contact][hertz][slow]") {
   const HertzComparison nu03_coarse = hertz_errors("hertz", 2), nu03_fine = hertz_errors("hertz", 4);
   const HertzComparison nu049_coarse = hertz_errors("hertz_nu049", 2), nu049_fine = hertz_errors("hertz_nu049", 4);
   INFO("p0 error nu = 0.3: " << nu03_coarse.peak_error << " -> " << nu03_fine.peak_error

@@ -26,7 +26,7 @@ Real suspension_imbalance(const Simulation& sim) {
 
 }  // namespace
 
-TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every step", "[dynamics][thesis]") {
+TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every step", "[dynamics][thesis][slow]") {
   for (const char* name : {"z4_v6_25", "z4_v25", "z4_v50"}) {
     INFO(name);
     Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml"));
@@ -48,7 +48,7 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
   }
 }
 
-TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "[dynamics][thesis]") {
+TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "[dynamics][thesis][slow]") {
   Simulation first(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z3_data01.toml"));
   const Real force_scale = 1e5;  // N/mm: the largest roller force of the pass (measured 9.6e4)
   bool touched_at_step_1 = false;
