@@ -35,10 +35,7 @@ TEST_CASE("Hertz: ipopt and penalty (factor 1e5) agree on force and pressure", "
   const Simulation pe = run("hertz", "penalty", "1e5");
   CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
   CHECK(pressure_difference(ip, pe) < 0.02);
-  for (const auto& c : ip.contact()) {
-    CHECK(c.contact.gap >= -1e-8 * ip.scene().roller->radius);  // constraint violation
-    CHECK(c.contact.normal_force >= 0.0);
-  }
+  for (const auto& c : ip.contact()) CHECK(c.contact.gap >= -1e-8 * ip.scene().roller->radius);  // constraint violation
 }
 
 TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip zones",
