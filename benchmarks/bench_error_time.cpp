@@ -1,4 +1,4 @@
-// Error against run time, penalty vs interior point (issue 7, docs/benchmarks.md): for each scene
+// Error against run time, penalty vs interior point (docs/benchmarks.md): for each scene
 // a sweep of mesh refinement (both backends at their default settings), of the penalty factor
 // and of the Ipopt tolerance, each run timed (median of 3 repeats when a run takes < 10 s) and
 // compared with a reference run (ipopt, one mesh level finer than the finest swept mesh, the

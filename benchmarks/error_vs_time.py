@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Error against run time, penalty vs interior point (issue 7; docs/benchmarks.md).
+"""Error against run time, penalty vs interior point (docs/benchmarks.md).
 
 usage: /usr/bin/python3 benchmarks/error_vs_time.py [--quick] [--build DIR] [--out DIR]
            [--scenes hertz,cattaneo,...] [--refine-max N] [--max-run-seconds S]

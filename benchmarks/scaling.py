@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scaling of one increment with the number of dofs, both backends (issue 7; docs/benchmarks.md).
+"""Scaling of one increment with the number of dofs, both backends (docs/benchmarks.md).
 
 usage: /usr/bin/python3 benchmarks/scaling.py [--build build] [--out DIR] [--min-dofs 0] [--max-dofs 1.4e6]
                                               [--backends ipopt,penalty] [--cases hertz,z1] [--timeout 3600]

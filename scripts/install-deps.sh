@@ -7,8 +7,8 @@ packages=(
   build-essential cmake pkg-config ninja-build
   coinor-libipopt-dev libmumps-seq-dev   # interior-point NLP solver + sparse direct solver
   libopenblas0-pthread                   # optimised BLAS/LAPACK for MUMPS (replaces the reference
-                                         # BLAS through Debian's alternatives: 1.8x faster Ipopt
-                                         # increments at 9e4 dofs, docs/benchmarks.md)
+                                         # BLAS through Debian's alternatives: faster Ipopt
+                                         # increments, docs/benchmarks.md, "BLAS under MUMPS")
   libeigen3-dev                          # dense/sparse linear algebra
   catch2                                 # unit tests (v2)
   libcli11-dev                           # command-line parsing

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""PNG maps of the positive definiteness of operator A (SPEC §3, thesis Fig. 3.1 a-l).
+"""PNG maps of the positive definiteness of operator A (thesis Fig. 3.1 a-l; docs/monotonicity.md).
 
 Usage: /usr/bin/python3 scripts/plot_monotonicity.py OUT_DIR
 Reads OUT_DIR/monotonicity.json, monotonicity_slices.csv and monotonicity_grid.csv written by

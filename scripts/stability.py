@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Stiff and extreme cases (issue 7, item 3): every case on both contact backends.
+"""Stiff and extreme cases (docs/stability.md): every case on both contact backends.
 
 usage: /usr/bin/python3 scripts/stability.py [--out out/stability] [--only CASE,CASE]
                                              [--timeout 600] [--roller ./build/roller]

@@ -219,7 +219,8 @@ StripMonotonicity check_strip(const StripModel& model, Real dt,
     case InitialStressTerm::Never: op.initial_stress = false; break;
   }
   require(options.mass_factor > 0.0, "check_strip: mass_factor must be > 0");
-  // The mass term c M/dt^2 acts as a density c rho in (3.15)-(3.18).
+  // The mass term c M/dt^2 acts as a density c rho in (3.15)-(3.18) (docs/model.md, Time step
+  // bound).
   const Real rho = options.mass_factor * material.density;
 
   StripMonotonicity out;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
+#include "roller/core/version.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "commands.hpp"
@@ -53,6 +54,11 @@ int run_scene(const RunArgs& args) {
 int main(int argc, char** argv) {
   CLI::App app{"roller: finite-element contact of a rigid roller with an elastic-plastic strip"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", [] {
+    const roller::BuildInfo b = roller::build_info();
+    return fmt::format("roller {} (commit {}), Ipopt {}, MUMPS {}", b.version, b.commit, b.ipopt_version,
+                       b.mumps_version);
+  });
 
   RunArgs run_args;
   CLI::App* run = app.add_subcommand("run", "run a scene file (see docs/scenes.md)");
@@ -73,7 +79,13 @@ int main(int argc, char** argv) {
       ->type_name("KEY=VALUE");
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help and --version end the parse with code 0; every other parse error is bad input,
+    // exit code 2 like a bad scene (CLI11's own codes would be 100-115).
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   try {
     if (*run) return run_scene(run_args);
     if (app.got_subcommand("monotonicity")) return monotonicity();

@@ -1,7 +1,8 @@
-// roller monotonicity: the thesis's study of operator A (SPEC §3, Fig. 3.1). Sweeps the 4-D grid
-// (sigma_pl, a, b, c), writes the PD flag and lambda_min over it, the twelve slices of Fig. 3.1 at
-// one yield stress (coarse = the grid's own points, fine = for smooth boundaries) and a JSON
-// summary, then renders the PNG maps with scripts/plot_monotonicity.py (/usr/bin/python3).
+// roller monotonicity: the thesis's study of operator A (Fig. 3.1; docs/monotonicity.md, "The
+// maps"). Sweeps the 4-D grid (sigma_pl, a, b, c), writes the PD flag and lambda_min over it, the
+// twelve slices of Fig. 3.1 at one yield stress (coarse = the grid's own points, fine = for smooth
+// boundaries) and a JSON summary, then renders the PNG maps with scripts/plot_monotonicity.py
+// (/usr/bin/python3).
 #include <chrono>
 #include <cmath>
 #include <cstdio>

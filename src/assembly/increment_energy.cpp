@@ -25,14 +25,25 @@ VecX IncrementEnergy::full_increment(const VecX& x) const {
   return u;
 }
 
-Real IncrementEnergy::evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
+ObjectiveValue IncrementEnergy::evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
+  VecX full_gradient;
+  const ObjectiveValue v = evaluate_all(x, full_gradient, hessian);
+  if (gradient) *gradient = model_.dof_map().restrict_to_free(full_gradient);
+  return v;
+}
+
+ObjectiveValue IncrementEnergy::evaluate_full(const VecX& x, VecX& full_gradient) {
+  return evaluate_all(x, full_gradient, nullptr);
+}
+
+ObjectiveValue IncrementEnergy::evaluate_all(const VecX& x, VecX& full_gradient, SparseMatrix* hessian) {
   const VecX u = full_increment(x);
-  Real energy = model_.evaluate(u, &full_gradient_, hessian);
-  full_gradient_ -= external_;
+  Real energy = model_.evaluate(u, &full_gradient, hessian).energy;
+  full_gradient -= external_;
   if (inertia_) {
     const VecX mu = *inertia_->mass * u;
     energy += 0.5 * inertia_->coefficient * u.dot(mu) + u.dot(inertia_->start_force);
-    full_gradient_ += inertia_->coefficient * mu + inertia_->start_force;
+    full_gradient += inertia_->coefficient * mu + inertia_->start_force;
     if (hessian) {
       // The strip's pattern covers the element connectivity, hence every entry of M.
       const SparseMatrix& m = *inertia_->mass_free;
@@ -41,14 +52,9 @@ Real IncrementEnergy::evaluate(const VecX& x, VecX* gradient, SparseMatrix* hess
           hessian->coeffRef(it.row(), it.col()) += inertia_->coefficient * it.value();
     }
   }
-  if (gradient) *gradient = model_.dof_map().restrict_to_free(full_gradient_);
-  return energy - external_.dot(u);
-}
-
-Real IncrementEnergy::force_scale(const VecX& /*x*/) {
   Real reactions = 0.0;
-  for (Index d : model_.dof_map().constrained_dofs()) reactions += full_gradient_(d) * full_gradient_(d);
-  return std::max({external_.norm(), std::sqrt(reactions), start_scale_});
+  for (Index d : model_.dof_map().constrained_dofs()) reactions += full_gradient(d) * full_gradient(d);
+  return {energy - external_.dot(u), std::max({external_.norm(), std::sqrt(reactions), start_scale_})};
 }
 
 }  // namespace roller

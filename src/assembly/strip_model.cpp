@@ -139,11 +139,11 @@ ElementVector StripModel::element_values(Index e, const VecX& u) const {
   return ue;
 }
 
-Real StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_free) {
+StripEvaluation StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_free) {
   return evaluate_states(u, gradient, hessian_free, nullptr);
 }
 
-Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
+StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
                                  std::vector<MaterialState>* trial) {
   if (!u.allFinite())
     throw NumericalError("the displacement increment contains NaN or Inf: the solver diverged; "
@@ -151,7 +151,7 @@ Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* he
   if (gradient) gradient->setZero(n_dofs());
   if (hessian_free) zero_hessian(*hessian_free);
   Real energy = 0.0;
-  n_yielded_ = 0;
+  Index n_yielded = 0;
   ElementInput in;
   in.type = mesh_.element_type;
   ElementOutput out;
@@ -168,7 +168,7 @@ Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* he
     energy += out.energy;
     for (int q = 0; q < n_points_; ++q) {
       if (trial) (*trial)[e * n_points_ + q] = out.points[q].trial;
-      n_yielded_ += out.points[q].yielded ? 1 : 0;
+      n_yielded += out.points[q].yielded ? 1 : 0;
     }
     if (gradient)
       for (std::size_t a = 0; a < element.size(); ++a) {
@@ -194,12 +194,12 @@ Real StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* he
   }
   if (!std::isfinite(energy))
     throw NumericalError("the strain energy is not finite: the increment is too large; use smaller steps");
-  return energy;
+  return {energy, n_yielded};
 }
 
-void StripModel::commit(const VecX& u) {
+Index StripModel::commit(const VecX& u) {
   std::vector<MaterialState> trial;
-  evaluate_states(u, nullptr, nullptr, &trial);  // the trial states at exactly this u
+  const Index n_yielded = evaluate_states(u, nullptr, nullptr, &trial).n_yielded;  // trial states at exactly this u
   const bool finite = options_.kinematics == Kinematics::Finite;
   // Everything that can fail (an element inverted in the new configuration) is computed before
   // any member changes, so a throw leaves the committed state as it was.
@@ -218,6 +218,7 @@ void StripModel::commit(const VecX& u) {
   committed_ = std::move(trial);
   total_displacement_ += u;
   if (finite) reference_ = std::move(reference);
+  return n_yielded;
 }
 
 void StripModel::restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states) {

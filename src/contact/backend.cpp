@@ -62,7 +62,7 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
     finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) &&
              std::isfinite(c.gap) && std::isfinite(c.slip);
   if (!finite && r.converged()) {
-    r.status = NewtonStatus::Failure;
+    r.status = ContactTermination::Failed;
     r.message = fmt::format("{} backend returned non-finite values; use smaller steps", name());
   }
   r.max_penetration = 0.0;

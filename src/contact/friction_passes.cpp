@@ -74,9 +74,9 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     if (nlp->solution().finalized) out.last = nlp->solution();
     if (status == Ipopt::Solved_To_Acceptable_Level) out.acceptable_level = true;
     const StatusText st = map_status(status, iterations, o, objective.evaluation_error());
-    if (st.status != NewtonStatus::Converged || !nlp->solution().finalized) {
-      out.status = st.status == NewtonStatus::Converged ? NewtonStatus::Failure : st.status;
-      out.message = st.status == NewtonStatus::Converged ? "Ipopt returned no solution" : st.message;
+    if (st.status != ContactTermination::Converged || !nlp->solution().finalized) {
+      out.status = st.status == ContactTermination::Converged ? ContactTermination::Failed : st.status;
+      out.message = st.status == ContactTermination::Converged ? "Ipopt returned no solution" : st.message;
       return out;
     }
     out.normal.assign(n_c, 0.0);

@@ -13,6 +13,7 @@
 #include <IpIpoptApplication.hpp>
 
 #include "contact_tnlp.hpp"
+#include "roller/contact/backend.hpp"
 #include "roller/solver/newton_options.hpp"
 
 namespace roller::ipopt_detail {
@@ -47,7 +48,7 @@ class NormalForceFixedPoint {
 
 // What the passes of one fixed point produced.
 struct FrictionPasses {
-  NewtonStatus status = NewtonStatus::Converged;  // not Converged: a pass's NLP failed (message)
+  ContactTermination status = ContactTermination::Converged;  // not Converged: a pass's NLP failed (message)
   std::string message;
   int passes = 0;               // passes run, the failed one included
   int iterations = 0;           // interior-point iterations of all passes

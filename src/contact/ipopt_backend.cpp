@@ -23,13 +23,14 @@
 //            - sum lambda_j t_j: the force of the roller on the strip node is F_N n + F_T t with
 //            F_N = -lambda_gap >= 0 and F_T = -lambda_slip (split; |F_T| <= mu Fbar from the
 //            bounds' multipliers) or F_T = -mu Fbar slip / sqrt(slip^2 + eps^2) (regularized).
-// Coulomb    Fixed point on the normal force (thesis §2.1.3; friction_passes.hpp): pass 1 takes
-//            Fbar from the candidates' normal_force_guess, pass k+1 from pass k's F_N, until it
-//            settles ("converge") or after one pass ("single", the thesis's explicit variant).
+// Coulomb    Fixed point on the normal force (docs/model.md, Friction fixed point;
+//            friction_passes.hpp): pass 1 takes Fbar from the candidates' normal_force_guess,
+//            pass k+1 from pass k's F_N, until it settles ("converge") or after one pass
+//            ("single", the thesis's explicit variant).
 //            Pass k+1 starts from pass k's solution. stats.fixed_point_iterations = passes.
 //
 // Scaling. Ipopt's tolerances are absolute in the units of the scaled NLP. The objective is
-// scaled by 1/F_ref with F_ref = max(IncrementProblem::force_scale(x0), E* l_step): the first
+// scaled by 1/F_ref with F_ref = max(strip force scale at x0 (IncrementEnergy::evaluate), E* l_step): the first
 // is the size of the loads/reactions/start-of-step internal forces, the second the nodal force
 // of a surface element (width ~ depth) displaced by the step's length scale
 //   l_step = max(|dc|, R |dphi|, |full increment at x0|_inf, max penetration at x0, 1e-9 R).
@@ -37,8 +38,8 @@
 // length tolerance in mm for gaps and complementarity (constraints are not scaled: mm).
 //
 // Ipopt options (beyond contact.ipopt.*): linear_solver mumps with MUMPS's default ordering (on
-// this strip matrix it beat SCOTCH, mumps_pivot_order 3, by ~25 % in CPU at 1.3e4 and 5.2e4
-// unknowns — the opposite of the membrane prototype in notes/ipopt-on-debian.md);
+// this strip matrix it beat SCOTCH, mumps_pivot_order 3, in CPU time (docs/benchmarks.md)
+// — the opposite of the membrane prototype in notes/ipopt-on-debian.md);
 // hessian_approximation exact; bound_relax_factor 0 and honor_original_bounds yes (no
 // constraint violation left by relaxed bounds); line_search_method penalty (an exact-penalty
 // merit function instead of the default filter: the curved gap leaves a constraint violation
@@ -111,7 +112,7 @@ IpoptBackend::IpoptBackend(ContactOptions options, LinearSolverOptions linear)
 BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) {
   if (problem.n_free() == 0) {
     BackendResult r;
-    r.status = NewtonStatus::Converged;
+    r.status = ContactTermination::Converged;
     r.x = x0;
     for (const auto& c : problem.candidates()) {
       NodeContact nc;
@@ -167,8 +168,7 @@ struct FirstPassNlp {
       : solver(MumpsSolver::Symmetry::Symmetric) {
     VecX g;
     SparseMatrix k;
-    problem.strip_energy(x0, &g, &k);
-    scales = increment_scales(problem, x0);
+    scales = increment_scales(problem, x0, problem.strip_energy(x0, &g, &k).force_scale);
     std::vector<RowMap> rows;
     if (options.ipopt.formulation == IpoptFormulation::Full) {
       objective = std::make_unique<StripObjective>(problem, x0);

@@ -47,7 +47,7 @@ void set_warm_start(Ipopt::IpoptApplication& app, bool on) {
 }
 
 
-Scales increment_scales(IncrementProblem& problem, const VecX& x0) {
+Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real strip_force_scale) {
   const RollerMotion& r = problem.roller();
   Real l = std::max(r.dc().norm(), r.radius * std::abs(r.dphi()));
   const VecX u = problem.full_increment(x0);
@@ -55,7 +55,7 @@ Scales increment_scales(IncrementProblem& problem, const VecX& x0) {
   for (const auto& c : problem.candidates()) l = std::max(l, -problem.gap(c, x0));
   Scales s;
   s.length = std::max(l, 1e-9 * r.radius);
-  s.force = std::max(problem.force_scale(x0), problem.plane_strain_modulus() * s.length);
+  s.force = std::max(strip_force_scale, problem.plane_strain_modulus() * s.length);
   return s;
 }
 
@@ -84,63 +84,63 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
 
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,
                       const std::string& evaluation_error) {
-  using S = NewtonStatus;
+  using S = ContactTermination;
   const std::string cause = evaluation_error.empty() ? "" : fmt::format(" (last evaluation error: {})", evaluation_error);
   switch (s) {
     case Ipopt::Solve_Succeeded:
     case Ipopt::Solved_To_Acceptable_Level:
       return {S::Converged, ""};
     case Ipopt::Maximum_Iterations_Exceeded:
-      return {S::NotConverged,
+      return {S::LimitReached,
               fmt::format("Ipopt stopped after {} iterations without reaching contact.ipopt.tol = {:g} "
                           "(contact.ipopt.max_iter = {}); use smaller steps or raise contact.ipopt.max_iter",
                           iterations, o.tol, o.max_iter)};
     case Ipopt::Maximum_CpuTime_Exceeded:
-      return {S::NotConverged, "Ipopt exceeded its CPU time limit; use smaller steps"};
+      return {S::LimitReached, "Ipopt exceeded its CPU time limit; use smaller steps"};
     case Ipopt::Restoration_Failed:
-      return {S::NotConverged,
+      return {S::LimitReached,
               fmt::format("Ipopt's feasibility restoration failed after {} iterations: the roller cannot be "
                           "placed without penetration from this start (or the strip cannot follow it){}; "
                           "use smaller steps", iterations, cause)};
     case Ipopt::Infeasible_Problem_Detected:
-      return {S::NotConverged,
+      return {S::LimitReached,
               "Ipopt found the increment locally infeasible: the roller cannot be placed without "
               "penetration (e.g. it presses a node whose dofs are prescribed, or the step is too large "
               "for the curved gap); use smaller steps"};
     case Ipopt::Search_Direction_Becomes_Too_Small:
-      return {S::NotConverged,
+      return {S::LimitReached,
               fmt::format("Ipopt's search direction became too small before reaching contact.ipopt.tol = {:g}: "
                           "the tolerance is below what round-off allows for this problem; raise "
                           "contact.ipopt.tol or use smaller steps", o.tol)};
     case Ipopt::Feasible_Point_Found:
-      return {S::NotConverged, "Ipopt found a feasible point but not an optimum; use smaller steps"};
+      return {S::LimitReached, "Ipopt found a feasible point but not an optimum; use smaller steps"};
     case Ipopt::Diverging_Iterates:
-      return {S::Failure,
+      return {S::Failed,
               "Ipopt's iterates diverged (|x| > 1e20): the strip is not held against rigid-body motion "
               "(check the boundary conditions) or the step is far too large"};
     case Ipopt::Error_In_Step_Computation:
-      return {S::Failure,
+      return {S::Failed,
               fmt::format("Ipopt could not solve its Newton system (singular KKT matrix after regularisation){}; "
                           "check the boundary conditions (rigid-body modes) or use smaller steps", cause)};
     case Ipopt::Invalid_Number_Detected:
-      return {S::Failure,
+      return {S::Failed,
               fmt::format("the strip's energy or its derivatives could not be evaluated at an Ipopt iterate{}; "
                           "use smaller steps", cause)};
     case Ipopt::Not_Enough_Degrees_Of_Freedom:
-      return {S::Failure, "Ipopt: more equality constraints than free variables (internal error; please report)"};
+      return {S::Failed, "Ipopt: more equality constraints than free variables (internal error; please report)"};
     case Ipopt::Invalid_Problem_Definition:
     case Ipopt::Invalid_Option:
-      return {S::Failure, "Ipopt rejected the problem definition or an option (internal error; please report)"};
+      return {S::Failed, "Ipopt rejected the problem definition or an option (internal error; please report)"};
     case Ipopt::Insufficient_Memory:
-      return {S::Failure, "Ipopt/MUMPS ran out of memory; use a coarser mesh"};
+      return {S::Failed, "Ipopt/MUMPS ran out of memory; use a coarser mesh"};
     case Ipopt::User_Requested_Stop:
-      return {S::Failure, "Ipopt stopped on request"};
+      return {S::Failed, "Ipopt stopped on request"};
     case Ipopt::Unrecoverable_Exception:
     case Ipopt::NonIpopt_Exception_Thrown:
     case Ipopt::Internal_Error:
       break;
   }
-  return {S::Failure, fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
+  return {S::Failed, fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
 }
 
 bool report_increment(IncrementProblem& problem, const VecX& x, const std::vector<Real>& normal,
@@ -152,10 +152,9 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
   VecX gradient;
   Real force_scale = scales.force;
   try {
-    problem.strip_energy(x, &gradient, nullptr);
-    force_scale = std::max(problem.force_scale(x), scales.force);
+    force_scale = std::max(problem.strip_energy(x, &gradient, nullptr).force_scale, scales.force);
   } catch (const NumericalError& error) {
-    result->status = NewtonStatus::Failure;
+    result->status = ContactTermination::Failed;
     result->message = fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", error.what());
     return false;
   }

@@ -27,14 +27,14 @@ struct Scales {
   Real force = 1.0;   // F_ref [N/mm]
   Real length = 1.0;  // l_step [mm]
 };
-Scales increment_scales(IncrementProblem& problem, const VecX& x0);
+Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real strip_force_scale);
 
 // An Ipopt application with roller's settings (ipopt_backend.cpp, header comment "Ipopt options") and the
 // pass-through options applied; not yet initialised.
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o, const Scales& scales);
 
 struct StatusText {
-  NewtonStatus status;
+  ContactTermination status;
   std::string message;
 };
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,

@@ -63,9 +63,10 @@ namespace {
 constexpr int kMaxLinearisations = 30;
 constexpr int kMaxBacktracks = 12;
 // Working-set reach in units of l_step (see the header comment). The dense NLP costs ~m^3 per
-// interior-point iteration: with 2 l_step Z1's first rolling increment at 1.1e5 dofs (a 600 mm
-// roller moving 4 mm over a nearly flat strip) took 571 candidates into the set for 47 in contact
-// and spent 28 of its 35 s in Ipopt; with 0.25 l_step 236 candidates, 2.2 of 7.6 s, same result.
+// interior-point iteration: with 2 l_step Z1's first rolling increment (a 600 mm roller moving
+// 4 mm over a nearly flat strip) took 571 candidates into the set for 47 in contact and spent
+// most of its time in Ipopt; with 0.25 l_step 236 candidates, a fraction of the time, same result
+// (cost of the increment: docs/benchmarks.md).
 constexpr Real kReach = 0.25;
 
 // Candidates in the working set: a free dof and (gap at x within `reach`, or a normal force in
@@ -97,7 +98,7 @@ Real merit(const IncrementProblem& problem, const std::vector<RowMap>& rows, con
   return m;
 }
 
-CondensedOutcome formulation_failed(BackendResult result, NewtonStatus status, std::string message) {
+CondensedOutcome formulation_failed(BackendResult result, ContactTermination status, std::string message) {
   result.status = status;
   result.message = std::move(message);
   return {std::move(result), true};
@@ -176,17 +177,18 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   SparseMatrix k_eff;
   Real energy = 0.0;
   try {
-    energy = problem.strip_energy(x, &g, &k_eff);
-    scales = increment_scales(problem, x0);  // after an evaluation: force_scale reads its reactions
+    const ObjectiveValue start = problem.strip_energy(x, &g, &k_eff);
+    energy = start.value;
+    scales = increment_scales(problem, x0, start.force_scale);
   } catch (const NumericalError& error) {
-    return formulation_failed(result, NewtonStatus::Failure,
+    return formulation_failed(result, ContactTermination::Failed,
                               fmt::format("ipopt backend: the strip cannot be evaluated at the start vector ({}); "
                                           "use smaller steps",
                                           error.what()));
   }
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
   if (app->Initialize("") != Ipopt::Solve_Succeeded)
-    return formulation_failed(result, NewtonStatus::Failure, "ipopt backend: Ipopt failed to initialise");
+    return formulation_failed(result, ContactTermination::Failed, "ipopt backend: Ipopt failed to initialise");
 
   const Real reach = kReach * scales.length;
   NormalForceFixedPoint fixed_point(problem, o, scales.force);
@@ -210,7 +212,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     // Condensation of K onto the working candidates' free dofs.
     if (!condense(problem, working, x, g, k_eff, solver, &cond))
       return formulation_failed(
-          result, NewtonStatus::Failure,
+          result, ContactTermination::Failed,
           fmt::format("ipopt backend (condensed): the strip tangent cannot be factorised on its interior dofs ({}): "
                       "the strip is held against rigid-body motion only through contact",
                       solver.message()));
@@ -247,7 +249,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       result.stats.nlp_solves += passes.passes;
       result.stats.ipopt_time_s += passes.ipopt_time_s;
       result.stats.acceptable_level = result.stats.acceptable_level || passes.acceptable_level;
-      if (passes.status != NewtonStatus::Converged) {
+      if (passes.status != ContactTermination::Converged) {
         // Ipopt's own failure on the small NLP: reported as such (the driver cuts the step), no
         // fall-back to the full formulation, which would meet the same NLP.
         result.status = passes.status;
@@ -296,7 +298,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       next_alpha = 0.5 * alpha;
       x_new = x + alpha * d;
       try {
-        energy_new = problem.strip_energy(x_new, &g_new, nullptr);
+        energy_new = problem.strip_energy(x_new, &g_new, nullptr).value;
       } catch (const NumericalError& error) {
         evaluation_error = error.what();
         continue;
@@ -312,7 +314,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       if (accepted) break;
     }
     if (!accepted)
-      return formulation_failed(result, NewtonStatus::NotConverged,
+      return formulation_failed(result, ContactTermination::LimitReached,
                                 fmt::format("ipopt backend (condensed): no descent along the step of linearisation "
                                             "{}{}; use smaller steps",
                                             outer, evaluation_error.empty() ? "" : " (" + evaluation_error + ")"));
@@ -334,9 +336,9 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     converged = alpha == 1.0 && !grew && fixed_point_converged && model_error <= o.tol;
     if (!converged) {
       try {
-        energy = problem.strip_energy(x, &g, &k_eff);
+        energy = problem.strip_energy(x, &g, &k_eff).value;
       } catch (const NumericalError& error) {
-        return formulation_failed(result, NewtonStatus::Failure,
+        return formulation_failed(result, ContactTermination::Failed,
                                   fmt::format("ipopt backend (condensed): the strip tangent cannot be evaluated ({}); "
                                               "use smaller steps",
                                               error.what()));
@@ -351,16 +353,16 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     return {std::move(result), true};
   if (!converged) {
     if (!fixed_point_converged) {
-      result.status = NewtonStatus::NotConverged;
+      result.status = ContactTermination::LimitReached;
       result.message = fixed_point.failure_message(result.stats.nlp_solves);
       return {std::move(result), false};
     }
-    return formulation_failed(result, NewtonStatus::NotConverged,
+    return formulation_failed(result, ContactTermination::LimitReached,
                               fmt::format("ipopt backend (condensed): {} linearisations without convergence (model "
                                           "error {:.3g} against contact.ipopt.tol = {:g}); use smaller steps",
                                           kMaxLinearisations, model_error, o.tol));
   }
-  result.status = NewtonStatus::Converged;
+  result.status = ContactTermination::Converged;
   const int nlp_solves = result.stats.nlp_solves;
   result.message = fmt::format("Ipopt converged: {} linearisation{}, {} interior-point iterations ({} pass{})",
                                linearisations, linearisations == 1 ? "" : "s", result.iterations, nlp_solves,

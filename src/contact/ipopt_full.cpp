@@ -17,7 +17,7 @@ StripObjective::StripObjective(IncrementProblem& problem, const VecX& x0)
     : problem_(problem), x_(VecX::Zero(problem.n_free())) {
   VecX g;
   SparseMatrix h;
-  problem.strip_energy(x0, &g, &h);
+  start_force_scale_ = problem.strip_energy(x0, &g, &h).force_scale;
   h.makeCompressed();
   const int* outer = h.outerIndexPtr();
   const int* inner = h.innerIndexPtr();
@@ -37,7 +37,7 @@ bool StripObjective::update(const Real* d) {
   x_ = Eigen::Map<const VecX>(d, n());
   cache_valid_ = true;
   try {
-    energy_ = problem_.strip_energy(x_, &gradient_, nullptr);
+    energy_ = problem_.strip_energy(x_, &gradient_, nullptr).value;
     cache_ok_ = std::isfinite(energy_) && gradient_.allFinite();
     if (!cache_ok_) evaluation_error_ = "the strip energy or its gradient is not finite";
   } catch (const NumericalError& error) {
@@ -123,9 +123,9 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   std::unique_ptr<StripObjective> objective;
   try {
     objective = std::make_unique<StripObjective>(problem, x0);
-    scales = increment_scales(problem, x0);
+    scales = increment_scales(problem, x0, objective->start_force_scale());
   } catch (const NumericalError& error) {
-    result.status = NewtonStatus::Failure;
+    result.status = ContactTermination::Failed;
     result.message = fmt::format("ipopt backend: the strip cannot be evaluated at the start vector ({}); "
                                  "use smaller steps", error.what());
     return result;
@@ -133,7 +133,7 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
 
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
   if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": never read ./ipopt.opt
-    result.status = NewtonStatus::Failure;
+    result.status = ContactTermination::Failed;
     result.message = "ipopt backend: Ipopt failed to initialise";
     return result;
   }
@@ -151,7 +151,7 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   result.stats.ipopt_time_s = passes.ipopt_time_s;
   result.stats.acceptable_level = passes.acceptable_level;
   if (passes.last.finalized) result.x = passes.last.z.head(problem.n_free());
-  if (passes.status != NewtonStatus::Converged) {
+  if (passes.status != ContactTermination::Converged) {
     result.status = passes.status;
     result.message = passes.message;
     if (problem.roller().friction > 0.0) result.message += fmt::format(" (friction fixed-point pass {})", passes.passes);
@@ -162,11 +162,11 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
                         &result))
     return result;
   if (!passes.fixed_point_converged) {
-    result.status = NewtonStatus::NotConverged;
+    result.status = ContactTermination::LimitReached;
     result.message = fixed_point.failure_message(passes.passes);
     return result;
   }
-  result.status = NewtonStatus::Converged;
+  result.status = ContactTermination::Converged;
   result.message = fmt::format("Ipopt converged in {} iterations ({} fixed-point pass{})", result.iterations,
                                passes.passes, passes.passes == 1 ? "" : "es");
   return result;

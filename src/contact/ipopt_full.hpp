@@ -25,6 +25,7 @@ class StripObjective : public NlpObjective {
   bool hessian_values(const Real* d, Real obj_factor, Real* values) override;
   int hessian_position(int /*r*/, int /*c*/) const override { return -1; }
   std::string evaluation_error() const override { return evaluation_error_; }
+  Real start_force_scale() const { return start_force_scale_; }  // the strip's at x0
 
  private:
   bool update(const Real* d);
@@ -38,6 +39,7 @@ class StripObjective : public NlpObjective {
   VecX gradient_;
   SparseMatrix hessian_;
   std::string evaluation_error_;
+  Real start_force_scale_ = 0.0;
 };
 
 // Every candidate with a free dof is a row; the primal variables are the free dofs.

@@ -85,7 +85,7 @@ struct Evaluation {
 // Residual r = dPi/dx - (contact forces) on the free dofs, and its Jacobian when asked.
 void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian,
               Evaluation& e, const std::vector<NodeContact>* frozen = nullptr) {
-  p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr);
+  const Real strip_scale = p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr).force_scale;
   e.contact.assign(p.candidates().size(), NodeContact{});
   e.symmetric = true;
   Real contact_norm2 = 0.0, floor2 = 0.0;
@@ -109,7 +109,7 @@ void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
         if (c.free_dof[b] >= 0) e.jacobian.coeffRef(c.free_dof[a], c.free_dof[b]) += block(a, b);
     }
   }
-  e.scale = std::max(p.force_scale(x), std::sqrt(contact_norm2));
+  e.scale = std::max(strip_scale, std::sqrt(contact_norm2));
   e.roundoff_floor = std::sqrt(floor2);
 }
 
@@ -186,7 +186,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       // noise (measured, docs/stability.md: Z1 at factor 1e12 was accepted at |r|/F ~ 1.8 with
       // the roller force 28 % off): stop with the cause instead of accepting the increment.
       if (result.residual > tolerance && result.residual > kMaxRoundoffResidual) {
-        result.status = NewtonStatus::NotConverged;
+        result.status = ContactTermination::LimitReached;
         result.message = fmt::format(
             "penalty Newton: the penalty is too stiff for double precision: round-off in the gaps "
             "alone leaves |r|/F = {:.2e} (> {:.0e}), the contact forces are not resolved; use a "
@@ -194,11 +194,11 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
             result.residual, kMaxRoundoffResidual, options_.penalty.factor);
         break;
       }
-      result.status = NewtonStatus::Converged;
+      result.status = ContactTermination::Converged;
       break;
     }
     if (it >= newton_.max_iterations) {
-      result.status = NewtonStatus::NotConverged;
+      result.status = ContactTermination::LimitReached;
       result.message = fmt::format(
           "penalty Newton: no convergence in {} iterations (|r|/F = {:.2e}); use smaller steps, "
           "a smaller contact.penalty.factor, or the ipopt backend",
@@ -228,7 +228,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       // ||r|| is not a reliable merit there. Take the full Newton step (a semismooth Newton
       // step), at most a few times in a row; the iteration limit bounds the rest.
       if (++full_steps > kMaxFullSteps) {
-        result.status = NewtonStatus::NotConverged;
+        result.status = ContactTermination::LimitReached;
         result.message = fmt::format(
             "penalty Newton: the line search found no decrease of the residual (|r|/F = {:.2e}); "
             "use smaller steps, a smaller contact.penalty.factor, or the ipopt backend",

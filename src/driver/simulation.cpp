@@ -12,23 +12,6 @@
 
 namespace roller {
 
-namespace {
-
-// M restricted to the free dofs (rows and columns in free numbering).
-SparseMatrix restrict_to_free(const SparseMatrix& m, const DofMap& dofs) {
-  std::vector<Triplet> t;
-  for (int k = 0; k < m.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(m, k); it; ++it) {
-      const Index i = dofs.free_index(it.row()), j = dofs.free_index(it.col());
-      if (i >= 0 && j >= 0) t.emplace_back(static_cast<int>(i), static_cast<int>(j), it.value());
-    }
-  SparseMatrix out(dofs.n_free(), dofs.n_free());
-  out.setFromTriplets(t.begin(), t.end());
-  return out;
-}
-
-}  // namespace
-
 Simulation::Simulation(Scene scene)
     : scene_(std::move(scene)),
       model_(std::make_unique<StripModel>(make_strip_mesh(scene_.mesh), scene_.material, scene_.element)),
@@ -42,25 +25,9 @@ Simulation::Simulation(Scene scene)
     pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
   }
   if (!scene_.initial_state.empty()) load_state(scene_.initial_state, /*strip_only=*/true);
-  start_dynamics();
-}
-
-void Simulation::start_dynamics() {
-  const Real dt = scene_.steps.dt;
-  if (scene_.dynamics.strip_inertia) {
-    // The Lagrangian mass rho0 dV0 is constant: built once on the mesh at the start.
-    mass_ = model_->mass_matrix(scene_.dynamics.lumped_mass);
-    mass_free_ = restrict_to_free(mass_, model_->dof_map());
-    // The strip starts at rest in its current configuration (a restarted strip included).
-    strip_step_history_ = HouboltHistory::at_rest(model_->total_displacement(), dt);
-    strip_history_ = strip_step_history_;
-    velocity_ = VecX::Zero(model_->n_dofs());
-    acceleration_ = VecX::Zero(model_->n_dofs());
-  }
-  if (scene_.roller && scene_.roller->suspension) {
-    suspension_step_ = Suspension(*scene_.roller->suspension, HouboltHistory::at_rest(VecX::Zero(1), dt));
-    suspension_ = suspension_step_;
-  }
+  // After the initial state: a restarted strip starts at rest in its new configuration.
+  dynamics_ = DynamicsState(*model_, scene_.dynamics.strip_inertia, scene_.dynamics.lumped_mass,
+                            scene_.roller ? scene_.roller->suspension : std::nullopt, scene_.steps.dt);
 }
 
 Vec2 Simulation::start_centre() const {
@@ -75,10 +42,7 @@ Vec2 Simulation::roller_force() const {
   return f;
 }
 
-Real Simulation::kinetic_energy() const {
-  if (velocity_.size() == 0) return 0.0;
-  return 0.5 * velocity_.dot(mass_ * velocity_);
-}
+RollerPose Simulation::prescribed_pose(Real s) const { return roller_pose(*scene_.roller, start_centre(), s); }
 
 std::vector<PressureSample> Simulation::pressure_profile() const {
   std::vector<PressureSample> out;
@@ -95,12 +59,7 @@ BackendResult Simulation::solve_contact(IncrementEnergy& energy, const VecX& pre
   const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
   candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor, motion.end.centre,
                                        motion.radius, reach);
-  for (auto& c : candidates) {
-    const auto h = history_.find(c.node);
-    if (h == history_.end()) continue;
-    c.tangential_force = h->second.tangential_force;
-    c.normal_force_guess = h->second.normal_force;
-  }
+  friction_.seed(candidates);
   IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus,
                            scene_.material.poisson_ratio);
   BackendResult result = backend_->solve(problem, x);
@@ -118,7 +77,6 @@ BackendResult Simulation::solve_contact(IncrementEnergy& energy, const VecX& pre
 void Simulation::record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result,
                                 const VecX& u) {
   contact_.clear();
-  history_.clear();
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const ContactCandidate& c = candidates[i];
     const NodeContact& nc = result.contact[i];
@@ -131,134 +89,129 @@ void Simulation::record_contact(const std::vector<ContactCandidate>& candidates,
     rec.force = contact_force(nc.normal_force, nc.tangential_force, (rec.position - pose_.centre).normalized(),
                               c.tangent);
     contact_.push_back(rec);
-    if (nc.status != ContactStatus::Open) history_[c.node] = nc;
   }
+  friction_.record(candidates, result.contact);
 }
 
 Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
   Increment inc;
-  const Real h = (s_to - s_from) * scene_.steps.dt;  // time of this increment
   // Prescribed increments: target total minus what the dof already has, so sub-increments
   // never accumulate drift.
   const VecX prescribed = loads_.prescribed_displacement(s_to) - model_->total_displacement();
-  std::optional<InertiaTerm> inertia;
-  if (scene_.dynamics.strip_inertia) {
-    if (strip_history_.dt() != h) strip_history_ = strip_history_.resampled(h);
-    inertia = InertiaTerm{&mass_, &mass_free_, strip_history_.acceleration_coefficient(),
-                          mass_ * (strip_history_.acceleration_coefficient() * strip_history_.u_n() +
-                                   strip_history_.acceleration_offset())};
+  IncrementEnergy energy(*model_, prescribed, loads_.external_force(s_to),
+                         dynamics_.begin_increment((s_to - s_from) * scene_.steps.dt));
+  RollerMotion motion;
+  if (scene_.roller) {
+    motion.radius = scene_.roller->radius;
+    motion.start = pose_;
+    motion.end = prescribed_pose(s_to);
+    motion.friction = scene_.contact.friction;
   }
-  if (suspension_ && suspension_->history().dt() != h)
-    suspension_->history() = suspension_->history().resampled(h);
-  IncrementEnergy energy(*model_, prescribed, loads_.external_force(s_to), std::move(inertia));
-  // Predictor: the previous converged increment scaled to this one's length (a linear
-  // extrapolation of the path), which starts Newton near the solution on smooth paths.
+  const Solution solution =
+      solve_increment(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &motion : nullptr), motion, inc);
+  if (inc.converged) commit(solution, motion, s_from, s_to, inc);
+  return inc;
+}
+
+VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) const {
+  // The previous converged increment scaled to this one's length (a linear extrapolation of the
+  // path) starts Newton near the solution on smooth paths.
   VecX predictor = VecX::Zero(model_->n_dofs());
   if (last_increment_.size() == model_->n_dofs() && last_length_ > 0.0)
     predictor = last_increment_ * ((s_to - s_from) / last_length_);
-  VecX x = model_->dof_map().restrict_to_free(predictor);
+  if (motion && scene_.contact.predictor == IncrementPredictor::Arc)
+    // Nodes the extrapolation puts inside the roller start on its surface at the arc position
+    // (4.25) instead (docs/model.md, Arc predictor).
+    apply_arc_predictor(candidate_nodes_, model_->current_coordinates(), model_->dof_map(), *motion, predictor);
+  return predictor;
+}
 
-  VecX u;
-  std::vector<ContactCandidate> candidates;
-  BackendResult contact_result;
-  RollerMotion motion;
-  Real deflection = 0.0;
-  auto take = [&inc](const auto& r) {
+Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor,
+                                                 RollerMotion& motion, Increment& inc) {
+  VecX x = model_->dof_map().restrict_to_free(predictor);
+  Solution solution;
+  if (!scene_.roller) {
+    const NewtonReport r = newton_.minimise(energy, x, scene_.newton);
+    inc.converged = r.converged();
+    inc.iterations = r.iterations;
+    inc.factorizations = r.factorizations;
+    inc.residual = r.residual;
+    inc.message = r.message;
+    solution.u = energy.full_increment(x);
+    return solution;
+  }
+  if (dynamics_.suspension()) {
+    solution = solve_suspended(energy, prescribed, predictor, motion, x, inc);
+  } else {
+    solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+    const BackendResult& r = solution.contact;
+    inc.converged = r.converged();
+    inc.iterations = r.iterations;
+    inc.factorizations = r.factorizations;
+    inc.residual = r.residual;
+    inc.message = r.message;
+  }
+  inc.max_penetration = solution.contact.max_penetration;
+  inc.stats = solution.contact.stats;
+  if (inc.converged) solution.u = energy.full_increment(solution.contact.x);
+  return solution;
+}
+
+Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const VecX& prescribed,
+                                                 const VecX& predictor, RollerMotion& motion, VecX& x,
+                                                 Increment& inc) {
+  // The roller hangs at anchor + w; w and the contact converge together (suspension.hpp).
+  Solution solution;
+  const Vec2 anchor = motion.end.centre;
+  auto force_at = [&](Real w) -> std::optional<Real> {
+    motion.end.centre = anchor + Vec2(0.0, w);
+    solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+    const BackendResult& r = solution.contact;
     inc.converged = r.converged();
     inc.iterations += r.iterations;
     inc.factorizations += r.factorizations;
     inc.residual = r.residual;
     inc.message = r.message;
+    if (!r.converged()) return std::nullopt;
+    const VecX uw = energy.full_increment(r.x);
+    Real fy = 0.0;
+    for (std::size_t i = 0; i < solution.candidates.size(); ++i) {
+      const ContactCandidate& c = solution.candidates[i];
+      const Vec2 xi = c.position + Vec2(uw(2 * c.node), uw(2 * c.node + 1));
+      const Vec2 n = (xi - motion.end.centre).normalized();
+      fy -= contact_force(r.contact[i].normal_force, r.contact[i].tangential_force, n, c.tangent).y();
+    }
+    return fy;
   };
-  if (!scene_.roller) {
-    take(minimise_newton(energy, x, scene_.newton));
-    u = energy.full_increment(x);
-  } else {
-    motion.radius = scene_.roller->radius;
-    motion.start = pose_;
-    motion.end = roller_pose(*scene_.roller, start_centre(), s_to);
-    motion.friction = scene_.contact.friction;
-    if (scene_.contact.predictor == IncrementPredictor::Arc) {
-      // Thesis §4.2.3: nodes the extrapolated predictor puts inside the roller start on its
-      // surface at the arc position (4.25) instead.
-      apply_arc_predictor(candidate_nodes_, model_->current_coordinates(), model_->dof_map(), motion, predictor);
-      x = model_->dof_map().restrict_to_free(predictor);
-    }
-    if (!suspension_) {
-      contact_result = solve_contact(energy, prescribed, predictor, motion, x, candidates);
-      take(contact_result);
-    } else {
-      // The roller hangs at anchor + w; w and the contact converge together (suspension.hpp).
-      const Vec2 anchor = motion.end.centre;
-      auto force_at = [&](Real w) -> std::optional<Real> {
-        motion.end.centre = anchor + Vec2(0.0, w);
-        contact_result = solve_contact(energy, prescribed, predictor, motion, x, candidates);
-        take(contact_result);
-        if (!contact_result.converged()) return std::nullopt;
-        const VecX uw = energy.full_increment(contact_result.x);
-        Real fy = 0.0;
-        for (std::size_t i = 0; i < candidates.size(); ++i) {
-          const ContactCandidate& c = candidates[i];
-          const Vec2 xi = c.position + Vec2(uw(2 * c.node), uw(2 * c.node + 1));
-          const Vec2 n = (xi - motion.end.centre).normalized();
-          fy -= contact_force(contact_result.contact[i].normal_force, contact_result.contact[i].tangential_force, n,
-                              c.tangent)
-                    .y();
-        }
-        return fy;
-      };
-      const CouplingResult cr =
-          couple_suspension(*suspension_, suspension_->deflection(), force_at, 1e-10 * motion.radius, 40);
-      inc.suspension_passes = cr.iterations;
-      if (!cr.converged) {
-        inc.converged = false;
-        inc.message = cr.message;
-      }
-      deflection = cr.deflection;
-    }
-    inc.max_penetration = contact_result.max_penetration;
-    inc.stats = contact_result.stats;
-    if (inc.converged) u = energy.full_increment(contact_result.x);
+  const Suspension& suspension = *dynamics_.suspension();
+  const CouplingResult cr =
+      couple_suspension(suspension, suspension.deflection(), force_at, 1e-10 * motion.radius, 40);
+  inc.suspension_passes = cr.iterations;
+  if (!cr.converged) {
+    inc.converged = false;
+    inc.message = cr.message;
   }
-  if (!inc.converged) return inc;
+  solution.deflection = cr.deflection;
+  return solution;
+}
 
+void Simulation::commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to,
+                        Increment& inc) {
   try {
-    model_->commit(u);
+    inc.n_yielded = model_->commit(solution.u);
   } catch (const NumericalError& e) {
     // A solver reported success at a state the strip cannot take (e.g. an inverted element):
     // treat it as a failed increment so the step is cut; nothing was committed.
     inc.converged = false;
     inc.message = fmt::format("the increment's solution is not admissible: {}", e.what());
-    return inc;
+    return;
   }
-  last_increment_ = u;
+  last_increment_ = solution.u;
   last_length_ = s_to - s_from;
-  if (scene_.dynamics.strip_inertia) strip_history_.advance(model_->total_displacement());
+  dynamics_.commit_increment(model_->total_displacement(), solution.deflection);
   if (scene_.roller) {
     pose_ = motion.end;
-    if (suspension_) suspension_->history().advance(VecX::Constant(1, deflection));
-    record_contact(candidates, contact_result, u);
-  }
-  return inc;
-}
-
-void Simulation::finish_step() {
-  ++steps_done_;
-  // Velocities and accelerations by Houbolt's formulas on the step-level history, which then
-  // advances by one step (the working histories return to the step spacing).
-  if (scene_.dynamics.strip_inertia) {
-    const VecX& u = model_->total_displacement();
-    velocity_ = strip_step_history_.velocity(u);
-    acceleration_ = strip_step_history_.acceleration(u);
-    strip_step_history_.advance(u);
-    strip_history_ = strip_step_history_;
-  }
-  if (suspension_) {
-    const Real w = suspension_->deflection();
-    suspension_velocity_ = suspension_step_->velocity(w);
-    suspension_acceleration_ = suspension_step_->acceleration(w);
-    suspension_step_->history().advance(VecX::Constant(1, w));
-    suspension_ = suspension_step_;
+    record_contact(solution.candidates, solution.contact, solution.u);
   }
 }
 
@@ -276,6 +229,7 @@ Simulation::StepResult Simulation::advance_step(int step) {
     if (inc.converged) {
       s += ds;
       res.max_penetration = std::max(res.max_penetration, inc.max_penetration);
+      res.n_yielded = inc.n_yielded;
       continue;
     }
     if (res.cuts >= scene_.steps.max_cuts) {
@@ -288,7 +242,8 @@ Simulation::StepResult Simulation::advance_step(int step) {
   }
   res.converged = true;
   roller_velocity_ = (pose_.centre - centre_start) / scene_.steps.dt;
-  finish_step();
+  ++steps_done_;
+  dynamics_.finish_step(model_->total_displacement());
   return res;
 }
 

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "roller/core/error.hpp"
+#include "roller/core/json_vectors.hpp"
 #include "roller/driver/simulation.hpp"
 
 namespace roller {
@@ -14,22 +15,6 @@ namespace {
 
 constexpr const char* kFormat = "roller-state";
 constexpr int kVersion = 1;
-
-std::vector<Real> to_list(const VecX& v) { return std::vector<Real>(v.data(), v.data() + v.size()); }
-
-VecX to_vec(const nlohmann::json& j) {
-  const auto v = j.get<std::vector<Real>>();
-  return Eigen::Map<const VecX>(v.data(), static_cast<Index>(v.size()));
-}
-
-nlohmann::json history_json(const HouboltHistory& h) {
-  return {{"dt", h.dt()}, {"u_n", to_list(h.u_n())}, {"u_nm1", to_list(h.u_nm1())}, {"u_nm2", to_list(h.u_nm2())}};
-}
-
-HouboltHistory history_from(const nlohmann::json& j) {
-  return HouboltHistory::from_values(to_vec(j.at("u_n")), to_vec(j.at("u_nm1")), to_vec(j.at("u_nm2")),
-                                     j.at("dt").get<Real>());
-}
 
 }  // namespace
 
@@ -54,16 +39,8 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["last_increment"] = to_list(last_increment_);
   j["last_length"] = last_length_;
   j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
-  nlohmann::json friction = nlohmann::json::array();
-  for (const auto& [node, c] : history_)
-    friction.push_back({node, c.normal_force, c.tangential_force, c.gap, c.slip, static_cast<int>(c.status)});
-  j["friction_history"] = friction;
-  if (!strip_step_history_.empty()) {
-    j["strip_history"] = history_json(strip_step_history_);
-    j["velocity"] = to_list(velocity_);
-    j["acceleration"] = to_list(acceleration_);
-  }
-  if (suspension_step_) j["suspension_history"] = history_json(suspension_step_->history());
+  j["friction_history"] = friction_.save();
+  dynamics_.save(j);
   // Written beside and renamed: a kill while writing leaves the previous file intact.
   const std::filesystem::path tmp = file.string() + ".tmp";
   {
@@ -115,31 +92,8 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
     const auto pose = j.at("pose").get<std::vector<Real>>();
     pose_.centre = Vec2(pose.at(0), pose.at(1));
     pose_.angle = pose.at(2);
-    history_.clear();
-    for (const auto& f : j.at("friction_history")) {
-      NodeContact c;
-      c.normal_force = f.at(1).get<Real>();
-      c.tangential_force = f.at(2).get<Real>();
-      c.gap = f.at(3).get<Real>();
-      c.slip = f.at(4).get<Real>();
-      c.status = static_cast<ContactStatus>(f.at(5).get<int>());
-      history_[f.at(0).get<Index>()] = c;
-    }
-    if (j.contains("strip_history") != scene_.dynamics.strip_inertia ||
-        j.contains("suspension_history") != suspension_step_.has_value())
-      throw InputError(fmt::format("{}: the saved state's dynamics (strip inertia, suspension) differ from the "
-                                   "scene's",
-                                   file.string()));
-    if (scene_.dynamics.strip_inertia) {
-      strip_step_history_ = history_from(j.at("strip_history"));
-      strip_history_ = strip_step_history_;
-      velocity_ = to_vec(j.at("velocity"));
-      acceleration_ = to_vec(j.at("acceleration"));
-    }
-    if (suspension_step_) {
-      suspension_step_->history() = history_from(j.at("suspension_history"));
-      suspension_ = suspension_step_;
-    }
+    friction_.load(j.at("friction_history"));
+    dynamics_.load(j, file.string());
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: damaged state file ({})", file.string(), e.what()));
   }

@@ -41,7 +41,8 @@ Real yield_stress_at(const MaterialParams& p, Real eq_plastic_strain) {
   return p.yield_stress + p.plastic_modulus() * eq_plastic_strain;
 }
 
-// int_{eps_p}^{eps_p + d} sigma_pl(a) da, exact for linear hardening (thesis (2.28)).
+// int_{eps_p}^{eps_p + d} sigma_pl(a) da, exact for linear hardening (thesis (2.28); docs/model.md,
+// J2 plasticity and work hardening).
 Real plastic_work_increment(const MaterialParams& p, Real eq_plastic_strain, Real d) {
   return p.yield_stress * d + p.plastic_modulus() * (eq_plastic_strain * d + 0.5 * d * d);
 }
@@ -142,7 +143,7 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
   return u;
 }
 
-// ---- Substep ("variable stiffness", thesis §4.2.2) -------------------------------------------
+// ---- Substep (the thesis's "variable stiffness"; docs/model.md, Sub-stepping) ----------------
 
 struct PointState {
   Vec4 stress;
@@ -261,12 +262,13 @@ Mat4 elastic_matrix(const MaterialParams& p) {
   return c;
 }
 
-// Thesis (2.29)-(2.30): C^EP = C - (C n)(C n)^T / (n.C.n + n_p.n) with n = s (as a strain-like
-// vector, C n = 2G s) and n_p = 2/3 sigma_pl dsigma_pl/dW_pl s = 2/3 H' s, so the denominator
-// is (2G + 2/3 H') s:s. The thesis's explicit forms (2.29 expanded, (3.4)) put s:s = 2/3
-// sigma_pl^2 (true on the surface), giving C - 2G beta s s^T with
+// Thesis (2.29)-(2.30) (docs/model.md, Sub-stepping): C^EP = C - (C n)(C n)^T / (n.C.n + n_p.n)
+// with n = s (as a strain-like vector, C n = 2G s) and n_p = 2/3 sigma_pl dsigma_pl/dW_pl s
+// = 2/3 H' s, so the denominator is (2G + 2/3 H') s:s. The thesis's explicit forms (2.29
+// expanded, (3.4)) put s:s = 2/3 sigma_pl^2 (true on the surface), giving C - 2G beta s s^T with
 // beta = 3/(2 sigma_pl^2) / (1 + H'/(3G)); that form is used so that the matrix depends on the
-// deviator and sigma_pl separately, as the monotonicity study of §3 needs.
+// deviator and sigma_pl separately, as the monotonicity study needs (docs/model.md, Pointwise
+// operator A).
 Mat4 plastic_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress) {
   require(yield_stress > 0.0, "plastic_tangent: yield_stress must be > 0 (it divides C^EP)");
   const Real g = p.shear_modulus();

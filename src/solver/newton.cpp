@@ -9,24 +9,20 @@
 
 namespace roller {
 
-namespace {
-
 // Solves H d = -g by LDL^T (solver/sparse_solver.hpp; indefinite allowed: geometric stiffness
 // under compression); when the result is not a descent direction the Hessian is shifted (Levenberg)
 // until it is.
-bool newton_direction(const SparseMatrix& h, const VecX& g, const LinearSolverOptions& linear, VecX& d,
-                      int& factorizations) {
-  // Persistent: MUMPS's symbolic analysis is redone only when the pattern changes.
-  thread_local SparseSolver solver(MumpsSolver::Symmetry::Symmetric);
-  solver.configure(linear);
+bool NewtonMinimiser::direction(const SparseMatrix& h, const VecX& g, const LinearSolverOptions& linear, VecX& d,
+                                int& factorizations) {
+  solver_->configure(linear);
   Real shift = 0.0;
   const Real diag_scale = h.diagonal().cwiseAbs().maxCoeff();
   for (int attempt = 0; attempt < 8; ++attempt) {
     SparseMatrix shifted = h;
     if (shift > 0.0) shifted.diagonal().array() += shift;
     ++factorizations;
-    if (solver.factorize(shifted)) {
-      d = solver.solve(-g);
+    if (solver_->factorize(shifted)) {
+      d = solver_->solve(-g);
       if (d.allFinite() && d.dot(g) < 0.0) return true;
     }
     shift = shift == 0.0 ? 1e-8 * diag_scale : shift * 100.0;
@@ -34,21 +30,24 @@ bool newton_direction(const SparseMatrix& h, const VecX& g, const LinearSolverOp
   return false;
 }
 
-}  // namespace
-
 NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOptions& options) {
+  NewtonMinimiser newton;
+  return newton.minimise(objective, x, options);
+}
+
+NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, const NewtonOptions& options) {
   NewtonReport report;
   VecX g, d, x_trial, g_trial;
   SparseMatrix h;
-  Real pi = 0.0;
+  ObjectiveValue value;
   try {
-    pi = objective.evaluate(x, &g, &h);
+    value = objective.evaluate(x, &g, &h);
   } catch (const NumericalError& e) {
     report.message = fmt::format("cannot evaluate the start of the increment: {}", e.what());
     return report;
   }
   for (int it = 0;; ++it) {
-    const Real scale = std::max(objective.force_scale(x), 1e-300);
+    const Real scale = std::max(value.force_scale, 1e-300);
     const Real gnorm = g.norm();
     report.residual_history.push_back(gnorm);
     report.residual = gnorm / scale;
@@ -70,7 +69,7 @@ NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOp
           it, report.residual, options.residual_tolerance);
       return report;
     }
-    if (!newton_direction(h, g, options.linear, d, report.factorizations)) {
+    if (!direction(h, g, options.linear, d, report.factorizations)) {
       report.message = "the tangent stiffness could not be factorised into a descent direction "
                        "(singular or strongly indefinite: a mechanism, missing supports, or loss "
                        "of monotonicity); check the boundary conditions or use smaller steps";
@@ -84,12 +83,11 @@ NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOp
     for (int ls = 0; ls < 30 && !accepted; ++ls) {
       x_trial = x + alpha * d;
       try {
-        const Real pi_trial = objective.evaluate(x_trial, &g_trial, nullptr);
-        const bool armijo = pi_trial <= pi + 1e-4 * alpha * slope;
+        const Real pi_trial = objective.evaluate(x_trial, &g_trial, nullptr).value;
+        const bool armijo = pi_trial <= value.value + 1e-4 * alpha * slope;
         const bool residual_drop = alpha == 1.0 && g_trial.norm() < 0.5 * gnorm &&
-                                   pi_trial <= pi + 1e-12 * std::abs(pi);
+                                   pi_trial <= value.value + 1e-12 * std::abs(value.value);
         accepted = !options.line_search || armijo || residual_drop;
-        if (accepted) pi = pi_trial;
       } catch (const NumericalError&) {
         accepted = false;  // e.g. an inverted element: shorten the step
       }
@@ -104,7 +102,7 @@ NewtonReport minimise_newton(NewtonObjective& objective, VecX& x, const NewtonOp
     }
     x = x_trial;
     try {
-      pi = objective.evaluate(x, &g, &h);
+      value = objective.evaluate(x, &g, &h);
     } catch (const NumericalError& e) {
       report.message = e.what();
       return report;

@@ -1,6 +1,6 @@
-// Operator A = C + T (SPEC §3, thesis ch. 3): the thesis's eigenvalue facts, the closed forms
-// derived in docs/monotonicity.md, the three positive-definiteness tests, the dynamic term and
-// its Courant-type bound (3.18), the strip-wide check and the sparse LDL^T test.
+// Operator A = C + T (thesis ch. 3; docs/model.md, Monotonicity): the thesis's eigenvalue facts,
+// the closed forms derived in docs/monotonicity.md, the three positive-definiteness tests, the
+// dynamic term and its Courant-type bound (3.18), the strip-wide check and the sparse LDL^T test.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -72,11 +72,22 @@ TEST_CASE("roller run: bad input exits with code 2 and a precise message", "[app
   CHECK(bad_set.exit_code == 2);
   CHECK_THAT(bad_set.output, Catch::Contains("material.nu = 0.6") && Catch::Contains("0 <= nu < 0.5"));
   const Run missing = run_roller("run problems/does_not_exist.toml");
-  CHECK(missing.exit_code != 0);
+  CHECK(missing.exit_code == 2);
   CHECK_THAT(missing.output, Catch::Contains("does_not_exist.toml"));
   const Run bad_flag = run_roller("run problems/block_compression.toml --refine 0");
-  CHECK(bad_flag.exit_code != 0);
+  CHECK(bad_flag.exit_code == 2);
   CHECK_THAT(bad_flag.output, Catch::Contains("--refine"));
+  const Run unknown_flag = run_roller("run problems/block_compression.toml --refinement 2");
+  CHECK(unknown_flag.exit_code == 2);
+  CHECK_THAT(unknown_flag.output, Catch::Contains("--refinement"));
+}
+
+TEST_CASE("roller --version names roller's version and commit and the Ipopt and MUMPS versions", "[app]") {
+  const Run r = run_roller("--version");
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::StartsWith("roller 0.") && Catch::Contains("commit ") &&
+                           Catch::Contains("Ipopt 3.") && Catch::Contains("MUMPS 5."));
 }
 
 TEST_CASE("roller run: a step that cannot converge stops the run with code 1, completed steps kept",

@@ -1,5 +1,6 @@
-// The thesis's contact strategy (4.25) as a predictor: geometry of the arc rule, and the same
-// converged answer as the default predictor (it only moves the solver's starting point).
+// The thesis's contact strategy (4.25) as a predictor (docs/model.md, Arc predictor): geometry of
+// the arc rule, and the same converged answer as the default predictor (it only moves the
+// solver's starting point).
 #include <catch2/catch.hpp>
 
 #include <cmath>

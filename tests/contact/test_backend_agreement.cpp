@@ -1,5 +1,6 @@
 // The two contact backends on the same scenes: the interior-point solution (exact constraints)
-// and the penalty solution at a high penalty factor agree (issue 4's acceptance).
+// and the penalty solution at a high penalty factor agree (docs/validation.md, Penalty backend on
+// the thesis scenes; agreement with ipopt).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -140,8 +141,8 @@ TEST_CASE("Z1 refine 2: ipopt and penalty agree step by step", "[contact][ipopt]
   check_lockstep_agreement("z1_outf05", {{"mesh.refine", "2"}});
 }
 
-// Issue 4's per-step checks (feasibility, complementarity, force agreement, stick/slip) on the
-// validation scenes too.
+// The same per-step checks (feasibility, complementarity, force agreement, stick/slip) on the
+// validation scenes too (docs/validation.md).
 TEST_CASE("Hertz and Cattaneo: ipopt and penalty agree step by step", "[contact][ipopt][agreement][slow]") {
   SECTION("hertz") { check_lockstep_agreement("hertz", {{"contact.penalty.factor", "1e5"}}); }
   SECTION("cattaneo") { check_lockstep_agreement("cattaneo", {}); }

@@ -1,6 +1,6 @@
-// Validation scene bar_impact (SPEC §5): a rigid striker at v hits the end of an elastic strip
-// held in uniaxial strain. Behind the dilatational front the contact stress is rho c_d v, and
-// the front reaches a section at distance d from the struck end at t = d / c_d.
+// Validation scene bar_impact (docs/validation.md, Dynamics): a rigid striker at v hits the end
+// of an elastic strip held in uniaxial strain. Behind the dilatational front the contact stress
+// is rho c_d v, and the front reaches a section at distance d from the struck end at t = d / c_d.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -1,7 +1,7 @@
-// Houbolt integration (SPEC §2.6): the single-dof oscillator integrated by the same history
-// code the strip and the suspension use must show exactly the scheme's own period elongation
-// and amplitude decay (roots of its characteristic polynomial), converge at second order, and
-// the starting procedure must reproduce a given initial velocity.
+// Houbolt integration (docs/model.md, Houbolt scheme): the single-dof oscillator integrated by
+// the same history code the strip and the suspension use must show exactly the scheme's own
+// period elongation and amplitude decay (roots of its characteristic polynomial), converge at
+// second order, and the starting procedure must reproduce a given initial velocity.
 #include <catch2/catch.hpp>
 
 #include <cmath>

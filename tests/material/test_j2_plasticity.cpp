@@ -401,7 +401,8 @@ TEST_CASE("plastic tangent is the thesis's explicit C^EP with beta, also off the
   CAPTURE(p.tangent_modulus, sigma_pl);
   const Real e = p.youngs_modulus, nu = p.poisson_ratio, et = p.tangent_modulus;
   const Vec4 s = stress - stress.head<3>().mean() * vec4(1.0, 1.0, 1.0, 0.0);
-  // Thesis §2.2: beta = 3/(2 sigma^2) / (1 + 2/3 (E E_T/(E - E_T)) (1 + nu)/E), on [xx, yy, xy].
+  // The thesis's (2.29) (docs/model.md, Sub-stepping):
+  //   beta = 3/(2 sigma^2) / (1 + 2/3 (E E_T/(E - E_T)) (1 + nu)/E), on [xx, yy, xy].
   const Real beta =
       1.5 / (sigma_pl * sigma_pl) / (1.0 + 2.0 / 3.0 * e * et / (e - et) * (1.0 + nu) / e);
   const int idx[3] = {0, 1, 3};

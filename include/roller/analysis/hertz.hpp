@@ -1,5 +1,6 @@
 #pragma once
-// Hertz line contact of a rigid cylinder on an elastic half-plane (SPEC §5):
+// Hertz line contact of a rigid cylinder on an elastic half-plane (docs/validation.md, Hertz line
+// contact):
 //   E* = E/(1 - nu^2),  a = sqrt(4 P R / (pi E*)),  p0 = 2P/(pi a),  p(x) = p0 sqrt(1 - x^2/a^2)
 // and the comparison of a computed pressure profile with it.
 #include <vector>

@@ -1,11 +1,13 @@
 #pragma once
-// Monotonicity of operator A (SPEC §3, thesis ch. 3): pointwise 4x4 matrix A = C + T at a
-// stress state, three positive-definiteness tests, the dynamic term and the Courant-type time
-// step bound (3.18), a check over every integration point of a strip, and the positive
-// definiteness of an assembled sparse operator. The derivations are in docs/monotonicity.md.
+// Monotonicity of operator A (thesis ch. 3; docs/model.md, Monotonicity): pointwise 4x4 matrix
+// A = C + T at a stress state, three positive-definiteness tests, the dynamic term and the
+// Courant-type time step bound (3.18), a check over every integration point of a strip, and the
+// positive definiteness of an assembled sparse operator. The derivations are in
+// docs/monotonicity.md.
 //
 // Pointwise form. With the displacement gradient ordered g = [u1,1  u2,2  u1,2  u2,1]^T the
-// bilinear form of the increment (SPEC §2.7) has the integrand g^T A g, A = C + T (3.3) [MPa]:
+// bilinear form of the increment (docs/model.md, Increment energy) has the integrand g^T A g,
+// A = C + T (3.3) [MPa]:
 //   C   the elastoplastic tangent as a quadratic form on gradients: with P g = [e11, e22, 2e12]
 //       (P = [1 0 0 0; 0 1 0 0; 0 0 1 1]) and C3 the in-plane block of the material tangent,
 //       g^T (P^T C3 P) g = e:C:e  ("gradient" layout, the integrand of K_L). Its shear block is
@@ -160,8 +162,8 @@ struct StripMonotonicityOptions {
   GradientLayout layout = GradientLayout::Thesis;
   InitialStressTerm initial_stress = InitialStressTerm::FollowKinematics;
   bool lumped_mass = false;  // the mass matrix the time integrator uses (sets h)
-  // c in K_eff = K + c M/dt^2: Houbolt's effective stiffness (4.17) has c = 2 (SPEC §2.6); the
-  // thesis's (3.1) writes c = 1.
+  // c in K_eff = K + c M/dt^2: Houbolt's effective stiffness (4.17) has c = 2 (docs/model.md,
+  // Time step bound); the thesis's (3.1) writes c = 1.
   Real mass_factor = 2.0;
 };
 

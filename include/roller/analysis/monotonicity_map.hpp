@@ -1,6 +1,7 @@
 #pragma once
-// The thesis's numerical study of operator A (SPEC §3, thesis §3.1, Fig. 3.1 a-l): positive
-// definiteness of A = C + T over the 4-D grid (sigma_pl, a, b, c) and on the twelve 2-D slices.
+// The thesis's numerical study of operator A (thesis Fig. 3.1 a-l; docs/monotonicity.md, "The
+// maps"): positive definiteness of A = C + T over the 4-D grid (sigma_pl, a, b, c) and on the
+// twelve 2-D slices.
 //
 // At a grid point the stress is built from (a, b, c) (t33 by OutOfPlaneStress), C is the
 // plastic branch C^E - 2G beta s s^T with beta = 3/(2 sigma_pl^2 (1 + H'/3G)) whatever the

@@ -10,6 +10,12 @@
 
 namespace roller {
 
+// What one evaluation of the strip computed besides its gradient and Hessian.
+struct StripEvaluation {
+  Real energy = 0.0;    // incremental strain energy
+  Index n_yielded = 0;  // integration points that yield in this increment
+};
+
 class StripModel {
  public:
   StripModel(Mesh mesh, MaterialParams material, ElementOptions options);
@@ -30,13 +36,14 @@ class StripModel {
   // prescribed increments). Optionally the gradient over all dofs (internal forces, including
   // reactions at constrained dofs) and the Hessian over the free dofs (full symmetric storage,
   // fixed pattern). Throws NumericalError on inverted elements or failed material updates.
-  Real evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_free);
+  StripEvaluation evaluate(const VecX& u, VecX* gradient, SparseMatrix* hessian_free);
 
   // Accepts the converged increment: material states become the trial states at `u` (stress
   // pushed forward for finite kinematics), the total displacement grows by u, and for finite
   // kinematics the reference configuration moves to the new one. Throws NumericalError (and
-  // changes nothing) when an element would be inverted in the new configuration.
-  void commit(const VecX& u);
+  // changes nothing) when an element would be inverted in the new configuration. Returns the
+  // number of integration points that yielded in the committed increment.
+  Index commit(const VecX& u);
 
   // Replaces the committed state by one saved earlier (state files): start-of-increment
   // coordinates, total displacement and the integration-point states. Throws InputError when the
@@ -54,7 +61,6 @@ class StripModel {
   // Committed state of integration point q of element e.
   const MaterialState& state(Index e, int q) const { return committed_[e * n_points_ + q]; }
   const std::vector<MaterialState>& states() const { return committed_; }
-  Index n_yielded_last() const { return n_yielded_; }  // points that yielded in the last evaluate
 
   // Total Green-Lagrange strain [xx, yy, zz, 2xy] of each integration point of element e with
   // respect to the initial mesh (linearised for small kinematics), from the total displacement.
@@ -77,7 +83,7 @@ class StripModel {
   void check_not_inverted(const std::vector<Vec2>& coordinates) const;
   // evaluate(), and the trial states at u when `trial` is given (only commit needs them, so
   // they are not kept between evaluations).
-  Real evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
+  StripEvaluation evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
                        std::vector<MaterialState>* trial);
   ElementVector element_values(Index e, const VecX& u) const;
   // Gives `h` the Hessian's sparsity (reusing it when it already has it) with zero values.
@@ -90,7 +96,6 @@ class StripModel {
   std::vector<Vec2> reference_;
   VecX total_displacement_;
   std::vector<MaterialState> committed_;
-  Index n_yielded_ = 0;
 
   DofMap dofs_;
   // Sparsity of the Hessian over the free dofs (compressed columns, full symmetric storage).

@@ -1,5 +1,5 @@
 #pragma once
-// The thesis's contact strategy as a predictor (§4.2.3, SPEC §2.4, (4.25)), option
+// The thesis's contact strategy as a predictor ((4.25); docs/model.md, Arc predictor), option
 // contact.predictor = "arc". In the frame of the roller centre at the end of the increment, a
 // node moves (apparently) along the straight segment from its start position P_i to its
 // predicted position P_{i+1}. If P_{i+1} lies inside the roller, the node first touches the

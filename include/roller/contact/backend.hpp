@@ -13,6 +13,14 @@
 namespace roller {
 
 enum class ContactStatus { Open, Stick, Slip };
+
+// How a contact solve ended; the driver cuts the step on anything but Converged.
+enum class ContactTermination {
+  Converged,
+  LimitReached,  // an iteration, pass or stage budget ran out, or the method stalled: a smaller
+                 // step (or a larger budget) may succeed
+  Failed,        // no usable solution: the strip could not be evaluated, NaN, a solver error
+};
 const char* to_string(ContactStatus s);
 
 // Result per contact candidate (same order as IncrementProblem::candidates()).
@@ -44,7 +52,7 @@ struct BackendStats {
 };
 
 struct BackendResult {
-  NewtonStatus status = NewtonStatus::Failure;
+  ContactTermination status = ContactTermination::Failed;
   std::string message;
   VecX x;                           // free-dof increment
   std::vector<NodeContact> contact;
@@ -54,7 +62,7 @@ struct BackendResult {
   Real max_penetration = 0.0;       // max(0, -min gap) [mm]
   double wall_s = 0.0;
   BackendStats stats;
-  bool converged() const { return status == NewtonStatus::Converged; }
+  bool converged() const { return status == ContactTermination::Converged; }
   std::string brief_report() const;
 };
 

@@ -21,7 +21,8 @@ enum class IpoptFriction { Split, Regularized };
 // Converge: Coulomb (the normal-force fixed point iterated); Single: one pass with the previous
 // increment's F_N (the thesis's explicit variant).
 enum class FixedPointRule { Converge, Single };
-// Start of each increment: the previous increment scaled, or then the thesis's arc rule (4.25).
+// Start of each increment: the previous increment scaled, or then the thesis's arc rule (4.25)
+// (docs/model.md, Arc predictor).
 enum class IncrementPredictor { Extrapolate, Arc };
 
 template <>

@@ -50,12 +50,12 @@ class IncrementProblem {
   IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates,
                    RollerMotion roller, Real youngs_modulus, Real poisson_ratio);
 
-  // Strip part: Pi(x) over the free dofs, its gradient and Hessian (full symmetric storage).
+  // Strip part: Pi(x) over the free dofs and the force scale at x, its gradient and Hessian
+  // (full symmetric storage).
   Index n_free() const { return n_free_; }
-  Real strip_energy(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
+  ObjectiveValue strip_energy(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
     return strip_.evaluate(x, gradient, hessian);
   }
-  Real force_scale(const VecX& x) { return strip_.force_scale(x); }
   VecX full_increment(const VecX& x) const { return strip_.full_increment(x); }
 
   const std::vector<ContactCandidate>& candidates() const { return candidates_; }

@@ -1,7 +1,7 @@
 #pragma once
-// The thesis's method (§4.2.1): quadratic penalty on penetration and on tangential stick slip,
-// Coulomb return map on the tangential penalty force, Newton–Raphson with the consistent
-// (unsymmetric in slip) tangent and a residual line search.
+// The thesis's method (docs/model.md, Penalty backend): quadratic penalty on penetration and on
+// tangential stick slip, Coulomb return map on the tangential penalty force, Newton–Raphson with
+// the consistent (unsymmetric in slip) tangent and a residual line search.
 //
 // Per candidate i with penalty stiffnesses kN = factor E* l_i / h_i, kT = tangential_factor kN:
 //   F_N = kN <-g>                                   (zero when the node is off the roller)

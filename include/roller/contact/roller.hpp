@@ -1,6 +1,7 @@
 #pragma once
 // The rigid roller: a circle of radius R with centre c(t) and rotation angle phi(t)
-// (counter-clockwise positive, radians), SPEC §2.4–§2.5.
+// (counter-clockwise positive, radians); docs/model.md, Contact kinematics and Roller path and
+// creep.
 //
 // Prescribed paths are lists of segments over scene steps. Within a segment the centre moves
 // linearly by (dx, dy); an optional harmonic adds A sin(2 pi |x_c - x_segment_start| / L) to y
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "roller/core/types.hpp"
+#include "roller/dynamics/suspension_spec.hpp"
 
 namespace roller {
 
@@ -30,15 +32,6 @@ struct PathSegment {
   Real slip_end = 0.0;
   Real harmonic_amplitude = 0.0;   // A [mm]
   Real harmonic_wavelength = 0.0;  // L_p [mm]; 0 = no harmonic
-};
-
-// Viscoelastic vertical suspension of the roller (thesis (4.20), SPEC §2.5), per mm of roller
-// length: the centre is the prescribed path (the anchor, i.e. the bearing housing) plus a
-// deflection w with  m w'' + c w' + k w = F_y  (F_y: the strip's vertical force on the roller).
-struct SuspensionSpec {
-  Real mass = 0.0;       // m [t per mm]
-  Real damping = 0.0;    // c [N s/mm per mm]
-  Real stiffness = 0.0;  // k [N/mm per mm]
 };
 
 struct RollerSpec {

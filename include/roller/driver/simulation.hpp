@@ -4,17 +4,17 @@
 // a kill loses nothing already done.
 #include <filesystem>
 #include <iosfwd>
-#include <map>
 #include <memory>
 #include <string>
 
 #include "roller/analysis/hertz.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
+#include "roller/contact/friction_history.hpp"
 #include "roller/driver/load_program.hpp"
-#include "roller/dynamics/houbolt.hpp"
-#include "roller/dynamics/suspension.hpp"
+#include "roller/dynamics/dynamics_state.hpp"
 #include "roller/io/scene.hpp"
+#include "roller/solver/newton.hpp"
 
 namespace roller {
 
@@ -37,7 +37,7 @@ struct RunSummary {
   std::string message;
 };
 
-// Contact result of one node at the end of a step (for output and friction history).
+// Contact result of one node at the end of a step (for output).
 struct NodeContactRecord {
   Index node = 0;
   Vec2 position = Vec2::Zero();
@@ -62,15 +62,17 @@ class Simulation {
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
   Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
   int steps_done() const { return steps_done_; }
-  // Strip inertia: the Houbolt velocity and acceleration of all dofs at the end of the last
-  // step (empty for a quasistatic strip), and the kinetic energy 1/2 v.M v [N mm per mm].
-  const VecX& velocity() const { return velocity_; }
-  const VecX& acceleration() const { return acceleration_; }
-  Real kinetic_energy() const;
-  // Suspended roller: the deflection from the anchor, its velocity and acceleration.
-  const std::optional<Suspension>& suspension() const { return suspension_; }
-  Real suspension_velocity() const { return suspension_velocity_; }
-  Real suspension_acceleration() const { return suspension_acceleration_; }
+  // Strip inertia and suspension at the end of the last step (dynamics_state.hpp).
+  const DynamicsState& dynamics() const { return dynamics_; }
+  const VecX& velocity() const { return dynamics_.velocity(); }
+  const VecX& acceleration() const { return dynamics_.acceleration(); }
+  Real kinetic_energy() const { return dynamics_.kinetic_energy(); }
+  // Suspended roller (nullptr without suspension): the deflection from the anchor, its rates.
+  const Suspension* suspension() const { return dynamics_.suspension(); }
+  Real suspension_velocity() const { return dynamics_.suspension_velocity(); }
+  Real suspension_acceleration() const { return dynamics_.suspension_acceleration(); }
+  // The roller's prescribed pose at (fractional) scene step s: for a suspended roller, its anchor.
+  RollerPose prescribed_pose(Real s) const;
   // Roller centre velocity over the last step (backward difference) [mm/s].
   Vec2 roller_velocity() const { return roller_velocity_; }
 
@@ -91,6 +93,7 @@ class Simulation {
     int factorizations = 0;
     Real residual = 0.0;
     Real max_penetration = 0.0;
+    Index n_yielded = 0;        // integration points that yielded in the committed increment
     BackendStats stats;         // of the last contact solve
     int suspension_passes = 0;  // passes coupling the suspension with the contact
     std::string message;
@@ -105,6 +108,7 @@ class Simulation {
     int iterations = 0;
     int factorizations = 0;
     Real max_penetration = 0.0;
+    Index n_yielded = 0;  // integration points that yielded in the step's last converged increment
     Increment last;       // the last increment tried
     std::string message;  // why the step failed
   };
@@ -112,11 +116,30 @@ class Simulation {
 
  private:
   Vec2 start_centre() const;
-  void start_dynamics();
+  // Where an increment starts: the previous converged increment scaled to this one's length
+  // (and, as an option, the thesis's arc predictor for nodes that would enter the roller).
+  VecX predictor(Real s_from, Real s_to, const RollerMotion* motion) const;
+  // The increment's solve: Newton without a roller, the contact backend with one, coupled with
+  // the suspension when the roller hangs on one. Fills the increment's counters.
+  struct Solution {
+    VecX u;  // increment of all dofs (when inc.converged)
+    std::vector<ContactCandidate> candidates;
+    BackendResult contact;
+    Real deflection = 0.0;
+  };
+  Solution solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor, RollerMotion& motion,
+                           Increment& inc);
   BackendResult solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
                               RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates);
+  // The suspension's vertical force balance with the contact, iterated on the deflection.
+  Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
+                           RollerMotion& motion, VecX& x, Increment& inc);
+  // Accepts a converged increment (transactional: a throw of the strip's commit changes nothing).
+  void commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to, Increment& inc);
   void record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result, const VecX& u);
-  void finish_step();
+  // The step loop's pieces (run.cpp).
+  void start_or_resume(const RunOptions& options);
+  void save_states(int step, const std::filesystem::path& out_dir) const;
 
   Scene scene_;
   std::unique_ptr<StripModel> model_;
@@ -127,16 +150,10 @@ class Simulation {
   Real last_length_ = 0.0;  // its length in steps
   RollerPose pose_;
   std::vector<NodeContactRecord> contact_;
-  std::map<Index, NodeContact> history_;  // committed contact per node (friction history)
+  FrictionHistory friction_;
   int steps_done_ = 0;
-
-  // Dynamics. The step-level Houbolt histories advance once per scene step; the working ones
-  // are resampled when a step is cut into sub-increments (houbolt.hpp).
-  SparseMatrix mass_, mass_free_;        // strip inertia only
-  HouboltHistory strip_step_history_, strip_history_;
-  std::optional<Suspension> suspension_step_, suspension_;
-  VecX velocity_, acceleration_;
-  Real suspension_velocity_ = 0.0, suspension_acceleration_ = 0.0;
+  DynamicsState dynamics_;
+  NewtonMinimiser newton_;  // increments without contact
   Vec2 roller_velocity_ = Vec2::Zero();
 };
 

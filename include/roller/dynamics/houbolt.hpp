@@ -1,5 +1,5 @@
 #pragma once
-// Houbolt's backward-difference integration (thesis §4.2.1.3, SPEC §2.6) of one vector
+// Houbolt's backward-difference integration (docs/model.md, Houbolt scheme) of one vector
 // quantity u(t) (the strip's nodal displacements, or the roller's suspension deflection):
 //   a_{n+1} = (2 u_{n+1} - 5 u_n + 4 u_{n-1} - u_{n-2}) / dt^2
 //   v_{n+1} = (11 u_{n+1} - 18 u_n + 9 u_{n-1} - 2 u_{n-2}) / (6 dt)

@@ -1,5 +1,6 @@
 #pragma once
-// The roller's vertical suspension (thesis (4.20)-(4.21), SPEC §2.5), per mm of roller length:
+// The roller's vertical suspension (thesis (4.20)-(4.21); docs/model.md, Roller suspension), per
+// mm of roller length:
 //   m w'' + c w' + k w = F_y,
 // w the deflection of the centre from the prescribed anchor (positive up), F_y the vertical
 // force of the strip on the roller. Houbolt in time, like the strip (houbolt.hpp), so with
@@ -11,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "roller/contact/roller.hpp"
+#include "roller/dynamics/suspension_spec.hpp"
 #include "roller/dynamics/houbolt.hpp"
 
 namespace roller {

@@ -1,5 +1,5 @@
 #pragma once
-// Plane-strain T3/Q4 element of the updated-Lagrangian strip (SPEC §2.2):
+// Plane-strain T3/Q4 element of the updated-Lagrangian strip (docs/model.md, Kinematics):
 // (geometry in the configuration at the start of the increment, material, committed states,
 //  element displacement increment) -> (energy, residual, tangent, trial states).
 // No assembly and no solving happen here.

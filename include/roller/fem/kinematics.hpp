@@ -1,5 +1,5 @@
 #pragma once
-// Element formulation choices (SPEC §2.2, issue "foundation" §3).
+// Element formulation choices (docs/model.md, Kinematics).
 #include <string>
 
 namespace roller {

@@ -1,8 +1,8 @@
 #pragma once
-// Fields of the strip written per step (SPEC §6): displacement at nodes; per element the
-// integration-point averages of stress, sqrt(I2), von Mises stress, total strain, equivalent
-// plastic strain and plastic work; the same stress quantities averaged to the nodes (for
-// smooth contour maps).
+// Fields of the strip written per step (docs/scenes.md, Outputs): displacement at nodes; per
+// element the integration-point averages of stress, sqrt(I2), von Mises stress, total strain,
+// equivalent plastic strain and plastic work; the same stress quantities averaged to the nodes
+// (for smooth contour maps).
 #include <vector>
 
 #include "roller/assembly/strip_model.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // Plane-strain isotropic elasticity and J2 (von Mises) plasticity with linear isotropic work
-// hardening, SPEC §2.3 and thesis §2.2.
+// hardening (docs/model.md, Material).
 //
 //   yield function  f = 1/2 s:s - 1/3 sigma_pl^2 <= 0   (s = deviator of the 3D stress, zz kept)
 //   hardening       sigma_pl = sigma_y0 + H' eps_p,  H' = E E_T / (E - E_T)
@@ -42,7 +42,8 @@ Mat4 continuum_tangent(const MaterialParams& p, const Vec4& stress, Real yield_s
 // The plastic branch of C^EP without the yield check, in the thesis's explicit form (2.29)/(3.4):
 //   C^EP = C - 2G beta s s^T,  beta = 3 / (2 sigma_pl^2 (1 + H'/(3G))),
 // s the deviator as [xx, yy, zz, xy]. It equals (2.29) with s:s = 2/3 sigma_pl^2, i.e. on the
-// surface; off it, deviator and sigma_pl enter separately (monotonicity maps, SPEC §3).
+// surface; off it, deviator and sigma_pl enter separately (monotonicity maps; docs/model.md,
+// Pointwise operator A).
 // Requires sigma_pl > 0 (throws std::logic_error otherwise).
 Mat4 plastic_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress);
 

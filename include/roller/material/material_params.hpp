@@ -1,6 +1,6 @@
 #pragma once
 // Material data of the strip: isotropic elasticity, optional J2 plasticity with linear
-// isotropic work hardening (SPEC §2.3), density for dynamic scenes.
+// isotropic work hardening (docs/model.md, Material), density for dynamic scenes.
 #include <string>
 
 #include "roller/core/types.hpp"
@@ -9,8 +9,9 @@ namespace roller {
 
 enum class StressIntegration {
   ReturnMapping,  // backward-Euler radial return + consistent (algorithmic) tangent (default)
-  Substep,        // thesis §4.2.2 "variable stiffness": continuum tangent C^EP integrated over
-                  // the strain increment in n_substeps forward-Euler sub-steps
+  Substep,        // the thesis's "variable stiffness" (docs/model.md, Sub-stepping): continuum
+                  // tangent C^EP integrated over the strain increment in n_substeps forward-Euler
+                  // sub-steps
 };
 
 struct MaterialParams {

@@ -1,6 +1,6 @@
 #pragma once
 // Structured meshes of the strip L x H (bottom edge on y = 0 = the symmetry plane, left edge
-// on x = 0), SPEC §2.1 and §4.
+// on x = 0): docs/model.md, Geometry and units; the thesis's meshes in docs/thesis-meshes.md.
 #include <string>
 #include <vector>
 

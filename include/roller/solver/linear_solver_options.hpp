@@ -10,8 +10,8 @@ namespace roller {
 
 struct LinearSolverOptions {
   // Factors written to disk (MUMPS out-of-core, ICNTL(22) = 1): resident memory drops to the
-  // active fronts (a 1.3e6-dof Hertz increment: 2559 -> 1421 MiB peak, 27 % slower) for the time
-  // of reading them back in each solve (docs/benchmarks.md).
+  // active fronts, at the cost of reading them back in each solve (docs/benchmarks.md,
+  // "Out-of-core factors").
   bool out_of_core = false;
   std::string directory;            // where the out-of-core files go ("" = MUMPS's default, /tmp)
   std::string ordering = "auto";    // fill-reducing ordering: "auto" (MUMPS chooses) | "amd" | "metis"

@@ -2,8 +2,8 @@
 // Sparse direct solver MUMPS (sequential, the library Ipopt uses; multifrontal, BLAS-3): the
 // linear solver of the Newton iterations (penalty backend, contact-free scenes) and the
 // reference "one sparse factorisation of K_eff" of the scaling study. Eigen's SimplicialLDLT,
-// used before, is not supernodal: 4.8 s at 1e5 and 165 s at 1e6 dofs against MUMPS's 0.9 s and
-// ~10 s (docs/benchmarks.md).
+// used before, is not supernodal and far slower on large strips (docs/benchmarks.md, "Assembly
+// throughput and one sparse factorisation").
 //   Symmetric: LDL^T with pivoting (indefinite matrices factorise; only the lower triangle is
 //              read), inertia from the negative pivots.
 //   General:   LU (the unsymmetric tangent of Coulomb friction).

@@ -1,10 +1,9 @@
 #pragma once
 // The sparse direct solver of the Newton iterations (penalty backend, contact-free scenes):
 // Eigen's simplicial LDL^T / SparseLU below `kMumpsFromUnknowns`, MUMPS (multifrontal, BLAS-3)
-// from there on. Measured on Z1 (penalty, 2026-11-23): Eigen 0.24 s / 7.5 s at refine 1 / 4
-// (368 / 4706 dofs) against MUMPS 0.45 s / 12 s (its per-call overhead dominates small
-// systems); on one Hertz increment at 2.9e5 dofs MUMPS 65 s against Eigen 130 s, and one
-// factorisation at 1e6 dofs ~12 s against 165 s (docs/benchmarks.md).
+// from there on: on small systems MUMPS's per-call overhead dominates and Eigen is faster, on
+// large ones MUMPS is much faster (docs/benchmarks.md, "Assembly throughput and one sparse
+// factorisation" and "Scaling of one increment").
 // The solver persists between calls: the symbolic analysis is reused while the pattern stays.
 #include <memory>
 #include <string>

@@ -1,0 +1,39 @@
+#pragma once
+// The files of a run's output folder (docs/scenes.md, Output): solver.csv, contact.csv and
+// roller.csv (one row per step, flushed before the next step starts), fields.pvd with its VTU
+// files. A resumed run continues the tables after the resumed step and keeps the earlier VTU
+// files in the series.
+#include <filesystem>
+#include <memory>
+
+#include "roller/driver/simulation.hpp"
+#include "roller/io/csv_table.hpp"
+#include "roller/io/vtu_writer.hpp"
+#include "step_monitor.hpp"
+
+namespace roller {
+
+class RunOutputs {
+ public:
+  // Opens the tables (continued after `steps_done` when resuming) and, for a fresh run, writes
+  // the start state: fields of step 0 and the roller's row 0.
+  RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume);
+
+  // The solver's row of a step, converged or not.
+  void write_solver_row(int step, const Simulation::StepResult& res, const MonitorReport& monitor, double wall_s,
+                        Index n_contact);
+  // The results of a converged step: contact and roller rows, fields every output.every steps
+  // and at the last one.
+  void write_step(int step);
+
+ private:
+  void write_fields(int step);
+  std::filesystem::path vtu_path(int step) const;
+
+  const Simulation& sim_;
+  std::filesystem::path out_dir_;
+  std::unique_ptr<CsvTable> solver_csv_, contact_csv_, roller_csv_;
+  PvdSeries series_;
+};
+
+}  // namespace roller

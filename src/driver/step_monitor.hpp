@@ -1,0 +1,37 @@
+#pragma once
+// The run-time monotonicity monitor (docs/model.md, Run-time monitor): after each step, operator
+// A at the integration points and the definiteness of the assembled effective tangent (contact
+// terms excluded) at the new state, with warnings a user can act on. Switched off
+// (output.monitor = false) it checks nothing and its solver.csv columns read -1.
+#include <iosfwd>
+
+#include "roller/analysis/monotonicity.hpp"
+#include "roller/assembly/strip_model.hpp"
+
+namespace roller {
+
+struct MonitorReport {
+  bool checked = false;
+  StripMonotonicity pointwise;   // operator A at the integration points
+  SparseDefiniteness assembled;  // the effective tangent K (+ 2M/dt^2 with strip inertia)
+  Vec2 worst_place = Vec2::Zero();  // centroid of the element with the worst point [mm]
+};
+
+class StepMonitor {
+ public:
+  // `mass_free` is the strip's mass over the free dofs (nullptr: quasistatic strip); `progress`
+  // receives the warnings (nullptr: silent).
+  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, std::ostream* progress)
+      : enabled_(enabled), dt_(dt), mass_free_(mass_free), progress_(progress) {}
+
+  MonitorReport check(int step, StripModel& model);
+
+ private:
+  bool enabled_;
+  Real dt_;
+  const SparseMatrix* mass_free_;
+  std::ostream* progress_;
+  bool pointwise_loss_reported_ = false;
+};
+
+}  // namespace roller
