@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config ninja-build
+  build-essential cmake pkg-config ninja-build clang-format
   coinor-libipopt-dev libmumps-seq-dev   # interior-point NLP solver + sparse direct solver
   libopenblas0-pthread                   # optimised BLAS/LAPACK for MUMPS (replaces the reference
                                          # BLAS through Debian's alternatives: faster Ipopt

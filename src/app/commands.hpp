@@ -9,7 +9,7 @@ namespace roller::app {
 
 using Command = std::function<int()>;
 
-// roller monotonicity ... (SPEC §3): maps of the positive definiteness of operator A.
+// roller monotonicity ... (docs/monotonicity.md): maps of the positive definiteness of operator A.
 Command add_monotonicity_command(CLI::App& app);
 
 }  // namespace roller::app

@@ -224,7 +224,7 @@ int run_monotonicity(const MonotonicityArgs& args) {
 Command add_monotonicity_command(CLI::App& app) {
   auto args = std::make_shared<MonotonicityArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "monotonicity", "maps of the positive definiteness of operator A (SPEC §3, thesis Fig. 3.1)");
+      "monotonicity", "maps of the positive definiteness of operator A (docs/monotonicity.md, thesis Fig. 3.1)");
   cmd->add_option("--E", args->youngs_modulus, "Young's modulus [MPa]")->capture_default_str();
   cmd->add_option("--nu", args->poisson_ratio, "Poisson's ratio")->capture_default_str();
   cmd->add_option("--Et", args->tangent_modulus, "tangent modulus E_T [MPa] (default E/3)");

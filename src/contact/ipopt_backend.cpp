@@ -39,7 +39,7 @@
 //
 // Ipopt options (beyond contact.ipopt.*): linear_solver mumps with MUMPS's default ordering (on
 // this strip matrix it beat SCOTCH, mumps_pivot_order 3, in CPU time (docs/benchmarks.md)
-// — the opposite of the membrane prototype in notes/ipopt-on-debian.md);
+// — the opposite of what a scalar membrane prototype had shown);
 // hessian_approximation exact; bound_relax_factor 0 and honor_original_bounds yes (no
 // constraint violation left by relaxed bounds); line_search_method penalty (an exact-penalty
 // merit function instead of the default filter: the curved gap leaves a constraint violation

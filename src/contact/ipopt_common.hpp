@@ -19,7 +19,7 @@ void set(Ipopt::IpoptApplication& app, const std::string& name, Real value);
 void set(Ipopt::IpoptApplication& app, const std::string& name, int value);
 // [contact.ipopt.options]: pass-through options, after ours so that they override them.
 void apply_raw_options(Ipopt::IpoptApplication& app, const std::vector<RawIpoptOption>& raw);
-// Ipopt's warm start from a primal-dual point (notes/ipopt-on-debian.md, item 9).
+// Ipopt's warm start from a primal-dual point (warm_start_init_point and its push/frac options).
 void set_warm_start(Ipopt::IpoptApplication& app, bool on);
 
 // Scales of one increment (ipopt_backend.cpp, header comment "Scaling").

@@ -16,6 +16,7 @@
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/fem/element_kernel.hpp"
 #include "roller/mesh/strip_mesher.hpp"
+#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -207,13 +208,7 @@ TEST_CASE(
     "the navier layout integrates to the gradient layout for displacements vanishing on "
     "the boundary (a null Lagrangian)",
     "[monotonicity]") {
-  StripMeshSpec spec;
-  spec.element = ElementType::T3;
-  spec.length = 3.0;
-  spec.height = 2.0;
-  spec.nx = 6;
-  spec.ny = 4;
-  spec.diagonal = Diagonal::Alternating;
+  StripMeshSpec spec = test::strip_spec(ElementType::T3, 3.0, 2.0, 6, 4, Diagonal::Alternating);
   const Mesh mesh = make_strip_mesh(spec);
   std::vector<bool> boundary(mesh.n_nodes(), false);
   for (const char* set : {"top", "bottom", "left", "right"})
@@ -513,12 +508,7 @@ TEST_CASE("maps: symmetric under c <-> -c and a <-> b, the thesis's c-slices at 
 
 TEST_CASE("check_strip flags a large compressive initial stress and a small dt restores PD",
           "[monotonicity]") {
-  StripMeshSpec spec;
-  spec.element = ElementType::Q4;
-  spec.length = 4.0;
-  spec.height = 2.0;
-  spec.nx = 4;
-  spec.ny = 2;
+  StripMeshSpec spec = test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2);
   StripModel model(make_strip_mesh(spec), elastic_steel(),
                    ElementOptions{Kinematics::Finite, Q4Formulation::Standard});
   model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));  // every node prescribed
@@ -584,12 +574,7 @@ TEST_CASE("is_positive_definite: sparse LDL^T, inertia from the pivots", "[monot
 
   // The assembled stiffness of a strip clamped at its bottom: PD unstressed; the mass term
   // 2M/dt^2 keeps K_eff PD.
-  StripMeshSpec spec;
-  spec.element = ElementType::Q4;
-  spec.length = 4.0;
-  spec.height = 2.0;
-  spec.nx = 4;
-  spec.ny = 2;
+  StripMeshSpec spec = test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2);
   StripModel model(make_strip_mesh(spec), elastic_steel(),
                    ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
   std::vector<bool> fixed(model.n_dofs(), false);

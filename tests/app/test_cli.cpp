@@ -13,6 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/temp_files.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -36,13 +38,6 @@ Run run_roller(const std::string& args) {
   return {WEXITSTATUS(status), s.str()};
 }
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST_CASE("roller run: the default scene runs end to end and writes its results", "[app]") {
@@ -55,10 +50,10 @@ TEST_CASE("roller run: the default scene runs end to end and writes its results"
   for (const char* f : {"fields.pvd", "step_0000.vtu", "step_0003.vtu", "solver.csv", "summary.json",
                         "scene.resolved.toml"})
     CHECK(fs::exists(out / f));
-  const std::string csv = read(out / "solver.csv");
+  const std::string csv = roller::test::read_text(out / "solver.csv");
   CHECK_THAT(csv, Catch::StartsWith("step,time,iterations,residual,max_penetration,wall_s"));
   CHECK_THAT(csv, Catch::Contains("k_eff_positive_definite"));
-  const auto summary = nlohmann::json::parse(read(out / "summary.json"));
+  const auto summary = nlohmann::json::parse(roller::test::read_text(out / "summary.json"));
   CHECK(summary["converged"] == true);
   // Peak memory of the process: more than the mesh and less than this machine has.
   CHECK(summary["peak_memory_mb"].get<double>() > 1.0);
@@ -100,8 +95,8 @@ TEST_CASE("roller run: a step that cannot converge stops the run with code 1, co
   CHECK(r.exit_code == 1);
   CHECK_THAT(r.output, Catch::Contains("step 1 failed"));
   CHECK(fs::exists(out / "step_0000.vtu"));
-  CHECK_THAT(read(out / "summary.json"), Catch::Contains("\"converged\": false"));
-  CHECK_THAT(read(out / "solver.csv"), Catch::Contains("failed"));
+  CHECK_THAT(roller::test::read_text(out / "summary.json"), Catch::Contains("\"converged\": false"));
+  CHECK_THAT(roller::test::read_text(out / "solver.csv"), Catch::Contains("failed"));
   fs::remove_all(out);
 }
 
@@ -120,10 +115,10 @@ TEST_CASE("roller run --resume continues a shortened run to the same results as 
   INFO(resumed.output);
   REQUIRE(resumed.exit_code == 0);
   CHECK_THAT(resumed.output, Catch::Contains("resuming after step 6"));
-  CHECK(read(split / "roller.csv") == read(whole / "roller.csv"));
-  CHECK(read(split / "contact.csv") == read(whole / "contact.csv"));
-  CHECK(read(split / "step_0010.vtu") == read(whole / "step_0010.vtu"));
-  CHECK(read(split / "fields.pvd") == read(whole / "fields.pvd"));
+  CHECK(roller::test::read_text(split / "roller.csv") == roller::test::read_text(whole / "roller.csv"));
+  CHECK(roller::test::read_text(split / "contact.csv") == roller::test::read_text(whole / "contact.csv"));
+  CHECK(roller::test::read_text(split / "step_0010.vtu") == roller::test::read_text(whole / "step_0010.vtu"));
+  CHECK(roller::test::read_text(split / "fields.pvd") == roller::test::read_text(whole / "fields.pvd"));
   // Without a checkpoint there is nothing to resume: a clear input error.
   const fs::path empty = fs::temp_directory_path() / ("roller_cli_empty_" + std::to_string(::getpid()));
   fs::create_directories(empty);

@@ -9,6 +9,7 @@
 #include "roller/core/error.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/mesh/strip_mesher.hpp"
+#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -101,12 +102,7 @@ TEST_CASE("patch test: a linear displacement field is reproduced exactly", "[ass
 TEST_CASE("a pre-stressed strip rotated rigidly by 90 degrees keeps its stress invariants",
           "[assembly][objectivity]") {
   for (Kinematics kin : {Kinematics::Finite, Kinematics::Small}) {
-    StripMeshSpec spec;
-    spec.element = ElementType::Q4;
-    spec.length = 2.0;
-    spec.height = 1.0;
-    spec.nx = 2;
-    spec.ny = 1;
+    StripMeshSpec spec = test::strip_spec(ElementType::Q4, 2.0, 1.0, 2, 1);
     StripModel model(make_strip_mesh(spec), elastic(), ElementOptions{kin, Q4Formulation::BBar});
     model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));  // every node prescribed
     // Pre-stress: a homogeneous stretch.
@@ -136,12 +132,7 @@ TEST_CASE("a pre-stressed strip rotated rigidly by 90 degrees keeps its stress i
 }
 
 TEST_CASE("Newton converges quadratically on an elastoplastic compression", "[assembly][newton]") {
-  StripMeshSpec spec;
-  spec.element = ElementType::Q4;
-  spec.length = 10.0;
-  spec.height = 5.0;
-  spec.nx = 8;
-  spec.ny = 4;
+  StripMeshSpec spec = test::strip_spec(ElementType::Q4, 10.0, 5.0, 8, 4);
   StripModel model(make_strip_mesh(spec), plastic(), ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
   // Bottom on the symmetry plane (uy = 0), left edge fixed in x, top pushed down non-uniformly.
   std::vector<bool> fixed(model.n_dofs(), false);

@@ -7,17 +7,12 @@
 #include "../support/impose_field.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/mesh/strip_mesher.hpp"
+#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
 TEST_CASE("contact candidates keep the initial element depth after the surface deforms", "[contact]") {
-  StripMeshSpec spec;
-  spec.element = ElementType::T3;
-  spec.length = 20.0;
-  spec.height = 6.0;
-  spec.nx = 4;
-  spec.ny = 3;
-  spec.diagonal = Diagonal::Alternating;
+  StripMeshSpec spec = test::strip_spec(ElementType::T3, 20.0, 6.0, 4, 3, Diagonal::Alternating);
   MaterialParams mat;
   StripModel model(make_strip_mesh(spec), mat, ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
   model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));

@@ -18,6 +18,7 @@
 #include "roller/contact/ipopt_backend.hpp"
 #include "roller/core/error.hpp"
 #include "roller/mesh/strip_mesher.hpp"
+#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -46,12 +47,7 @@ MaterialParams steel(Real youngs = 2.1e5) {
 // every bottom node (`clamped`) or only at the bottom node under x = L/2.
 std::unique_ptr<StripModel> make_strip(Real length, Real height, int nx, int ny, bool clamped,
                                        Real youngs = 2.1e5) {
-  StripMeshSpec spec;
-  spec.element = ElementType::Q4;
-  spec.length = length;
-  spec.height = height;
-  spec.nx = nx;
-  spec.ny = ny;
+  StripMeshSpec spec = test::strip_spec(ElementType::Q4, length, height, nx, ny);
   auto model = std::make_unique<StripModel>(make_strip_mesh(spec), steel(youngs),
                                             ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
   std::vector<bool> fixed(model->n_dofs(), false);

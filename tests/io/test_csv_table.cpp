@@ -13,47 +13,17 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_files.hpp"
 #include "roller/io/csv_table.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using namespace roller;
 
+using test::read_text;
+
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    for (int attempt = 0; attempt < 100; ++attempt) {
-      const fs::path candidate = fs::temp_directory_path() /
-                                 ("roller_csv_test_" + std::to_string(rd()) + "_" +
-                                  std::to_string(rd()));
-      if (fs::create_directory(candidate)) {
-        path_ = candidate;
-        return;
-      }
-    }
-    throw std::runtime_error("TempDir: cannot create a unique temporary folder");
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Minimal RFC-4180 reader: quoted fields may hold ',', '""' and line breaks.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
@@ -107,7 +77,7 @@ std::string thrown_message(F&& f) {
 }  // namespace
 
 TEST_CASE("CsvTable writes a header and rows that read back exactly while it is alive", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "history.csv";
   CsvTable table(file, {"step", "time", "force", "note"});
   CHECK(table.columns() == std::vector<std::string>{"step", "time", "force", "note"});
@@ -148,7 +118,7 @@ TEST_CASE("CsvTable writes a header and rows that read back exactly while it is 
 }
 
 TEST_CASE("CsvTable writes non-finite reals as nan, inf and -inf", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "nonfinite.csv";
   CsvTable table(file, {"a", "b", "c", "d"});
   table.add_row({std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
@@ -160,7 +130,7 @@ TEST_CASE("CsvTable writes non-finite reals as nan, inf and -inf", "[io]") {
 }
 
 TEST_CASE("CsvTable quotes text holding commas, quotes or line breaks", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "quoted.csv";
   CsvTable table(file, {"id", "force, N", "status"});
   table.add_row({Index(-7), std::string("say \"hi\""), std::string("a,b")});
@@ -180,7 +150,7 @@ TEST_CASE("CsvTable quotes text holding commas, quotes or line breaks", "[io]") 
 
 TEST_CASE("CsvTable rejects a row whose length differs from the header and writes nothing",
           "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "short.csv";
   CsvTable table(file, {"step", "time"});
   table.add_row({Index(0), 0.0});
@@ -199,7 +169,7 @@ TEST_CASE("CsvTable rejects a row whose length differs from the header and write
 }
 
 TEST_CASE("CsvTable truncates an existing file", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "old.csv";
   std::ofstream(file) << "stale,content\n1,2\n";
   CsvTable table(file, {"x"});
@@ -207,7 +177,7 @@ TEST_CASE("CsvTable truncates an existing file", "[io]") {
 }
 
 TEST_CASE("CsvTable at an unwritable path throws naming the path", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "no_such_folder" / "table.csv";
   const auto msg =
       thrown_message<std::runtime_error>([&] { CsvTable table(file, {"a", "b"}); });

@@ -16,48 +16,17 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_files.hpp"
 #include "roller/io/vtu_writer.hpp"
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using namespace roller;
 
+using test::read_text;
+
 namespace {
 
-// A fresh folder per test case (ctest runs test cases in parallel processes), removed after.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    for (int attempt = 0; attempt < 100; ++attempt) {
-      const fs::path candidate = fs::temp_directory_path() /
-                                 ("roller_vtu_test_" + std::to_string(rd()) + "_" +
-                                  std::to_string(rd()));
-      if (fs::create_directory(candidate)) {
-        path_ = candidate;
-        return;
-      }
-    }
-    throw std::runtime_error("TempDir: cannot create a unique temporary folder");
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 bool have_python() { return fs::exists("/usr/bin/python3"); }
 
@@ -215,7 +184,7 @@ void check_bitwise_equal(const std::vector<double>& got, const std::vector<doubl
 }
 
 void check_round_trip(ElementType type) {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "mesh.vtu";
   const Mesh mesh = two_element_mesh(type);
   const std::size_t n_nodes = mesh.nodes.size();
@@ -322,14 +291,14 @@ TEST_CASE("write_vtu writes a T3 mesh whose arrays decode to exactly the numbers
 
 TEST_CASE("the python XML check used by these tests rejects a malformed file", "[io]") {
   REQUIRE(have_python());
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path bad = dir.path() / "bad.xml";
   std::ofstream(bad) << "<a><b></a>\n";
   CHECK_FALSE(xml_well_formed(bad));
 }
 
 TEST_CASE("write_vtu escapes field and component names so the XML stays well-formed", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "names.vtu";
   const Mesh mesh = two_element_mesh(ElementType::Q4);
   VtuField f = make_field("a<b & \"c\"", 2, mesh.nodes.size(), 0, {"x'", "y>"});
@@ -342,7 +311,7 @@ TEST_CASE("write_vtu escapes field and component names so the XML stays well-for
 }
 
 TEST_CASE("write_vtu rejects fields whose size does not match, naming the field", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "bad.vtu";
   const Mesh mesh = two_element_mesh(ElementType::Q4);
   const auto ok_point = make_field("displacement", 3, mesh.nodes.size(), 0);
@@ -387,7 +356,7 @@ TEST_CASE("write_vtu rejects fields whose size does not match, naming the field"
 }
 
 TEST_CASE("write_vtu refuses NaN and Inf, naming the field and the first bad index", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "step.vtu";
   const Mesh mesh = two_element_mesh(ElementType::Q4);
   auto stress = make_field("stress", 4, mesh.nodes.size(), 0);
@@ -425,7 +394,7 @@ TEST_CASE("write_vtu refuses NaN and Inf, naming the field and the first bad ind
 }
 
 TEST_CASE("write_vtu to an unwritable path throws naming the path", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "no_such_folder" / "step.vtu";
   const Mesh mesh = two_element_mesh(ElementType::T3);
   const auto msg = thrown_message<std::runtime_error>(
@@ -434,7 +403,7 @@ TEST_CASE("write_vtu to an unwritable path throws naming the path", "[io]") {
 }
 
 TEST_CASE("a mesh without fields or elements still gives a readable file", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "empty.vtu";
   Mesh mesh;
   mesh.element_type = ElementType::T3;
@@ -447,7 +416,7 @@ TEST_CASE("a mesh without fields or elements still gives a readable file", "[io]
 }
 
 TEST_CASE("PvdSeries lists its datasets in order with paths relative to its folder", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   fs::create_directory(dir.path() / "vtu");
   const fs::path pvd = dir.path() / "series.pvd";
   PvdSeries series(pvd);
@@ -489,7 +458,7 @@ TEST_CASE("PvdSeries lists its datasets in order with paths relative to its fold
 }
 
 TEST_CASE("PvdSeries keeps an absolute path for a dataset outside its folder", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   fs::create_directory(dir.path() / "out");
   PvdSeries series(dir.path() / "out" / "series.pvd");
   const fs::path outside = dir.path() / "elsewhere" / "step.vtu";
@@ -500,7 +469,7 @@ TEST_CASE("PvdSeries keeps an absolute path for a dataset outside its folder", "
 }
 
 TEST_CASE("PvdSeries in an unwritable place throws naming the path", "[io]") {
-  TempDir dir;
+  test::TempDir dir("roller_vtu_test");
   const fs::path pvd = dir.path() / "missing" / "series.pvd";
   const auto msg = thrown_message<std::runtime_error>([&] { PvdSeries series(pvd); });
   CHECK_THAT(msg, Contains(pvd.string()));

@@ -9,6 +9,7 @@
 #include "roller/core/error.hpp"
 #include "roller/mesh/mesh.hpp"
 #include "roller/mesh/strip_mesher.hpp"
+#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -16,13 +17,7 @@ namespace {
 
 // The thesis's scenes (docs/thesis-meshes.md).
 StripMeshSpec z1_spec() {
-  StripMeshSpec spec;
-  spec.element = ElementType::T3;
-  spec.length = 225.0;
-  spec.height = 20.0;
-  spec.nx = 45;
-  spec.ny = 3;
-  spec.diagonal = Diagonal::Alternating;
+  StripMeshSpec spec = test::strip_spec(ElementType::T3, 225.0, 20.0, 45, 3, Diagonal::Alternating);
   return spec;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Contact backends: solve one IncrementProblem (DESIGN "ContactBackend"). The non-virtual
+// Contact backends: solve one IncrementProblem. The non-virtual
 // solve() validates, times and checks the result (no NaN leaves a backend); the private
 // do_solve() is backend specific. Backends report failure; the driver decides to cut the step.
 #include <memory>

@@ -1,5 +1,5 @@
 #pragma once
-// One increment as both contact backends see it (DESIGN: "IncrementProblem"): the strip's
+// One increment as both contact backends see it: the strip's
 // incremental potential over the free dofs, the contact candidates with their start-of-step
 // positions, and the roller's motion over the increment. Backends know nothing about elements
 // or time; this class knows nothing about how the increment is solved.

@@ -1,5 +1,5 @@
 #pragma once
-// The step loop (DESIGN: setup; for each step: predict, solve, cut back if needed, commit,
+// The step loop (set-up; for each step: predict, solve, cut back if needed, commit,
 // write). Results of completed steps are on disk before the next step starts, so a failure or
 // a kill loses nothing already done.
 #include <filesystem>
