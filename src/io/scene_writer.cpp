@@ -135,10 +135,10 @@ std::string scene_to_toml(const Scene& scene) {
     const ContactOptions& c = scene.contact;
     const IpoptOptions& o = c.ipopt;
     toml::table raw_options;
-    for (const RawIpoptOption& r : o.raw) {
-      if (r.kind == RawIpoptOption::Kind::Integer) raw_options.insert(r.name, std::stoll(r.text));
-      else if (r.kind == RawIpoptOption::Kind::Number) raw_options.insert(r.name, std::stod(r.text));
-      else raw_options.insert(r.name, r.text);
+    for (const RawIpoptOption& option : o.raw) {
+      if (option.kind == RawIpoptOption::Kind::Integer) raw_options.insert(option.name, std::stoll(option.text));
+      else if (option.kind == RawIpoptOption::Kind::Number) raw_options.insert(option.name, std::stod(option.text));
+      else raw_options.insert(option.name, option.text);
     }
     root.insert("contact",
                 toml::table{{"backend", enum_name(c.backend)},
