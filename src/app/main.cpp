@@ -35,7 +35,7 @@ int run_scene(const RunArgs& args) {
   const std::string out = args.out.empty() ? "out/" + sim.scene().name : args.out;
   std::cout << fmt::format("roller: scene '{}' ({}), {} elements {}, {} dofs ({} free), {} steps -> {}\n",
                            sim.scene().name, sim.scene().title, sim.model().mesh().n_elements(),
-                           sim.model().mesh().element_type == roller::ElementType::T3 ? "T3" : "Q4",
+                           roller::enum_name(sim.model().mesh().element_type),
                            sim.model().n_dofs(), sim.model().dof_map().n_free(),
                            sim.scene().steps.n_steps, out);
   roller::RunOptions options;

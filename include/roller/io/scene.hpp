@@ -70,6 +70,13 @@ struct DynamicsOptions {
   bool strip_inertia = false;  // Houbolt inertia of the strip (needs material.density > 0)
   bool lumped_mass = false;    // row-sum lumped instead of consistent mass
 };
+// The names of lumped_mass in scene files (dynamics.mass).
+enum class MassMatrix { Consistent, Lumped };
+template <>
+struct EnumNames<MassMatrix> {
+  static constexpr std::array<std::pair<MassMatrix, const char*>, 2> names{
+      {{MassMatrix::Consistent, "consistent"}, {MassMatrix::Lumped, "lumped"}}};
+};
 
 struct Scene {
   std::filesystem::path file;  // where it was loaded from (empty for scenes built in code)

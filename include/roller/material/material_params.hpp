@@ -3,6 +3,7 @@
 // isotropic work hardening (SPEC §2.3), density for dynamic scenes.
 #include <string>
 
+#include "roller/core/enum_names.hpp"
 #include "roller/core/types.hpp"
 
 namespace roller {
@@ -11,6 +12,11 @@ enum class StressIntegration {
   ReturnMapping,  // backward-Euler radial return + consistent (algorithmic) tangent (default)
   Substep,        // thesis §4.2.2 "variable stiffness": continuum tangent C^EP integrated over
                   // the strain increment in n_substeps forward-Euler sub-steps
+};
+template <>
+struct EnumNames<StressIntegration> {
+  static constexpr std::array<std::pair<StressIntegration, const char*>, 2> names{
+      {{StressIntegration::ReturnMapping, "return_mapping"}, {StressIntegration::Substep, "substep"}}};
 };
 
 struct MaterialParams {
