@@ -72,11 +72,13 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")
       ->type_name("KEY=VALUE");
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
+  const roller::app::Command scene_keys = roller::app::add_scene_keys_command(app);
 
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run) return run_scene(run_args);
     if (app.got_subcommand("monotonicity")) return monotonicity();
+    if (app.got_subcommand("scene-keys")) return scene_keys();
   } catch (const roller::InputError& e) {
     std::cerr << "roller: input error: " << e.what() << "\n";
     return 2;

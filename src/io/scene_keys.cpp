@@ -693,7 +693,7 @@ std::vector<SceneKey> make_keys() {
       key("contact.ipopt.print_level", [](auto& s) -> auto& { return s.contact.ipopt.print_level; },
           "Ipopt's output level", closed(0, 12)),
       key("contact.ipopt.warm_start", [](auto& s) -> auto& { return s.contact.ipopt.warm_start; },
-          "start Ipopt from the previous solution and multipliers"),
+          "warm-start the first Ipopt pass of an increment from multipliers guessed from the last forces"),
       key("contact.ipopt.friction", [](auto& s) -> auto& { return s.contact.ipopt.friction; },
           "split: v_T = s+ - s-, exact; regularized: sqrt(v_T^2 + eps^2)"),
       key("contact.ipopt.regularization", [](auto& s) -> auto& { return s.contact.ipopt.regularization; },
