@@ -250,6 +250,9 @@ Decl custom(const std::string& dotted, const std::string& type, const std::strin
 
 void write_nothing(toml::table&, const Scene&, std::size_t) {}
 
+// A step number written as a TOML number: an integer in 1..INT_MAX (checked before the cast).
+bool is_step(Real v) { return v >= 1 && v <= INT_MAX && v == std::floor(v); }
+
 toml::array pair_array(Real a, Real b) { return toml::array{a, b}; }
 
 // ---- structured keys -------------------------------------------------------------------------
@@ -288,8 +291,7 @@ Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
   if (!v) t->fail("value", "the value reached at the end of the ramp is required");
   r.value = *v;
   if (auto steps = t->real_array("ramp")) {
-    if (steps->size() != 2 || (*steps)[0] < 1 || (*steps)[1] < (*steps)[0] ||
-        (*steps)[0] != static_cast<int>((*steps)[0]) || (*steps)[1] != static_cast<int>((*steps)[1]))
+    if (steps->size() != 2 || !is_step((*steps)[0]) || !is_step((*steps)[1]) || (*steps)[1] < (*steps)[0])
       t->fail("ramp", "expected [first_step, last_step] with 1 <= first_step <= last_step");
     r.ramp_first = static_cast<int>((*steps)[0]);
     r.ramp_last = static_cast<int>((*steps)[1]);
@@ -614,8 +616,7 @@ std::vector<SceneKey> make_keys() {
           "the steps the segment acts over (1-based, inclusive)",
           [](TomlSection& s, Scene& scene, Ref i) {
             const auto steps = s.real_array("steps");
-            if (!steps || steps->size() != 2 || (*steps)[0] != std::floor((*steps)[0]) ||
-                (*steps)[1] != std::floor((*steps)[1]))
+            if (!steps || steps->size() != 2 || !is_step((*steps)[0]) || !is_step((*steps)[1]))
               s.fail("steps", "expected [first_step, last_step] (integers, 1-based, inclusive)");
             scene.roller->path[i].first_step = static_cast<int>((*steps)[0]);
             scene.roller->path[i].last_step = static_cast<int>((*steps)[1]);

@@ -1,7 +1,6 @@
 #include "roller/io/scene_loader.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>

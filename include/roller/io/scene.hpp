@@ -1,6 +1,6 @@
 #pragma once
 // A scene: everything one run needs, as plain structs filled by the scene loader
-// (docs/scenes.md documents every key, its unit and default).
+// (io/scene_keys.hpp declares every key of a scene file, docs/scenes.md documents them).
 #include <filesystem>
 #include <optional>
 #include <string>
