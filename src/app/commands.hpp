@@ -12,4 +12,7 @@ using Command = std::function<int()>;
 // roller monotonicity ... (docs/monotonicity.md): maps of the positive definiteness of operator A.
 Command add_monotonicity_command(CLI::App& app);
 
+// roller scene-keys: every scene-file key with its type, default, allowed values and meaning.
+Command add_scene_keys_command(CLI::App& app);
+
 }  // namespace roller::app

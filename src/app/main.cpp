@@ -36,7 +36,7 @@ int run_scene(const RunArgs& args) {
   const std::string out = args.out.empty() ? "out/" + sim.scene().name : args.out;
   std::cout << fmt::format("roller: scene '{}' ({}), {} elements {}, {} dofs ({} free), {} steps -> {}\n",
                            sim.scene().name, sim.scene().title, sim.model().mesh().n_elements(),
-                           sim.model().mesh().element_type == roller::ElementType::T3 ? "T3" : "Q4",
+                           roller::enum_name(sim.model().mesh().element_type),
                            sim.model().n_dofs(), sim.model().dof_map().n_free(),
                            sim.scene().steps.n_steps, out);
   roller::RunOptions options;
@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")
       ->type_name("KEY=VALUE");
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
+  const roller::app::Command scene_keys = roller::app::add_scene_keys_command(app);
 
   try {
     app.parse(argc, argv);
@@ -89,6 +90,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return run_scene(run_args);
     if (app.got_subcommand("monotonicity")) return monotonicity();
+    if (app.got_subcommand("scene-keys")) return scene_keys();
   } catch (const roller::InputError& e) {
     std::cerr << "roller: input error: " << e.what() << "\n";
     return 2;

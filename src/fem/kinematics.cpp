@@ -2,7 +2,7 @@
 
 namespace roller {
 
-std::string to_string(Kinematics k) { return k == Kinematics::Small ? "small" : "finite"; }
-std::string to_string(Q4Formulation f) { return f == Q4Formulation::BBar ? "bbar" : "standard"; }
+std::string to_string(Kinematics k) { return enum_name(k); }
+std::string to_string(Q4Formulation f) { return enum_name(f); }
 
 }  // namespace roller

@@ -131,11 +131,9 @@ std::vector<TomlSection> TomlSection::table_array(const std::string& key) {
   return out;
 }
 
-std::string TomlSection::choice_or(const std::string& key, const std::vector<std::string>& choices,
-                                   const std::string& fallback) {
+std::optional<std::string> TomlSection::choice(const std::string& key, const std::vector<std::string>& choices) {
   const auto value = string(key);
-  if (!value) return fallback;
-  if (std::find(choices.begin(), choices.end(), *value) != choices.end()) return *value;
+  if (!value || std::find(choices.begin(), choices.end(), *value) != choices.end()) return value;
   std::string list;
   for (const auto& c : choices) list += (list.empty() ? "\"" : ", \"") + c + "\"";
   fail(key, "expected one of " + list);

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../support/temp_files.hpp"
+#include "roller/io/scene_keys.hpp"
 
 namespace fs = std::filesystem;
 
@@ -126,4 +127,18 @@ TEST_CASE("roller run --resume continues a shortened run to the same results as 
   CHECK(none.exit_code == 2);
   CHECK_THAT(none.output, Catch::Contains("checkpoint.cbor does not exist"));
   for (const auto& d : {whole, split, empty}) fs::remove_all(d);
+}
+
+TEST_CASE("roller scene-keys lists every scene key, one line each", "[app]") {
+  const Run r = run_roller("scene-keys");
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  std::istringstream lines(r.output);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(lines, line);) rows.push_back(line);
+  REQUIRE(rows.size() == roller::scene_keys().size() + 1);  // a header, then the keys in order
+  CHECK_THAT(rows[0], Catch::StartsWith("key "));
+  for (std::size_t i = 0; i < roller::scene_keys().size(); ++i)
+    CHECK_THAT(rows[i + 1], Catch::StartsWith(roller::scene_keys()[i].dotted() + " "));
+  CHECK_THAT(r.output, Catch::Contains("contact.ipopt.tol") && Catch::Contains("1e-09") && Catch::Contains("0 < tol < 1"));
 }

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace roller {
 
@@ -29,6 +30,14 @@ std::optional<E> parse_enum(std::string_view text) {
   for (const auto& [v, name] : EnumNames<E>::names)
     if (text == name) return v;
   return std::nullopt;
+}
+
+// Every name, in declaration order (the choices of a scene key).
+template <class E>
+std::vector<std::string> enum_names() {
+  std::vector<std::string> out;
+  for (const auto& [v, name] : EnumNames<E>::names) out.emplace_back(name);
+  return out;
 }
 
 // "\"a\", \"b\" or \"c\"" for error messages.

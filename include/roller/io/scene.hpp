@@ -1,6 +1,6 @@
 #pragma once
 // A scene: everything one run needs, as plain structs filled by the scene loader
-// (docs/scenes.md documents every key, its unit and default).
+// (io/scene_keys.hpp declares every key of a scene file, docs/scenes.md documents them).
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -69,6 +69,13 @@ struct OutputOptions {
 struct DynamicsOptions {
   bool strip_inertia = false;  // Houbolt inertia of the strip (needs material.density > 0)
   bool lumped_mass = false;    // row-sum lumped instead of consistent mass
+};
+// The names of lumped_mass in scene files (dynamics.mass).
+enum class MassMatrix { Consistent, Lumped };
+template <>
+struct EnumNames<MassMatrix> {
+  static constexpr std::array<std::pair<MassMatrix, const char*>, 2> names{
+      {{MassMatrix::Consistent, "consistent"}, {MassMatrix::Lumped, "lumped"}}};
 };
 
 struct Scene {

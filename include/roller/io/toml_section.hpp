@@ -32,20 +32,12 @@ class TomlSection {
   // The raw node, for keys that accept several types (e.g. a number or a table).
   const toml::node* node(const std::string& key);
 
+  // A string that must be one of `choices` (an option enum's names: core/enum_names.hpp); the
+  // error lists them.
+  std::optional<std::string> choice(const std::string& key, const std::vector<std::string>& choices);
+
   // Checked getters with a default.
   Real real_or(const std::string& key, Real fallback) { return real(key).value_or(fallback); }
-  Index integer_or(const std::string& key, Index fallback) { return integer(key).value_or(fallback); }
-  // One of `choices`; the error lists them.
-  std::string choice_or(const std::string& key, const std::vector<std::string>& choices,
-                        const std::string& fallback);
-  // An option enum by its names (core/enum_names.hpp); the error lists them.
-  template <class E>
-  E enum_or(const std::string& key, E fallback) {
-    const auto value = string(key);
-    if (!value) return fallback;
-    if (const auto e = parse_enum<E>(*value)) return *e;
-    fail(key, "expected " + enum_choices<E>());
-  }
 
   // Throws InputError for the first key that was never read.
   void finish() const;

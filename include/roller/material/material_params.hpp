@@ -3,6 +3,7 @@
 // isotropic work hardening (docs/model.md, Material), density for dynamic scenes.
 #include <string>
 
+#include "roller/core/enum_names.hpp"
 #include "roller/core/types.hpp"
 
 namespace roller {
@@ -12,6 +13,11 @@ enum class StressIntegration {
   Substep,        // the thesis's "variable stiffness" (docs/model.md, Sub-stepping): continuum
                   // tangent C^EP integrated over the strain increment in n_substeps forward-Euler
                   // sub-steps
+};
+template <>
+struct EnumNames<StressIntegration> {
+  static constexpr std::array<std::pair<StressIntegration, const char*>, 2> names{
+      {{StressIntegration::ReturnMapping, "return_mapping"}, {StressIntegration::Substep, "substep"}}};
 };
 
 struct MaterialParams {

@@ -10,11 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "roller/core/enum_names.hpp"
 #include "roller/core/types.hpp"
 
 namespace roller {
 
 enum class ElementType { T3, Q4 };
+template <>
+struct EnumNames<ElementType> {
+  static constexpr std::array<std::pair<ElementType, const char*>, 2> names{
+      {{ElementType::Q4, "Q4"}, {ElementType::T3, "T3"}}};
+};
 
 inline int nodes_per_element(ElementType t) { return t == ElementType::T3 ? 3 : 4; }
 

@@ -22,6 +22,11 @@ struct Grading {
 
 // Diagonal used to split each quad into two T3 triangles.
 enum class Diagonal { Rising, Falling, Alternating };
+template <>
+struct EnumNames<Diagonal> {
+  static constexpr std::array<std::pair<Diagonal, const char*>, 3> names{
+      {{Diagonal::Rising, "rising"}, {Diagonal::Falling, "falling"}, {Diagonal::Alternating, "alternating"}}};
+};
 
 struct StripMeshSpec {
   ElementType element = ElementType::Q4;

@@ -1,0 +1,861 @@
+// The declaration of every scene-file key (include/roller/io/scene_keys.hpp). A plain key is a
+// field of the Scene reached by an accessor; its default is that field of a default-constructed
+// Scene, its type, range or choices drive reading, checking, writing and listing. Keys with a
+// structured shape (ramps, node selectors, gradings, ...) have hand-written readers and writers
+// below, declared in the same list. docs/scenes.md documents them for users.
+#include "roller/io/scene_keys.hpp"
+
+#include <climits>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+namespace roller {
+
+namespace {
+
+// ---- value rules -----------------------------------------------------------------------------
+
+// Allowed interval of a number (bounds inclusive unless open). Written so that NaN fails.
+struct Range {
+  std::optional<Real> min, max;
+  bool min_open = false;
+  bool max_open = false;
+
+  bool contains(Real v) const {
+    if (min && !(min_open ? v > *min : v >= *min)) return false;
+    if (max && !(max_open ? v < *max : v <= *max)) return false;
+    return true;
+  }
+  // "> 0", ">= 1", "0 <= nu < 0.5"; "" for any value.
+  std::string text(const std::string& name) const {
+    if (min && max)
+      return fmt::format("{} {} {} {} {}", *min, min_open ? "<" : "<=", name, max_open ? "<" : "<=", *max);
+    if (min) return fmt::format("{} {}", min_open ? ">" : ">=", *min);
+    if (max) return fmt::format("{} {}", max_open ? "<" : "<=", *max);
+    return "";
+  }
+  std::string rule(const std::string& name) const {
+    return (min && max ? "must satisfy " : "must be ") + text(name);
+  }
+};
+
+Range at_least(Real v) { return {v, std::nullopt, false, false}; }
+Range above(Real v) { return {v, std::nullopt, true, false}; }
+Range closed(Real lo, Real hi) { return {lo, hi, false, false}; }
+Range open(Real lo, Real hi) { return {lo, hi, true, true}; }
+Range right_open(Real lo, Real hi) { return {lo, hi, false, true}; }
+
+// What a value must satisfy: a range (numbers) or a list of choices (strings).
+struct Rule {
+  Rule() = default;
+  Rule(Range r) : range(std::move(r)) {}  // NOLINT: a range is a rule
+  Range range;
+  std::vector<std::string> choices;
+};
+
+Rule one_of(std::vector<std::string> choices) {
+  Rule r;
+  r.choices = std::move(choices);
+  return r;
+}
+
+std::string choices_text(const std::vector<std::string>& choices) {
+  std::string out;
+  for (const auto& c : choices) out += (out.empty() ? "\"" : " | \"") + c + "\"";
+  return out;
+}
+
+// ---- value types: Real, int, bool, std::string, std::vector<Real> and option enums -----------
+
+template <class T>
+std::string type_name() {
+  if constexpr (std::is_same_v<T, Real>) return "number";
+  else if constexpr (std::is_same_v<T, int>) return "integer";
+  else if constexpr (std::is_same_v<T, bool>) return "bool";
+  else if constexpr (std::is_same_v<T, std::string>) return "string";
+  else if constexpr (std::is_same_v<T, std::vector<Real>>) return "array of numbers";
+  else {
+    static_assert(std::is_enum_v<T>, "a scene key is a number, integer, bool, string, array or enum");
+    return "choice";
+  }
+}
+
+template <class T>
+std::string value_text(const T& v) {
+  if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
+  else if constexpr (std::is_same_v<T, std::string>) return fmt::format("\"{}\"", v);
+  else if constexpr (std::is_same_v<T, std::vector<Real>>) return fmt::format("[{}]", fmt::join(v, ", "));
+  else if constexpr (std::is_enum_v<T>) return fmt::format("\"{}\"", enum_name(v));
+  else return fmt::format("{}", v);
+}
+
+template <class T>
+void insert(toml::table& t, const std::string& name, const T& v) {
+  if constexpr (std::is_same_v<T, int>) t.insert(name, static_cast<int64_t>(v));
+  else if constexpr (std::is_same_v<T, std::vector<Real>>) {
+    toml::array a;
+    for (Real x : v) a.push_back(x);
+    t.insert(name, a);
+  } else if constexpr (std::is_enum_v<T>) t.insert(name, std::string(enum_name(v)));
+  else t.insert(name, v);
+}
+
+// Reads and checks one value; nullopt when the key is absent.
+template <class T>
+std::optional<T> read_value(TomlSection& s, const std::string& name, const Rule& rule) {
+  if constexpr (std::is_same_v<T, Real>) {
+    const auto v = s.real(name);
+    if (v && !rule.range.contains(*v)) s.fail(name, rule.range.rule(name));
+    return v;
+  } else if constexpr (std::is_same_v<T, int>) {
+    const auto v = s.integer(name);  // 64-bit: checked before it is narrowed
+    if (!v) return std::nullopt;
+    if (!rule.range.contains(static_cast<Real>(*v))) s.fail(name, rule.range.rule(name));
+    if (*v < INT_MIN || *v > INT_MAX) s.fail(name, fmt::format("must satisfy {} <= {} <= {}", INT_MIN, name, INT_MAX));
+    return static_cast<int>(*v);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return s.boolean(name);
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return rule.choices.empty() ? s.string(name) : s.choice(name, rule.choices);
+  } else if constexpr (std::is_same_v<T, std::vector<Real>>) {
+    return s.real_array(name);
+  } else {
+    const auto v = s.choice(name, enum_names<T>());
+    if (!v) return std::nullopt;
+    return parse_enum<T>(*v);
+  }
+}
+
+// ---- declarations ----------------------------------------------------------------------------
+
+// A scene with one of everything optional, for the defaults of keys inside them.
+const Scene& default_scene() {
+  static const Scene scene = [] {
+    Scene s;
+    s.roller.emplace();
+    s.roller->suspension.emplace();
+    s.roller->path.emplace_back();
+    s.displacements.emplace_back();
+    s.loads.emplace_back();
+    return s;
+  }();
+  return scene;
+}
+
+std::pair<std::string, std::string> split_dotted(const std::string& dotted) {
+  const auto dot = dotted.rfind('.');
+  if (dot == std::string::npos) return {"", dotted};
+  return {dotted.substr(0, dot), dotted.substr(dot + 1)};
+}
+
+// A key under construction; the modifiers adjust how it is read, written or listed.
+struct Decl {
+  SceneKey key;
+
+  // Absent is an error saying what the key holds.
+  Decl&& required(const std::string& message) && {
+    key.read = [read = std::move(key.read), name = key.name, message](TomlSection& s, Scene& scene,
+                                                                      std::size_t block) {
+      if (!s.has(name)) s.fail(name, message);
+      read(s, scene, block);
+    };
+    key.default_text = "required";
+    return std::move(*this);
+  }
+  // Absent: `fill` sets a default that depends on other keys (listed as `text`).
+  Decl&& when_absent(const std::string& text, std::function<void(Scene&)> fill) && {
+    key.read = [read = std::move(key.read), name = key.name, fill](TomlSection& s, Scene& scene,
+                                                                   std::size_t block) {
+      if (s.has(name)) read(s, scene, block);
+      else fill(scene);
+    };
+    key.default_text = text;
+    return std::move(*this);
+  }
+  // Written to the resolved scene only when `keep` holds (it means nothing otherwise).
+  Decl&& written_if(std::function<bool(const Scene&)> keep) && {
+    key.write = [write = std::move(key.write), keep](toml::table& t, const Scene& scene, std::size_t block) {
+      if (keep(scene)) write(t, scene, block);
+    };
+    return std::move(*this);
+  }
+  Decl&& shown_default(const std::string& text) && {
+    key.default_text = text;
+    return std::move(*this);
+  }
+  operator SceneKey() && { return std::move(key); }  // NOLINT: a finished declaration
+};
+
+// A key that is one field of the scene, read and written through get/set.
+template <class T>
+Decl field(const std::string& dotted, std::function<T(const Scene&, std::size_t)> get,
+           std::function<void(Scene&, std::size_t, const T&)> set, const std::string& doc, const Rule& rule) {
+  Decl d;
+  SceneKey& k = d.key;
+  std::tie(k.table, k.name) = split_dotted(dotted);
+  const bool choice = std::is_enum_v<T> || !rule.choices.empty();
+  k.type = choice ? "choice" : type_name<T>();
+  k.default_text = value_text(get(default_scene(), 0));
+  if constexpr (std::is_enum_v<T>) k.range = choices_text(enum_names<T>());
+  else k.range = choice ? choices_text(rule.choices) : rule.range.text(k.name);
+  k.doc = doc;
+  k.read = [name = k.name, set, rule](TomlSection& s, Scene& scene, std::size_t block) {
+    if (auto v = read_value<T>(s, name, rule)) set(scene, block, *v);
+  };
+  k.write = [name = k.name, get](toml::table& t, const Scene& scene, std::size_t block) {
+    insert(t, name, get(scene, block));
+  };
+  return d;
+}
+
+// A key that is one field of the scene, reached by `access`: a generic lambda returning a
+// reference, `[](auto& s) -> auto& { return s.mesh.nx; }`, or in an array of tables
+// `[](auto& s, std::size_t i) -> auto& { return s.roller->path[i].dx; }`.
+template <class Access>
+Decl key(const std::string& dotted, Access access, const std::string& doc, const Rule& rule = {}) {
+  if constexpr (std::is_invocable_v<Access, const Scene&, std::size_t>) {
+    using T = std::decay_t<std::invoke_result_t<Access, const Scene&, std::size_t>>;
+    return field<T>(
+        dotted, [access](const Scene& s, std::size_t i) { return access(s, i); },
+        [access](Scene& s, std::size_t i, const T& v) { access(s, i) = v; }, doc, rule);
+  } else {
+    using T = std::decay_t<std::invoke_result_t<Access, const Scene&>>;
+    return field<T>(
+        dotted, [access](const Scene& s, std::size_t) { return access(s); },
+        [access](Scene& s, std::size_t, const T& v) { access(s) = v; }, doc, rule);
+  }
+}
+
+// A key with a structured shape and its own reader and writer.
+Decl custom(const std::string& dotted, const std::string& type, const std::string& default_text,
+            const std::string& range, const std::string& doc,
+            std::function<void(TomlSection&, Scene&, std::size_t)> read,
+            std::function<void(toml::table&, const Scene&, std::size_t)> write) {
+  Decl d;
+  std::tie(d.key.table, d.key.name) = split_dotted(dotted);
+  d.key.type = type;
+  d.key.default_text = default_text;
+  d.key.range = range;
+  d.key.doc = doc;
+  d.key.read = std::move(read);
+  d.key.write = std::move(write);
+  return d;
+}
+
+void write_nothing(toml::table&, const Scene&, std::size_t) {}
+
+// A step number written as a TOML number: an integer in 1..INT_MAX (checked before the cast).
+bool is_step(Real v) { return v >= 1 && v <= INT_MAX && v == std::floor(v); }
+
+toml::array pair_array(Real a, Real b) { return toml::array{a, b}; }
+
+// ---- structured keys -------------------------------------------------------------------------
+
+Grading read_grading(TomlSection& s, const std::string& key) {
+  Grading g;
+  auto t = s.table(key);
+  if (!t) return g;
+  g.kind = Grading::Kind::Geometric;
+  t->allow({"ratio", "focus"});
+  t->finish();
+  g.ratio = t->real_or("ratio", 1.0);
+  g.focus = t->real_or("focus", 0.0);
+  if (!(g.ratio >= 1.0)) t->fail("ratio", "expected ratio >= 1 (largest over smallest interval)");
+  return g;
+}
+
+void write_grading(toml::table& t, const std::string& key, const Grading& g) {
+  if (g.kind == Grading::Kind::Geometric) t.insert(key, toml::table{{"ratio", g.ratio}, {"focus", g.focus}});
+}
+
+Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
+  const toml::node* n = s.node(key);
+  Ramp r;
+  r.ramp_first = 1;
+  r.ramp_last = 1;
+  if (n->is_number()) {  // a constant: reached at once and held
+    r.value = n->value<double>().value();
+    return r;
+  }
+  auto t = s.table(key);
+  if (!t) s.fail(key, "expected a number or { value = .., ramp = [first_step, last_step] }");
+  t->allow({"value", "ramp"});
+  t->finish();
+  const auto v = t->real("value");
+  if (!v) t->fail("value", "the value reached at the end of the ramp is required");
+  r.value = *v;
+  if (auto steps = t->real_array("ramp")) {
+    if (steps->size() != 2 || !is_step((*steps)[0]) || !is_step((*steps)[1]) || (*steps)[1] < (*steps)[0])
+      t->fail("ramp", "expected [first_step, last_step] with 1 <= first_step <= last_step");
+    r.ramp_first = static_cast<int>((*steps)[0]);
+    r.ramp_last = static_cast<int>((*steps)[1]);
+  } else {
+    r.ramp_last = n_steps;  // default: linear over the whole run
+  }
+  return r;
+}
+
+// A ramp key of a [[displacement]] or [[load]] block (`ramp` selects the member).
+template <class Block>
+Decl ramp_key(const std::string& dotted, std::vector<Block> Scene::*blocks, std::optional<Ramp> Block::*ramp,
+              const std::string& doc) {
+  const std::string name = split_dotted(dotted).second;
+  return custom(
+      dotted, "number or ramp table", "absent (free)", "", doc,
+      [=](TomlSection& s, Scene& scene, std::size_t i) {
+        if (s.has(name)) ((scene.*blocks)[i].*ramp) = read_ramp(s, name, scene.steps.n_steps);
+      },
+      [=](toml::table& t, const Scene& scene, std::size_t i) {
+        if (const auto& r = (scene.*blocks)[i].*ramp)
+          t.insert(name, toml::table{{"value", r->value},
+                                     {"ramp", toml::array{static_cast<int64_t>(r->ramp_first),
+                                                          static_cast<int64_t>(r->ramp_last)}}});
+      });
+}
+
+NodeSelector read_selector(TomlSection& s) {
+  NodeSelector sel;
+  const toml::node* n = s.node("nodes");
+  if (!n) s.fail("nodes", "required: a node set name (\"top\", \"left\", ...) or thesis node numbers [5, 101]");
+  if (auto name = n->value_exact<std::string>()) {
+    sel.set_name = *name;
+  } else if (n->is_table()) {
+    auto t = s.table("nodes");
+    t->allow({"near"});
+    t->finish();
+    const auto p = t->real_array("near");
+    if (!p || p->size() != 2) t->fail("near", "expected { near = [x, y] }: the node nearest to that point");
+    sel.near = Vec2((*p)[0], (*p)[1]);
+  } else if (const toml::array* arr = n->as_array()) {
+    for (const auto& item : *arr) {
+      auto i = item.value_exact<int64_t>();
+      if (!i) s.fail("nodes", "expected an array of integer node numbers (1-based, thesis numbering)");
+      sel.numbers.push_back(*i);
+    }
+    if (sel.numbers.empty()) s.fail("nodes", "the node list is empty");
+  } else {
+    s.fail("nodes", "expected a node set name, an array of node numbers, or { near = [x, y] }");
+  }
+  return sel;
+}
+
+void write_selector(toml::table& t, const NodeSelector& s) {
+  if (s.near) {
+    t.insert("nodes", toml::table{{"near", pair_array(s.near->x(), s.near->y())}});
+  } else if (s.numbers.empty()) {
+    t.insert("nodes", s.set_name);
+  } else {
+    toml::array a;
+    for (Index n : s.numbers) a.push_back(static_cast<int64_t>(n));
+    t.insert("nodes", a);
+  }
+}
+
+template <class Block>
+Decl nodes_key(const std::string& dotted, std::vector<Block> Scene::*blocks) {
+  return custom(
+      dotted, "set name | [numbers] | { near = [x, y] }", "required", "",
+      "which nodes: a set (\"bottom\", \"top+right\"), thesis node numbers, or the node nearest to a point",
+      [=](TomlSection& s, Scene& scene, std::size_t i) { (scene.*blocks)[i].nodes = read_selector(s); },
+      [=](toml::table& t, const Scene& scene, std::size_t i) { write_selector(t, (scene.*blocks)[i].nodes); });
+}
+
+void read_ipopt_options(TomlSection& s, Scene& scene, std::size_t) {
+  auto raw = s.table("options");
+  if (!raw) return;
+  // Any Ipopt option, passed through (checked by Ipopt when the backend is built).
+  for (const std::string& key : raw->keys()) {
+    const toml::node* v = raw->node(key);
+    RawIpoptOption r{key, RawIpoptOption::Kind::String, ""};
+    if (v->is_integer()) {
+      r.kind = RawIpoptOption::Kind::Integer;
+      r.text = std::to_string(v->value<int64_t>().value());
+    } else if (v->is_floating_point()) {
+      r.kind = RawIpoptOption::Kind::Number;
+      r.text = fmt::format("{:.17g}", v->value<double>().value());
+    } else if (v->is_boolean()) {
+      r.text = v->value<bool>().value() ? "yes" : "no";
+    } else if (v->is_string()) {
+      r.text = v->value<std::string>().value();
+    } else {
+      raw->fail(key, "expected a string, integer, number or boolean (an Ipopt option value)");
+    }
+    scene.contact.ipopt.raw.push_back(r);
+  }
+  raw->finish();
+}
+
+void write_ipopt_options(toml::table& t, const Scene& scene, std::size_t) {
+  toml::table raw_options;
+  for (const RawIpoptOption& r : scene.contact.ipopt.raw) {
+    if (r.kind == RawIpoptOption::Kind::Integer) raw_options.insert(r.name, std::stoll(r.text));
+    else if (r.kind == RawIpoptOption::Kind::Number) raw_options.insert(r.name, std::stod(r.text));
+    else raw_options.insert(r.name, r.text);
+  }
+  t.insert("options", raw_options);
+}
+
+bool plastic(const Scene& s) { return s.material.plastic; }
+
+// ---- the keys --------------------------------------------------------------------------------
+
+std::vector<SceneKey> make_keys() {
+  using Ref = std::size_t;  // block index of keys in arrays of tables
+  return {
+      // The root.
+      key("name", [](auto& s) -> auto& { return s.name; }, "name of the run, used for the output folder out/<name>")
+          .when_absent("file stem", [](Scene& s) { s.name = s.file.stem().string(); }),
+      key("title", [](auto& s) -> auto& { return s.title; }, "one-line description")
+          .written_if([](const Scene& s) { return !s.title.empty(); }),
+      key("kinematics", [](auto& s) -> auto& { return s.element.kinematics; },
+          "finite: updated Lagrangian, Green-Lagrange strain, geometric stiffness (thesis LARGE); "
+          "small: linear strain on the initial mesh (thesis INFINI)"),
+
+      // [material], read before [mesh]: the Q4 default depends on plasticity.
+      key("material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]",
+          above(0.0))
+          .required("Young's modulus E [MPa] is required"),
+      key("material.nu", [](auto& s) -> auto& { return s.material.poisson_ratio; }, "Poisson's ratio",
+          right_open(0.0, 0.5)),
+      key("material.density", [](auto& s) -> auto& { return s.material.density; },
+          "density [t/mm^3] (steel 7.8e-9), needed by strip inertia", at_least(0.0)),
+      custom(
+          "material.yield_stress", "number", "absent = elastic", "> 0",
+          "initial yield stress sigma_y0 [MPa]; its presence makes the material J2-plastic",
+          [](TomlSection& s, Scene& scene, Ref) {
+            const auto yield = s.real("yield_stress");
+            scene.material.plastic = yield.has_value();
+            if (yield) scene.material.yield_stress = *yield;
+          },
+          [](toml::table& t, const Scene& scene, Ref) {
+            if (scene.material.plastic) t.insert("yield_stress", scene.material.yield_stress);
+          }),
+      custom(
+          "material.tangent_modulus", "number", "0", "0 <= E_T < E",
+          "slope E_T of the bilinear uniaxial curve after yield [MPa] (or kappa)",
+          [](TomlSection& s, Scene& scene, Ref) {
+            const auto et = s.real("tangent_modulus");
+            if (et && !scene.material.plastic)
+              s.fail("tangent_modulus", "hardening needs yield_stress (set it, or remove this key)");
+            if (et) scene.material.tangent_modulus = *et;
+          },
+          [](toml::table& t, const Scene& scene, Ref) {
+            if (scene.material.plastic) t.insert("tangent_modulus", scene.material.tangent_modulus);
+          }),
+      custom(
+          "material.kappa", "number", "absent", "0 <= kappa < 1",
+          "the thesis's hardening parameter kappa = E_T/E, instead of tangent_modulus (written as tangent_modulus)",
+          [](TomlSection& s, Scene& scene, Ref) {
+            const auto kappa = s.real("kappa");
+            if (!kappa) return;
+            if (!scene.material.plastic) s.fail("kappa", "hardening needs yield_stress (set it, or remove this key)");
+            if (s.has("tangent_modulus")) s.fail("kappa", "give either tangent_modulus or kappa = E_T/E, not both");
+            if (!(*kappa >= 0.0 && *kappa < 1.0)) s.fail("kappa", "must satisfy 0 <= kappa < 1");
+            scene.material.tangent_modulus = *kappa * scene.material.youngs_modulus;
+          },
+          write_nothing),
+      key("material.stress_integration", [](auto& s) -> auto& { return s.material.integration; },
+          "return_mapping: radial return with the consistent tangent; substep: the thesis's sub-stepped "
+          "continuum tangent")
+          .written_if(plastic),
+      key("material.substeps", [](auto& s) -> auto& { return s.material.n_substeps; },
+          "sub-steps of the substep integration", at_least(1))
+          .written_if(plastic),
+
+      // [mesh]
+      key("mesh.element", [](auto& s) -> auto& { return s.mesh.element; },
+          "bilinear quads (2x2 Gauss) or linear triangles (each quad split in two)"),
+      key("mesh.length", [](auto& s) -> auto& { return s.mesh.length; }, "strip length L_s [mm]", above(0.0)),
+      key("mesh.height", [](auto& s) -> auto& { return s.mesh.height; }, "half-thickness H [mm]", above(0.0)),
+      key("mesh.nx", [](auto& s) -> auto& { return s.mesh.nx; }, "elements along x before refinement",
+          at_least(1)),
+      key("mesh.ny", [](auto& s) -> auto& { return s.mesh.ny; }, "elements along y before refinement",
+          at_least(1)),
+      key("mesh.refine", [](auto& s) -> auto& { return s.mesh.refine; },
+          "every interval split into refine equal parts (--refine)", at_least(1)),
+      custom(
+          "mesh.grading_x", "{ ratio, focus }", "uniform", "ratio >= 1",
+          "geometric grading along x: largest/smallest interval ratio, finest at coordinate focus",
+          [](TomlSection& s, Scene& scene, Ref) { scene.mesh.grading_x = read_grading(s, "grading_x"); },
+          [](toml::table& t, const Scene& scene, Ref) { write_grading(t, "grading_x", scene.mesh.grading_x); }),
+      custom(
+          "mesh.grading_y", "{ ratio, focus }", "uniform", "ratio >= 1", "geometric grading along y, as grading_x",
+          [](TomlSection& s, Scene& scene, Ref) { scene.mesh.grading_y = read_grading(s, "grading_y"); },
+          [](toml::table& t, const Scene& scene, Ref) { write_grading(t, "grading_y", scene.mesh.grading_y); }),
+      key("mesh.x_lines", [](auto& s) -> auto& { return s.mesh.x_lines; },
+          "explicit grid lines from 0 to length, strictly increasing; replace nx and grading_x")
+          .written_if([](const Scene& s) { return !s.mesh.x_lines.empty(); })
+          .shown_default("absent"),
+      key("mesh.y_lines", [](auto& s) -> auto& { return s.mesh.y_lines; },
+          "explicit grid lines from 0 to height, strictly increasing; replace ny and grading_y")
+          .written_if([](const Scene& s) { return !s.mesh.y_lines.empty(); })
+          .shown_default("absent"),
+      key("mesh.diagonal", [](auto& s) -> auto& { return s.mesh.diagonal; }, "how T3 split the quads"),
+      key("mesh.q4_formulation", [](auto& s) -> auto& { return s.element.q4; },
+          "B-bar (volumetric strain averaged over the element) or full integration")
+          .when_absent("\"bbar\" if plastic, else \"standard\"",
+                       [](Scene& s) {
+                         // Full-integration Q4 locks under isochoric plastic flow: B-bar is the plastic default.
+                         s.element.q4 = s.material.plastic ? Q4Formulation::BBar : Q4Formulation::Standard;
+                       }),
+
+      // [steps]
+      key("steps.count", [](auto& s) -> auto& { return s.steps.n_steps; },
+          "number of steps; fields are written at the end of steps (--steps)", at_least(1)),
+      key("steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", above(0.0)),
+      key("steps.max_cuts", [](auto& s) -> auto& { return s.steps.max_cuts; },
+          "a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments", closed(0, 20)),
+
+      // [newton]
+      key("newton.max_iterations", [](auto& s) -> auto& { return s.newton.max_iterations; },
+          "Newton iterations per increment", at_least(1)),
+      key("newton.residual_tolerance", [](auto& s) -> auto& { return s.newton.residual_tolerance; },
+          "converged when |r| <= tol * force scale", open(0.0, 1.0)),
+      key("newton.line_search", [](auto& s) -> auto& { return s.newton.line_search; },
+          "backtracking on the incremental energy"),
+
+      // [linear_solver]
+      key("linear_solver.out_of_core", [](auto& s) -> auto& { return s.newton.linear.out_of_core; },
+          "MUMPS factors written to disk instead of kept in memory"),
+      key("linear_solver.ordering", [](auto& s) -> auto& { return s.newton.linear.ordering; },
+          "fill-reducing ordering of MUMPS (auto: MUMPS chooses)", one_of(LinearSolverOptions::orderings())),
+      key("linear_solver.directory", [](auto& s) -> auto& { return s.newton.linear.directory; },
+          "existing directory for the out-of-core files (\"\": MUMPS's default, /tmp)"),
+
+      // [output]
+      key("output.every", [](auto& s) -> auto& { return s.output.every; },
+          "write fields every N steps (the last step always)", at_least(1)),
+      key("output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
+      key("output.monitor", [](auto& s) -> auto& { return s.output.monitor; },
+          "run-time monotonicity monitor (one extra assembly and factorisation per step)"),
+      key("output.checkpoint_every", [](auto& s) -> auto& { return s.output.checkpoint_every; },
+          "write checkpoint.cbor every N steps (0 = never), for --resume", at_least(0)),
+      custom(
+          "output.save_states", "array of steps", "[]", "1..steps.count",
+          "keep the full state of these steps as state_NNNN.cbor",
+          [](TomlSection& s, Scene& scene, Ref) {
+            if (auto steps = s.real_array("save_states")) {
+              for (Real v : *steps) {
+                if (v != std::floor(v) || v < 1 || v > scene.steps.n_steps)
+                  s.fail("save_states",
+                         fmt::format("expected step numbers in 1..{} (steps.count)", scene.steps.n_steps));
+                scene.output.save_states.push_back(static_cast<int>(v));
+              }
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref) {
+            toml::array a;
+            for (int step : scene.output.save_states) a.push_back(static_cast<int64_t>(step));
+            t.insert("save_states", a);
+          }),
+
+      // [dynamics]
+      key("dynamics.strip_inertia", [](auto& s) -> auto& { return s.dynamics.strip_inertia; },
+          "Houbolt inertia of the strip; needs material.density > 0"),
+      field<MassMatrix>(
+          "dynamics.mass",
+          [](const Scene& s, Ref) { return s.dynamics.lumped_mass ? MassMatrix::Lumped : MassMatrix::Consistent; },
+          [](Scene& s, Ref, const MassMatrix& m) { s.dynamics.lumped_mass = m == MassMatrix::Lumped; },
+          "consistent or row-sum lumped mass matrix", {}),
+
+      // [restart]
+      custom(
+          "restart.from", "path", "required in [restart]", "",
+          "state file of another run (state_final.cbor), relative to the scene file (--initial-state)",
+          [](TomlSection& s, Scene& scene, Ref) {
+            const auto from = s.string("from");
+            if (!from || from->empty())
+              s.fail("from", "expected the path of a state file (state_final.cbor of a run)");
+            std::filesystem::path p(*from);
+            // Relative to the scene file, so that a scene and its predecessor's output travel together.
+            if (p.is_relative() && !scene.file.empty()) p = scene.file.parent_path() / p;
+            scene.initial_state = p;
+          },
+          [](toml::table& t, const Scene& scene, Ref) { t.insert("from", scene.initial_state.string()); }),
+
+      // [[displacement]] and [[load]]
+      nodes_key("displacement.nodes", &Scene::displacements),
+      ramp_key("displacement.x", &Scene::displacements, &DisplacementBC::x,
+               "total displacement in x [mm]: a number (from step 1) or { value, ramp = [first, last] }"),
+      ramp_key("displacement.y", &Scene::displacements, &DisplacementBC::y, "total displacement in y [mm], as x"),
+      nodes_key("load.nodes", &Scene::loads),
+      ramp_key("load.fx", &Scene::loads, &NodalLoad::fx,
+               "force on each selected node [N per mm width]: a number or a ramp table"),
+      ramp_key("load.fy", &Scene::loads, &NodalLoad::fy, "force on each selected node in y, as fx"),
+
+      // [roller]
+      key("roller.radius", [](auto& s) -> auto& { return s.roller->radius; }, "R [mm]", above(0.0)),
+      custom(
+          "roller.centre", "[x, y]", "[length/2, height + radius] (touching)", "",
+          "centre at the start [mm]",
+          [](TomlSection& s, Scene& scene, Ref) {
+            if (auto c = s.real_array("centre")) {
+              if (c->size() != 2) s.fail("centre", "expected [x, y] of the roller centre at the start [mm]");
+              scene.roller->start_centre = Vec2((*c)[0], (*c)[1]);
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref) {
+            if (const auto& c = scene.roller->start_centre) t.insert("centre", pair_array(c->x(), c->y()));
+          }),
+      key("roller.angle", [](auto& s) -> auto& { return s.roller->start_angle; },
+          "rotation angle at the start [rad], counter-clockwise positive"),
+      key("roller.suspension.mass", [](auto& s) -> auto& { return s.roller->suspension->mass; },
+          "m [t per mm of roller length]", at_least(0.0)),
+      key("roller.suspension.damping", [](auto& s) -> auto& { return s.roller->suspension->damping; },
+          "c [N s/mm per mm]", at_least(0.0)),
+      key("roller.suspension.stiffness", [](auto& s) -> auto& { return s.roller->suspension->stiffness; },
+          "k [N/mm per mm]; k or m must be > 0", at_least(0.0)),
+      custom(
+          "roller.path.steps", "[first, last]", "required", "1 <= first <= last",
+          "the steps the segment acts over (1-based, inclusive)",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            const auto steps = s.real_array("steps");
+            if (!steps || steps->size() != 2 || !is_step((*steps)[0]) || !is_step((*steps)[1]))
+              s.fail("steps", "expected [first_step, last_step] (integers, 1-based, inclusive)");
+            scene.roller->path[i].first_step = static_cast<int>((*steps)[0]);
+            scene.roller->path[i].last_step = static_cast<int>((*steps)[1]);
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            const PathSegment& p = scene.roller->path[i];
+            t.insert("steps", toml::array{static_cast<int64_t>(p.first_step), static_cast<int64_t>(p.last_step)});
+          }),
+      key("roller.path.dx", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dx; },
+          "travel of the centre in x over the segment [mm]"),
+      key("roller.path.dy", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dy; },
+          "travel of the centre in y over the segment [mm] (negative = press in)"),
+      custom(
+          "roller.path.slip", "number or [start, end]", "0", "-1 <= slip <= 1",
+          "creep ratio s = (v - omega R)/v, linear from start to end over the segment",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            PathSegment& p = scene.roller->path[i];
+            if (const toml::node* slip = s.node("slip")) {
+              if (slip->is_number()) {
+                p.slip_start = p.slip_end = slip->value<double>().value();
+              } else if (auto pair = s.real_array("slip"); pair && pair->size() == 2) {
+                p.slip_start = (*pair)[0];
+                p.slip_end = (*pair)[1];
+              } else {
+                s.fail("slip", "expected a slip ratio s = (v - omega R)/v, or [s_start, s_end]");
+              }
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            const PathSegment& p = scene.roller->path[i];
+            t.insert("slip", pair_array(p.slip_start, p.slip_end));
+          }),
+      custom(
+          "roller.path.harmonic", "{ amplitude, wavelength }", "none", "wavelength > 0",
+          "adds amplitude sin(2 pi u / wavelength) to y, u = distance rolled in the segment [mm]",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            PathSegment& p = scene.roller->path[i];
+            if (auto h = s.table("harmonic")) {
+              h->allow({"amplitude", "wavelength"});
+              h->finish();
+              p.harmonic_amplitude = h->real_or("amplitude", 0.0);
+              const auto wl = h->real("wavelength");
+              if (!wl || !(*wl > 0.0)) h->fail("wavelength", "expected the wavelength L_p > 0 [mm]");
+              p.harmonic_wavelength = *wl;
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            const PathSegment& p = scene.roller->path[i];
+            if (p.harmonic_wavelength > 0.0)
+              t.insert("harmonic", toml::table{{"amplitude", p.harmonic_amplitude},
+                                               {"wavelength", p.harmonic_wavelength}});
+          }),
+
+      // [contact]
+      key("contact.backend", [](auto& s) -> auto& { return s.contact.backend; },
+          "contact solver (--contact): interior point (exact non-penetration) or the thesis's penalty Newton"),
+      key("contact.friction", [](auto& s) -> auto& { return s.contact.friction; }, "Coulomb coefficient mu",
+          closed(0.0, 10.0)),
+      key("contact.candidates", [](auto& s) -> auto& { return s.contact.candidates; },
+          "node set (or union \"top+right\") of the nodes that may touch the roller"),
+      key("contact.predictor", [](auto& s) -> auto& { return s.contact.predictor; },
+          "start of each increment: the previous increment scaled, or that and the thesis's arc rule"),
+      key("contact.penalty.factor", [](auto& s) -> auto& { return s.contact.penalty.factor; },
+          "normal penalty kappa_N = factor * E* * l_i / h_i", above(0.0)),
+      key("contact.penalty.tangential_factor", [](auto& s) -> auto& { return s.contact.penalty.tangential_factor; },
+          "kappa_T = tangential_factor * kappa_N", above(0.0)),
+      key("contact.ipopt.formulation", [](auto& s) -> auto& { return s.contact.ipopt.formulation; },
+          "condensed: MUMPS condensation onto the contact dofs, small dense NLP; full: every free dof in the NLP"),
+      key("contact.ipopt.tol", [](auto& s) -> auto& { return s.contact.ipopt.tol; },
+          "Ipopt's tol on the scaled NLP", open(0.0, 1.0)),
+      key("contact.ipopt.max_iter", [](auto& s) -> auto& { return s.contact.ipopt.max_iter; },
+          "Ipopt's iteration limit per NLP", at_least(1)),
+      key("contact.ipopt.mu_strategy", [](auto& s) -> auto& { return s.contact.ipopt.mu_strategy; },
+          "Ipopt's barrier update"),
+      key("contact.ipopt.print_level", [](auto& s) -> auto& { return s.contact.ipopt.print_level; },
+          "Ipopt's output level", closed(0, 12)),
+      key("contact.ipopt.warm_start", [](auto& s) -> auto& { return s.contact.ipopt.warm_start; },
+          "warm-start the first Ipopt pass of an increment from multipliers guessed from the last forces"),
+      key("contact.ipopt.friction", [](auto& s) -> auto& { return s.contact.ipopt.friction; },
+          "split: v_T = s+ - s-, exact; regularized: sqrt(v_T^2 + eps^2)"),
+      key("contact.ipopt.regularization", [](auto& s) -> auto& { return s.contact.ipopt.regularization; },
+          "eps of the regularized friction [mm]", above(0.0)),
+      key("contact.ipopt.fixed_point", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point; },
+          "converge: Coulomb's normal-force fixed point iterated; single: one pass with the previous F_N"),
+      key("contact.ipopt.fixed_point_tol", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_tol; },
+          "max |dF_N| / max F_N that ends the friction fixed point", above(0.0)),
+      key("contact.ipopt.fixed_point_max", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_max; },
+          "passes of the friction fixed point at most", at_least(1)),
+      custom("contact.ipopt.options", "table", "{}", "Ipopt's options",
+             "any further Ipopt option, passed through after roller's own settings (booleans become yes/no)",
+             read_ipopt_options, write_ipopt_options),
+  };
+}
+
+// ---- the tables ------------------------------------------------------------------------------
+
+std::vector<SceneTable> make_tables() {
+  using Ref = std::size_t;
+  std::vector<SceneTable> tables;
+  tables.reserve(32);  // the references returned by add stay valid
+  auto add = [&tables](const std::string& path, bool array = false) -> SceneTable& {
+    tables.emplace_back();
+    tables.back().path = path;
+    tables.back().array = array;
+    return tables.back();
+  };
+  add("");
+
+  SceneTable& material = add("material");
+  material.required = "a [material] table is required (at least E and nu)";
+  material.check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.material.is_valid(&why))
+      s.fail_invalid(why, {{"youngs_modulus", "E"},
+                           {"poisson_ratio", "nu"},
+                           {"tangent_modulus", s.has("kappa") ? "kappa" : "tangent_modulus"},
+                           {"n_substeps", "substeps"}});
+  };
+
+  SceneTable& mesh = add("mesh");
+  mesh.required = "a [mesh] table is required (element, length, height, nx, ny)";
+  mesh.check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.mesh.is_valid(&why)) s.fail_invalid(why, {});
+  };
+
+  add("steps");
+  add("newton").check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.newton.is_valid(&why)) s.fail_invalid(why, {});
+  };
+  add("linear_solver").check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.newton.linear.is_valid(&why)) s.fail_invalid(why, {});
+  };
+  add("output");
+  add("dynamics").check = [](TomlSection& s, Scene& scene, Ref) {
+    if (scene.dynamics.strip_inertia && !(scene.material.density > 0.0))
+      s.fail("strip_inertia", fmt::format("strip inertia needs material.density > 0 [t/mm^3] (it is {}); steel: 7.8e-9",
+                                          scene.material.density));
+  };
+  add("restart").count = [](const Scene& s) -> std::size_t { return !s.initial_state.empty(); };
+
+  SceneTable& displacement = add("displacement", true);
+  displacement.enter = [](TomlSection&, Scene& scene) { scene.displacements.emplace_back(); };
+  displacement.check = [](TomlSection& s, Scene& scene, Ref i) {
+    if (!scene.displacements[i].x && !scene.displacements[i].y) s.fail("x", "a [[displacement]] block needs x and/or y");
+  };
+  displacement.count = [](const Scene& s) { return s.displacements.size(); };
+
+  SceneTable& load = add("load", true);
+  load.enter = [](TomlSection&, Scene& scene) { scene.loads.emplace_back(); };
+  load.check = [](TomlSection& s, Scene& scene, Ref i) {
+    if (!scene.loads[i].fx && !scene.loads[i].fy) s.fail("fx", "a [[load]] block needs fx and/or fy");
+  };
+  load.count = [](const Scene& s) { return s.loads.size(); };
+
+  SceneTable& roller = add("roller");
+  roller.enter = [](TomlSection&, Scene& scene) { scene.roller.emplace(); };
+  roller.check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.roller->is_valid(&why)) s.fail_invalid(why, {});
+  };
+  roller.count = [](const Scene& s) -> std::size_t { return s.roller.has_value(); };
+
+  SceneTable& suspension = add("roller.suspension");
+  suspension.enter = [](TomlSection&, Scene& scene) { scene.roller->suspension.emplace(); };
+  suspension.count = [](const Scene& s) -> std::size_t { return s.roller && s.roller->suspension; };
+
+  SceneTable& path = add("roller.path", true);
+  path.enter = [](TomlSection&, Scene& scene) { scene.roller->path.emplace_back(); };
+  path.count = [](const Scene& s) -> std::size_t { return s.roller ? s.roller->path.size() : 0; };
+
+  SceneTable& contact = add("contact");
+  contact.enter = [](TomlSection& s, Scene& scene) {
+    if (!scene.roller) s.fail("backend", "a [contact] table needs a [roller]");
+  };
+  contact.check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.contact.is_valid(&why)) s.fail_invalid(why, {});
+  };
+  contact.count = [](const Scene& s) -> std::size_t { return s.roller.has_value(); };
+
+  add("contact.penalty");
+  add("contact.ipopt");
+  return tables;
+}
+
+}  // namespace
+
+std::string SceneTable::name() const { return split_dotted(path).second; }
+std::string SceneTable::parent() const { return split_dotted(path).first; }
+
+std::string SceneKey::dotted() const {
+  std::string out;
+  std::string prefix;
+  if (!table.empty()) {
+    std::size_t start = 0;
+    while (true) {
+      const auto dot = table.find('.', start);
+      prefix = table.substr(0, dot);
+      out += table.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+      if (scene_table(prefix).array) out += "[]";
+      out += ".";
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+  }
+  return out + name;
+}
+
+const std::vector<SceneTable>& scene_tables() {
+  static const std::vector<SceneTable> tables = make_tables();
+  return tables;
+}
+
+const std::vector<SceneKey>& scene_keys() {
+  static const std::vector<SceneKey> keys = make_keys();
+  return keys;
+}
+
+const SceneTable& scene_table(const std::string& path) {
+  for (const SceneTable& t : scene_tables())
+    if (t.path == path) return t;
+  throw std::out_of_range("scene_table: no table '" + path + "' is declared");
+}
+
+std::vector<const SceneKey*> keys_of(const std::string& table) {
+  std::vector<const SceneKey*> out;
+  for (const SceneKey& k : scene_keys())
+    if (k.table == table) out.push_back(&k);
+  return out;
+}
+
+std::vector<const SceneTable*> sub_tables_of(const std::string& table) {
+  std::vector<const SceneTable*> out;
+  for (const SceneTable& t : scene_tables())
+    if (!t.path.empty() && t.parent() == table) out.push_back(&t);
+  return out;
+}
+
+}  // namespace roller

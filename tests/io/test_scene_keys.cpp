@@ -1,0 +1,261 @@
+// The scene-key declarations (io/scene_keys.hpp): each key declared once in a declared table,
+// documented in docs/scenes.md, and written by scene_to_toml so that it reads back the same.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "roller/core/error.hpp"
+#include "roller/io/scene_keys.hpp"
+#include "roller/io/scene_loader.hpp"
+
+using namespace roller;
+
+namespace {
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  REQUIRE(in);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string error_of(const std::string& text, const std::vector<SceneOverride>& overrides = {}) {
+  try {
+    parse_scene(text, "bad.toml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every key set away from its default (kappa aside: it is written as tangent_modulus).
+std::string all_keys_scene() {
+  return R"(
+name = "all"
+title = "every key"
+kinematics = "small"
+[material]
+E = 2.0e5
+nu = 0.25
+density = 7.8e-9
+yield_stress = 250.0
+tangent_modulus = 1000.0
+stress_integration = "substep"
+substeps = 5
+[mesh]
+element = "T3"
+length = 50.0
+height = 10.0
+nx = 6
+ny = 3
+refine = 2
+grading_x = { ratio = 4.0, focus = 25.0 }
+grading_y = { ratio = 2.0, focus = 10.0 }
+x_lines = [0.0, 20.0, 50.0]
+y_lines = [0.0, 4.0, 7.0, 10.0]
+diagonal = "alternating"
+q4_formulation = "standard"
+[steps]
+count = 5
+dt = 1e-4
+max_cuts = 3
+[newton]
+max_iterations = 12
+residual_tolerance = 1e-9
+line_search = false
+[linear_solver]
+out_of_core = true
+ordering = "amd"
+directory = ")" + std::filesystem::temp_directory_path().string() + R"("
+[output]
+every = 2
+vtu = false
+monitor = false
+checkpoint_every = 0
+save_states = [2, 4]
+[dynamics]
+strip_inertia = true
+mass = "lumped"
+[restart]
+from = "/nonexistent/state_final.cbor"
+[[displacement]]
+nodes = "bottom"
+y = 0.0
+[[displacement]]
+nodes = { near = [0.0, 10.0] }
+x = { value = 0.1, ramp = [2, 3] }
+y = -0.05
+[[load]]
+nodes = [1, 2]
+fx = 1.0
+fy = { value = -2.0, ramp = [1, 5] }
+[roller]
+radius = 150.0
+centre = [25.0, 160.0]
+angle = 0.1
+[roller.suspension]
+mass = 1e-3
+damping = 2e-3
+stiffness = 1e5
+[[roller.path]]
+steps = [1, 2]
+dy = -0.5
+[[roller.path]]
+steps = [3, 5]
+dx = 10.0
+dy = 0.1
+slip = [0.01, 0.02]
+harmonic = { amplitude = 0.01, wavelength = 5.0 }
+[contact]
+backend = "penalty"
+friction = 0.2
+candidates = "top+right"
+predictor = "arc"
+[contact.penalty]
+factor = 500.0
+tangential_factor = 0.5
+[contact.ipopt]
+formulation = "full"
+tol = 1e-8
+max_iter = 100
+mu_strategy = "monotone"
+print_level = 1
+warm_start = true
+friction = "regularized"
+regularization = 1e-7
+fixed_point = "single"
+fixed_point_tol = 1e-5
+fixed_point_max = 10
+[contact.ipopt.options]
+mumps_pivot_order = 0
+bound_push = 0.01
+print_timing_statistics = true
+)";
+}
+
+// docs/scenes.md in blocks: a header line (a heading, or a paragraph opening with `[table]`)
+// and the text up to the next header.
+struct DocBlock {
+  std::string header;
+  std::string text;  // header and body
+};
+
+std::vector<DocBlock> doc_blocks(const std::string& doc) {
+  std::vector<DocBlock> blocks;
+  std::istringstream in(doc);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("#", 0) == 0 || line.rfind("`[", 0) == 0) blocks.push_back({line, ""});
+    if (!blocks.empty()) blocks.back().text += line + "\n";
+  }
+  return blocks;
+}
+
+// How docs/scenes.md names a table: "## Top level", "`[mesh]`", "`[[roller.path]]`".
+std::string doc_marker(const SceneTable& t) {
+  if (t.path.empty()) return "## Top level";
+  return t.array ? "`[[" + t.path + "]]`" : "`[" + t.path + "]`";
+}
+
+}  // namespace
+
+TEST_CASE("scene keys: each declared once, in a declared table, its parents declared first", "[io][scene][keys]") {
+  std::set<std::string> tables;
+  for (const SceneTable& t : scene_tables()) {
+    INFO("table '" << t.path << "'");
+    CHECK(tables.insert(t.path).second);
+    if (!t.path.empty()) CHECK(tables.count(t.parent()) == 1);
+  }
+  std::set<std::string> keys;
+  for (const SceneKey& k : scene_keys()) {
+    INFO(k.dotted());
+    CHECK(keys.insert(k.dotted()).second);
+    CHECK(tables.count(k.table) == 1);
+    CHECK(tables.count(k.table.empty() ? k.name : k.table + "." + k.name) == 0);  // not also a table
+    CHECK_FALSE(k.type.empty());
+    CHECK_FALSE(k.default_text.empty());
+    CHECK_FALSE(k.doc.empty());
+    CHECK(k.read);
+    CHECK(k.write);
+  }
+  CHECK(keys.count("contact.ipopt.tol") == 1);
+  CHECK(keys.count("roller.path[].dx") == 1);
+}
+
+TEST_CASE("docs/scenes.md mentions every declared key under its table", "[io][scene][keys][docs]") {
+  const std::string doc = read_file(std::filesystem::path(ROLLER_SOURCE_DIR) / "docs" / "scenes.md");
+  CHECK_THAT(doc, Catch::Contains("roller scene-keys"));
+  const std::vector<DocBlock> blocks = doc_blocks(doc);
+  for (const SceneTable& t : scene_tables()) {
+    INFO("table " << doc_marker(t));
+    CHECK_THAT(doc, Catch::Contains(doc_marker(t)));
+  }
+  for (const SceneKey& k : scene_keys()) {
+    const std::string marker = doc_marker(scene_table(k.table));
+    bool found = false;
+    for (const DocBlock& b : blocks)
+      found = found || (b.header.find(marker) != std::string::npos && b.text.find("`" + k.name + "`") != std::string::npos);
+    INFO(k.dotted() << ": `" << k.name << "` is not documented under " << marker);
+    CHECK(found);
+  }
+}
+
+TEST_CASE("every shipped scene round-trips through the resolved scene", "[io][scene][keys]") {
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(ROLLER_SOURCE_DIR) / "problems"))
+    if (entry.path().extension() == ".toml") files.push_back(entry.path());
+  REQUIRE(files.size() >= 10);
+  for (const auto& file : files) {
+    INFO(file.string());
+    const std::string first = scene_to_toml(load_scene(file));
+    const std::string second = scene_to_toml(parse_scene(first, "resolved.toml"));
+    CHECK(second == first);
+  }
+}
+
+TEST_CASE("a scene that sets every key round-trips, and the resolved scene holds every key", "[io][scene][keys]") {
+  const Scene scene = parse_scene(all_keys_scene(), "all.toml");
+  CHECK(scene.mesh.element == ElementType::T3);
+  CHECK(scene.dynamics.lumped_mass);
+  CHECK(scene.roller->path.at(1).harmonic_wavelength == 5.0);
+  CHECK(scene.contact.ipopt.raw.size() == 3);
+  const std::string first = scene_to_toml(scene);
+  const std::string second = scene_to_toml(parse_scene(first, "resolved.toml"));
+  CHECK(second == first);
+  const toml::table written = toml::parse(first);
+  for (const SceneKey& k : scene_keys()) {
+    if (k.dotted() == "material.kappa") continue;  // written as tangent_modulus
+    // The key in the written table (in the last block of an array of tables).
+    const toml::node* node = &written;
+    std::stringstream path(k.table);
+    for (std::string part; std::getline(path, part, '.');) {
+      node = node->as_table()->get(part);
+      REQUIRE(node);
+      if (const toml::array* blocks = node->as_array()) node = blocks->get(blocks->size() - 1);
+    }
+    INFO(k.dotted() << " is not in the resolved scene:\n" << first);
+    CHECK(node->as_table()->contains(k.name));
+  }
+}
+
+TEST_CASE("scene keys check their range before narrowing, and suggest declared keys", "[io][scene][keys][errors]") {
+  using Catch::Contains;
+  const std::string base = "[mesh]\n[material]\nE = 2.1e5\n[roller]\n";
+  CHECK_THAT(error_of(base, {{"mesh.nx", "4294967297"}}), Contains("mesh.nx = 4294967297") && Contains("2147483647"));
+  CHECK_THAT(error_of(base, {{"steps.max_cuts", "-4294967295"}}),
+             Contains("steps.max_cuts = -4294967295") && Contains("0 <= max_cuts <= 20"));
+  CHECK_THAT(error_of(base, {{"contact.ipopt.print_level", "13"}}),
+             Contains("contact.ipopt.print_level = 13") && Contains("0 <= print_level <= 12"));
+  CHECK_THAT(error_of(base, {{"mesh.diagonal", "\"up\""}}),
+             Contains("mesh.diagonal = 'up'") && Contains("\"rising\", \"falling\", \"alternating\""));
+  CHECK_THAT(error_of(base, {{"dynamics.mass", "\"diagonal\""}}), Contains("\"consistent\", \"lumped\""));
+  CHECK_THAT(error_of(base, {{"newton.residual_tolerance", "1.5"}}),
+             Contains("newton.residual_tolerance = 1.5: must satisfy 0 < residual_tolerance < 1"));
+  // A declared key that this file does not set is still suggested.
+  CHECK_THAT(error_of(base + "[newton]\nline_serch = false\n"), Contains("did you mean 'newton.line_search'"));
+}
