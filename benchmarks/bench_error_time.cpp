@@ -50,11 +50,11 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 struct Plan {
   std::string scene;
-  int steps = 0;                 // 0: the scene's own count
-  int load_step = 0;             // step of the force and pressure comparison; 0: the last step
-  std::vector<int> levels;       // mesh refinements (both backends, default settings)
-  int sweep_level = 1;           // refinement of the penalty-factor and tolerance sweeps
-  int reference_level = 1;       // finest mesh, run with the tightest Ipopt tolerance
+  int steps = 0;            // 0: the scene's own count
+  int load_step = 0;        // step of the force and pressure comparison; 0: the last step
+  std::vector<int> levels;  // mesh refinements (both backends, default settings)
+  int sweep_level = 1;      // refinement of the penalty-factor and tolerance sweeps
+  int reference_level = 1;  // finest mesh, run with the tightest Ipopt tolerance
 };
 
 struct Run {
@@ -78,7 +78,8 @@ struct GridField {
     const auto [j, t] = locate(ys, p.y(), false);
     const std::size_t n = ys.size();
     auto v = [&](std::size_t a, std::size_t b) { return values[a * n + b]; };
-    return (1 - s) * (1 - t) * v(i, j) + s * (1 - t) * v(i + 1, j) + (1 - s) * t * v(i, j + 1) + s * t * v(i + 1, j + 1);
+    return (1 - s) * (1 - t) * v(i, j) + s * (1 - t) * v(i + 1, j) + (1 - s) * t * v(i, j + 1) +
+           s * t * v(i + 1, j + 1);
   }
   bool empty() const { return values.empty(); }
 };
@@ -140,7 +141,8 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
   bool timing = false;
   auto t0 = t_start;
   try {
-    Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + plan.scene + ".toml", overrides(plan, run));
+    Scene scene =
+        load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + plan.scene + ".toml", overrides(plan, run));
     t0 = Clock::now();
     timing = true;
     Simulation sim(std::move(scene));
@@ -176,8 +178,8 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
       const double elapsed = seconds_since(t0);
       if (step < r.steps && elapsed > budget_s) {
         r.status = "timeout";
-        r.message = fmt::format("stopped after step {} of {}: {:.3g} s > budget {:g} s", step, r.steps, elapsed,
-                                budget_s);
+        r.message =
+            fmt::format("stopped after step {} of {}: {:.3g} s > budget {:g} s", step, r.steps, elapsed, budget_s);
         break;
       }
     }
@@ -269,12 +271,38 @@ std::vector<Plan> plans(bool quick) {
 }
 
 // Columns of the CSV (benchmarks/error_vs_time.py reads them by name).
-const std::vector<std::string> kColumns = {
-    "scene", "backend", "parameter", "value", "refine", "dofs", "status", "converged", "message", "wall_s",
-    "repeats", "cost_s", "steps", "steps_done", "iterations", "factorizations", "residual_max", "residual_last",
-    "max_penetration", "load_step", "force_error", "pressure_l2_error", "pressure_reference",
-    "final_roller_force", "final_contact_nodes", "final_state", "final_sqrt_i2_error", "final_tau_xx_error",
-    "reference_backend", "reference_refine", "reference_tol", "errors_against"};
+const std::vector<std::string> kColumns = {"scene",
+                                           "backend",
+                                           "parameter",
+                                           "value",
+                                           "refine",
+                                           "dofs",
+                                           "status",
+                                           "converged",
+                                           "message",
+                                           "wall_s",
+                                           "repeats",
+                                           "cost_s",
+                                           "steps",
+                                           "steps_done",
+                                           "iterations",
+                                           "factorizations",
+                                           "residual_max",
+                                           "residual_last",
+                                           "max_penetration",
+                                           "load_step",
+                                           "force_error",
+                                           "pressure_l2_error",
+                                           "pressure_reference",
+                                           "final_roller_force",
+                                           "final_contact_nodes",
+                                           "final_state",
+                                           "final_sqrt_i2_error",
+                                           "final_tau_xx_error",
+                                           "reference_backend",
+                                           "reference_refine",
+                                           "reference_tol",
+                                           "errors_against"};
 
 const char* usage =
     "usage: bench_error_time [--quick] [--out FILE.csv] [--scenes a,b] [--refine-max N]\n"
@@ -291,15 +319,20 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
-    if (a == "--quick") quick = true;
-    else if (a == "--out" && has_value) out = argv[++i];
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--out" && has_value)
+      out = argv[++i];
     else if (a == "--scenes" && has_value) {
       std::stringstream s(argv[++i]);
       for (std::string n; std::getline(s, n, ',');)
         if (!n.empty()) only.push_back(n);
-    } else if (a == "--refine-max" && has_value) refine_max = std::atoi(argv[++i]);
-    else if (a == "--max-run-seconds" && has_value) max_run_s = std::atof(argv[++i]);
-    else if (a == "--max-reference-seconds" && has_value) max_reference_s = std::atof(argv[++i]);
+    } else if (a == "--refine-max" && has_value)
+      refine_max = std::atoi(argv[++i]);
+    else if (a == "--max-run-seconds" && has_value)
+      max_run_s = std::atof(argv[++i]);
+    else if (a == "--max-reference-seconds" && has_value)
+      max_reference_s = std::atof(argv[++i]);
     else {
       std::fputs(usage, stderr);
       return 2;
@@ -320,8 +353,8 @@ int main(int argc, char** argv) {
   const std::filesystem::path out_path(out);
   if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
   CsvTable csv(out_path, kColumns);
-  const std::vector<Real> factors = quick ? std::vector<Real>{1e1, 1e3, 1e5}
-                                          : std::vector<Real>{1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+  const std::vector<Real> factors =
+      quick ? std::vector<Real>{1e1, 1e3, 1e5} : std::vector<Real>{1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
   // Ordered from cheap to expensive within each sweep, so that once a mesh or penalty-factor run
   // times out, the rest of that sweep is skipped.
   const std::vector<Real> tols = quick ? std::vector<Real>{1e-4, 1e-8} : std::vector<Real>{1e-4, 1e-6, 1e-8, 1e-10};
@@ -340,19 +373,20 @@ int main(int argc, char** argv) {
     plan.reference_level = cap(plan.reference_level);
     const std::size_t n = 2 * plan.levels.size() + factors.size() + tols.size();
     std::fprintf(stderr, "plan: %s: reference ipopt refine %d tol %.0e, %zu runs (worst case %.0f s)\n",
-                 plan.scene.c_str(), plan.reference_level, tightest, n, max_reference_s + n * std::max(max_run_s, 30.0));
+                 plan.scene.c_str(), plan.reference_level, tightest, n,
+                 max_reference_s + n * std::max(max_run_s, 30.0));
   }
 
   for (const Plan& plan : selected) {
     const int finest_swept = std::max(plan.sweep_level, plan.levels.empty() ? 0 : plan.levels.back());
-    const std::string ref_name =
-        fmt::format("reference run (ipopt refine {} tol {:.0e}{})", plan.reference_level, tightest,
-                    plan.reference_level <= finest_swept ? "; capped by --refine-max: no finer than the swept meshes"
-                                                         : "");
+    const std::string ref_name = fmt::format(
+        "reference run (ipopt refine {} tol {:.0e}{})", plan.reference_level, tightest,
+        plan.reference_level <= finest_swept ? "; capped by --refine-max: no finer than the swept meshes" : "");
     const std::string against =
         plan.scene == "hertz"
             ? "pressure_l2_error: analytic Hertz solution at the measured load (load step); force_error and "
-              "final_* fields: " + ref_name
+              "final_* fields: " +
+                  ref_name
             : "all errors: " + ref_name;
     std::fprintf(stderr, "%s: reference (ipopt, refine %d, tol %.0e)\n", plan.scene.c_str(), plan.reference_level,
                  tightest);
@@ -363,25 +397,45 @@ int main(int argc, char** argv) {
     auto row = [&](const Run& run, const Result& r, bool is_reference) {
       const bool ok = r.converged() && ref.converged();
       const bool hertz = plan.scene == "hertz";
-      const Real pressure = !r.converged() ? kNaN
-                            : hertz        ? r.hertz_l2
+      const Real pressure = !r.converged()          ? kNaN
+                            : hertz                 ? r.hertz_l2
                             : (ok && !is_reference) ? profile_l2(r.profile, ref.profile)
                                                     : kNaN;
       const bool cmp = ok && !is_reference;
-      const Real force_error =
-          cmp && ref.force > 0.0 ? std::abs(r.force - ref.force) / ref.force : kNaN;
-      const std::string state =
-          r.final_contact_nodes < 0 ? "" : (r.final_contact_nodes > 0 ? "loaded" : "unloaded");
-      csv.add_row({plan.scene, run.backend, run.parameter, run.value, static_cast<Index>(run.refine), r.dofs,
-                   r.status, static_cast<Index>(r.converged() ? 1 : 0), r.message, r.wall,
-                   static_cast<Index>(r.repeats), r.cost, static_cast<Index>(r.steps),
-                   static_cast<Index>(r.steps_done), static_cast<Index>(r.iterations),
-                   static_cast<Index>(r.factorizations), r.residual_max, r.residual_last,
-                   r.converged() ? r.penetration : kNaN, static_cast<Index>(r.load_step), force_error, pressure,
-                   std::string(hertz ? "analytic Hertz" : "reference run"), r.final_force, r.final_contact_nodes,
-                   state, cmp ? field_l2(r, r.sqrt_i2, ref.sqrt_i2) : kNaN,
-                   cmp ? field_l2(r, r.tau_xx, ref.tau_xx) : kNaN, std::string("ipopt"),
-                   static_cast<Index>(plan.reference_level), tightest, against});
+      const Real force_error = cmp && ref.force > 0.0 ? std::abs(r.force - ref.force) / ref.force : kNaN;
+      const std::string state = r.final_contact_nodes < 0 ? "" : (r.final_contact_nodes > 0 ? "loaded" : "unloaded");
+      csv.add_row({plan.scene,
+                   run.backend,
+                   run.parameter,
+                   run.value,
+                   static_cast<Index>(run.refine),
+                   r.dofs,
+                   r.status,
+                   static_cast<Index>(r.converged() ? 1 : 0),
+                   r.message,
+                   r.wall,
+                   static_cast<Index>(r.repeats),
+                   r.cost,
+                   static_cast<Index>(r.steps),
+                   static_cast<Index>(r.steps_done),
+                   static_cast<Index>(r.iterations),
+                   static_cast<Index>(r.factorizations),
+                   r.residual_max,
+                   r.residual_last,
+                   r.converged() ? r.penetration : kNaN,
+                   static_cast<Index>(r.load_step),
+                   force_error,
+                   pressure,
+                   std::string(hertz ? "analytic Hertz" : "reference run"),
+                   r.final_force,
+                   r.final_contact_nodes,
+                   state,
+                   cmp ? field_l2(r, r.sqrt_i2, ref.sqrt_i2) : kNaN,
+                   cmp ? field_l2(r, r.tau_xx, ref.tau_xx) : kNaN,
+                   std::string("ipopt"),
+                   static_cast<Index>(plan.reference_level),
+                   tightest,
+                   against});
     };
     {
       Result shown = ref;
@@ -415,8 +469,8 @@ int main(int argc, char** argv) {
         // Only where cost surely grows along the sweep: finer meshes, stiffer penalties (a looser
         // Ipopt tolerance is not always cheaper: Z3 ran longer at 1e-4 than at 1e-8).
         if (r.status == "timeout" && run.parameter != "ipopt_tol")
-          stopped[sweep] = fmt::format("not run: the cheaper {}={:g} (refine {}) timed out", run.parameter,
-                                       run.value, run.refine);
+          stopped[sweep] =
+              fmt::format("not run: the cheaper {}={:g} (refine {}) timed out", run.parameter, run.value, run.refine);
       }
       std::fprintf(stderr, "%s %s %s=%g refine %d: %s, %.3f s%s%s\n", plan.scene.c_str(), run.backend.c_str(),
                    run.parameter.c_str(), run.value, run.refine, r.status.c_str(), r.wall,

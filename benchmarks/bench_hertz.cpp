@@ -30,8 +30,9 @@ int main(int argc, char** argv) {
   std::vector<SceneOverride> extra;
   for (int i = 6; i < argc; ++i) extra.push_back(parse_override(argv[i]));
 
-  std::printf("| backend | refine | dofs | contact nodes | P [N/mm] | a error | p0 error | L2 error | "
-              "L2 error (averaged) | max penetration [mm] | iterations | wall [s] |\n");
+  std::printf(
+      "| backend | refine | dofs | contact nodes | P [N/mm] | a error | p0 error | L2 error | "
+      "L2 error (averaged) | max penetration [mm] | iterations | wall [s] |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& backend : backends) {
     for (int refine = min_refine; refine <= max_refine; ++refine) {
@@ -72,8 +73,8 @@ int main(int argc, char** argv) {
       }
       std::sort(walls.begin(), walls.end());
       std::printf("| %s | %d | %ld | %ld | %.1f | %+.2e | %+.2e | %.2e | %.2e | %.2e | %d | %.3f |\n", backend.c_str(),
-                  refine, static_cast<long>(dofs), static_cast<long>(n_contact), load, c.half_width_error,
-                  c.peak_error, c.l2_error, c.l2_error_averaged, penetration, iterations, walls[walls.size() / 2]);
+                  refine, static_cast<long>(dofs), static_cast<long>(n_contact), load, c.half_width_error, c.peak_error,
+                  c.l2_error, c.l2_error_averaged, penetration, iterations, walls[walls.size() / 2]);
       std::fflush(stdout);
     }
   }

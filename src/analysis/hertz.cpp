@@ -70,8 +70,8 @@ HertzSolution hertz_line_contact(Real load, Real radius, Real plane_strain_modul
   return h;
 }
 
-HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load,
-                                   Real radius, Real plane_strain_modulus) {
+HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load, Real radius,
+                                   Real plane_strain_modulus) {
   HertzComparison c;
   c.analytic = hertz_line_contact(load, radius, plane_strain_modulus);
   // Fit p^2 = A - B x^2 (linear least squares in A, B) over the loaded samples. "Loaded" means

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
-#include <fmt/format.h>
 
 #include "roller/assembly/strip_model.hpp"
 #include "roller/core/error.hpp"
@@ -109,15 +109,12 @@ Mat4 thesis_plastic_pattern() {
   return w * w.transpose();
 }
 
-Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress,
-                const OperatorOptions& options) {
+Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress, const OperatorOptions& options) {
   Mat4 tangent;
   switch (options.tangent) {
     case TangentKind::Elastic: tangent = elastic_matrix(material); break;
     case TangentKind::Continuum: tangent = continuum_tangent(material, stress, yield_stress); break;
-    case TangentKind::PlasticBranch:
-      tangent = plastic_tangent(material, stress, yield_stress);
-      break;
+    case TangentKind::PlasticBranch: tangent = plastic_tangent(material, stress, yield_stress); break;
   }
   Mat4 a = gradient_tangent(tangent, material.shear_modulus(), options.layout);
   if (options.initial_stress) a += initial_stress_matrix(stress);
@@ -142,8 +139,8 @@ Definiteness definiteness(const Mat4& a) {
   d.lambda_min = eig.eigenvalues()(0);
   d.by_eigenvalue = d.lambda_min > 0.0;
   d.by_cholesky = Eigen::LLT<Mat4>(a).info() == Eigen::Success;
-  d.leading_minors << a(0, 0), a.topLeftCorner<2, 2>().determinant(),
-      a.topLeftCorner<3, 3>().determinant(), a.determinant();
+  d.leading_minors << a(0, 0), a.topLeftCorner<2, 2>().determinant(), a.topLeftCorner<3, 3>().determinant(),
+      a.determinant();
   d.by_minors = (d.leading_minors.array() > 0.0).all();
   return d;
 }
@@ -163,8 +160,7 @@ Real restoring_time_step(Real density, Real h, Real lambda_min) {
   return h * std::sqrt(density / -lambda_min);
 }
 
-Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates,
-                             bool lumped_mass) {
+Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates, bool lumped_mass) {
   const std::vector<PointGeometry> geometry = element_geometry(type, coordinates, -1);
   const Index n = geometry.front().shape.size();
   MatX laplacian = MatX::Zero(n, n);
@@ -192,8 +188,8 @@ std::string StripMonotonicity::brief_report() const {
   }
   std::string remedy;
   if (dt_restore_all > 0.0) {
-    remedy = fmt::format("; dt < {:.3e} s restores the worst point, dt < {:.3e} s every point",
-                         dt_restore_worst, dt_restore_all);
+    remedy = fmt::format("; dt < {:.3e} s restores the worst point, dt < {:.3e} s every point", dt_restore_worst,
+                         dt_restore_all);
   } else {
     remedy = "; no time step restores it (zero density)";
   }
@@ -203,8 +199,7 @@ std::string StripMonotonicity::brief_report() const {
       mode, n_not_pd, n_points, lambda_min, worst.element, worst.point, remedy);
 }
 
-StripMonotonicity check_strip(const StripModel& model, Real dt,
-                              const StripMonotonicityOptions& options) {
+StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonotonicityOptions& options) {
   require(dt >= 0.0, "check_strip: dt must be >= 0 (0 = quasistatic)");
   const MaterialParams& material = model.material();
   const Mesh& mesh = model.mesh();
@@ -236,8 +231,7 @@ StripMonotonicity check_strip(const StripModel& model, Real dt,
     for (int q = 0; q < model.points_per_element(); ++q) {
       const MaterialState& s = model.state(e, q);
       const Mat4 a = operator_a(material, s.stress, s.yield_stress, op);
-      const Real lambda_static =
-          Eigen::SelfAdjointEigenSolver<Mat4>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
+      const Real lambda_static = Eigen::SelfAdjointEigenSolver<Mat4>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
       const Real lambda = lambda_static + kappa;  // the mass term shifts every eigenvalue
       ++out.n_points;
       if (lambda < out.lambda_min) {
@@ -249,13 +243,11 @@ StripMonotonicity check_strip(const StripModel& model, Real dt,
       if (!(lambda > 0.0)) {
         ++out.n_not_pd;
         out.not_pd.push_back({e, q});
-        out.dt_restore_all =
-            std::min(out.dt_restore_all, restoring_time_step(rho, h, lambda_static));
+        out.dt_restore_all = std::min(out.dt_restore_all, restoring_time_step(rho, h, lambda_static));
       }
     }
   }
-  if (out.n_not_pd > 0)
-    out.dt_restore_worst = restoring_time_step(rho, h_worst, lambda_static_worst);
+  if (out.n_not_pd > 0) out.dt_restore_worst = restoring_time_step(rho, h_worst, lambda_static_worst);
   return out;
 }
 
@@ -289,8 +281,6 @@ SparseDefiniteness sparse_definiteness(const SparseMatrix& k, Real relative_tole
   return out;
 }
 
-bool is_positive_definite(const SparseMatrix& k_eff) {
-  return sparse_definiteness(k_eff).positive_definite();
-}
+bool is_positive_definite(const SparseMatrix& k_eff) { return sparse_definiteness(k_eff).positive_definite(); }
 
 }  // namespace roller

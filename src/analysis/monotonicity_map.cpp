@@ -17,8 +17,7 @@ std::string axis_violation(const char* name, const GridAxis& axis, bool positive
   }
   if (axis.n < 1) return fmt::format("{} grid n = {}: needs n >= 1", name, axis.n);
   if (axis.n == 1 && axis.lo != axis.hi) {
-    return fmt::format("{} range [{}, {}] with n = 1: needs lo = hi or n >= 2", name, axis.lo,
-                       axis.hi);
+    return fmt::format("{} range [{}, {}] with n = 1: needs lo = hi or n >= 2", name, axis.lo, axis.hi);
   }
   if (positive && !(axis.lo > 0.0)) {
     return fmt::format("{} range starts at {}: the yield stress must be > 0", name, axis.lo);
@@ -40,9 +39,8 @@ MaterialParams MonotonicityMapOptions::material() const {
 
 bool MonotonicityMapOptions::is_valid(std::string* why) const {
   std::string v;
-  for (const auto& [name, axis, positive] :
-       {std::tuple{"sigma_pl", sigma, true}, std::tuple{"a", a, false}, std::tuple{"b", b, false},
-        std::tuple{"c", c, false}}) {
+  for (const auto& [name, axis, positive] : {std::tuple{"sigma_pl", sigma, true}, std::tuple{"a", a, false},
+                                             std::tuple{"b", b, false}, std::tuple{"c", c, false}}) {
     v = axis_violation(name, axis, positive);
     if (!v.empty()) break;
   }
@@ -64,8 +62,7 @@ Mat4 map_operator(const MonotonicityMapOptions& options, Real sigma_pl, const Th
   return operator_a(material, stress, sigma_pl, op);
 }
 
-MapPoint evaluate_map_point(const MonotonicityMapOptions& options, Real sigma_pl,
-                            const ThesisParameters& p) {
+MapPoint evaluate_map_point(const MonotonicityMapOptions& options, Real sigma_pl, const ThesisParameters& p) {
   return {sigma_pl, p, definiteness(map_operator(options, sigma_pl, p))};
 }
 
@@ -100,13 +97,12 @@ std::vector<MapSlice> thesis_slices() {
           {"j", SlicePlane::CA, 105.0}, {"k", SlicePlane::CB, 0.0},   {"l", SlicePlane::CB, -75.0}};
 }
 
-std::vector<MapPoint> sweep_slice(const MonotonicityMapOptions& options, const MapSlice& slice,
-                                  Real sigma_pl, int n_first, int n_second) {
+std::vector<MapPoint> sweep_slice(const MonotonicityMapOptions& options, const MapSlice& slice, Real sigma_pl,
+                                  int n_first, int n_second) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError("monotonicity map: " + why);
   if (n_first < 2 || n_second < 2) {
-    throw InputError(
-        fmt::format("monotonicity slice: {} x {} points, needs >= 2 per axis", n_first, n_second));
+    throw InputError(fmt::format("monotonicity slice: {} x {} points, needs >= 2 per axis", n_first, n_second));
   }
   if (!(sigma_pl > 0.0)) {
     throw InputError(fmt::format("monotonicity slice: sigma_pl = {}, needs > 0", sigma_pl));

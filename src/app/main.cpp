@@ -2,14 +2,14 @@
 // (results of completed steps are on disk), 2 bad input.
 #include <iostream>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
+#include "commands.hpp"
 #include "roller/core/error.hpp"
 #include "roller/core/version.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
-#include "commands.hpp"
 
 namespace {
 
@@ -36,9 +36,8 @@ int run_scene(const RunArgs& args) {
   const std::string out = args.out.empty() ? "out/" + sim.scene().name : args.out;
   std::cout << fmt::format("roller: scene '{}' ({}), {} elements {}, {} dofs ({} free), {} steps -> {}\n",
                            sim.scene().name, sim.scene().title, sim.model().mesh().n_elements(),
-                           roller::enum_name(sim.model().mesh().element_type),
-                           sim.model().n_dofs(), sim.model().dof_map().n_free(),
-                           sim.scene().steps.n_steps, out);
+                           roller::enum_name(sim.model().mesh().element_type), sim.model().n_dofs(),
+                           sim.model().dof_map().n_free(), sim.scene().steps.n_steps, out);
   roller::RunOptions options;
   options.out_dir = out;
   options.progress = &std::cout;
@@ -75,8 +74,7 @@ int main(int argc, char** argv) {
   run->add_option("--initial-state", run_args.initial_state,
                   "start from the strip state saved by another run (overrides restart.from)")
       ->check(CLI::ExistingFile);
-  run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")
-      ->type_name("KEY=VALUE");
+  run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")->type_name("KEY=VALUE");
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
   const roller::app::Command scene_keys = roller::app::add_scene_keys_command(app);
 

@@ -56,8 +56,7 @@ MonotonicityMapOptions map_options(const MonotonicityArgs& args) {
   MonotonicityMapOptions o;
   o.youngs_modulus = args.youngs_modulus;
   o.poisson_ratio = args.poisson_ratio;
-  o.tangent_modulus =
-      std::isnan(args.tangent_modulus) ? args.youngs_modulus / 3.0 : args.tangent_modulus;
+  o.tangent_modulus = std::isnan(args.tangent_modulus) ? args.youngs_modulus / 3.0 : args.tangent_modulus;
   o.sigma = axis(args.sigma_range, args.grid);
   o.a = axis(args.ab_range, args.grid);
   o.b = axis(args.ab_range, args.grid);
@@ -72,9 +71,8 @@ MonotonicityMapOptions map_options(const MonotonicityArgs& args) {
   }
   const int n_dynamic = (args.density > 0.0) + (args.dt > 0.0) + (args.h > 0.0);
   if (n_dynamic != 0 && n_dynamic != 3) {
-    throw InputError(
-        fmt::format("--density {} --dt {} --h {}: the dynamic term needs all three > 0 (or none)",
-                    args.density, args.dt, args.h));
+    throw InputError(fmt::format("--density {} --dt {} --h {}: the dynamic term needs all three > 0 (or none)",
+                                 args.density, args.dt, args.h));
   }
   o.mass_scale = n_dynamic == 3 ? mass_scale(args.density, args.h, args.dt) : 0.0;
   std::string why;
@@ -91,9 +89,8 @@ MonotonicityMapOptions map_options(const MonotonicityArgs& args) {
 std::string flag(bool b) { return b ? "1" : "0"; }
 
 void write_point(std::ostream& out, const MapPoint& m) {
-  out << fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", m.sigma_pl, m.p.a, m.p.b,
-                     m.p.c, m.d.lambda_min, flag(m.d.by_eigenvalue), flag(m.d.by_cholesky),
-                     flag(m.d.by_minors));
+  out << fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", m.sigma_pl, m.p.a, m.p.b, m.p.c,
+                     m.d.lambda_min, flag(m.d.by_eigenvalue), flag(m.d.by_cholesky), flag(m.d.by_minors));
 }
 
 std::ofstream open_output(const fs::path& path) {
@@ -137,8 +134,7 @@ int run_monotonicity(const MonotonicityArgs& args) {
       const int n_first = slice.plane == SlicePlane::CB ? options.b.n : options.a.n;
       const int n_second = slice.plane == SlicePlane::AB ? options.b.n : options.c.n;
       const auto coarse = sweep_slice(options, slice, args.slice_sigma, n_first, n_second);
-      const auto fine =
-          sweep_slice(options, slice, args.slice_sigma, args.slice_grid, args.slice_grid);
+      const auto fine = sweep_slice(options, slice, args.slice_sigma, args.slice_grid, args.slice_grid);
       Index coarse_pd = 0;
       for (const MapPoint& m : coarse) {
         out << slice.id << ",coarse,";
@@ -162,8 +158,7 @@ int run_monotonicity(const MonotonicityArgs& args) {
                         {"max_lambda_min_fine", lambda_max_slice}});
     }
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const MaterialParams material = options.material();
   nlohmann::json meta = {{"E", options.youngs_modulus},
@@ -194,13 +189,11 @@ int run_monotonicity(const MonotonicityArgs& args) {
       "roller monotonicity: {} grid points ({}^4), A positive definite at {} ({:.1f} %), the three "
       "tests disagree at {}; slices at sigma_pl = {} MPa; layout {}, t33 {}, E_T = {:g} MPa; "
       "{:.2f} s -> {}\n",
-      grid.size(), args.grid, n_pd, 100.0 * n_pd / static_cast<double>(grid.size()), n_disagree,
-      args.slice_sigma, to_string(options.layout), args.tau33, options.tangent_modulus, seconds,
-      dir.string());
+      grid.size(), args.grid, n_pd, 100.0 * n_pd / static_cast<double>(grid.size()), n_disagree, args.slice_sigma,
+      to_string(options.layout), args.tau33, options.tangent_modulus, seconds, dir.string());
 
   const fs::path script = fs::path(ROLLER_SOURCE_DIR) / "scripts" / "plot_monotonicity.py";
-  const std::string command =
-      fmt::format("{} {} {}", kPython, shell_quote(script.string()), shell_quote(dir.string()));
+  const std::string command = fmt::format("{} {} {}", kPython, shell_quote(script.string()), shell_quote(dir.string()));
   if (args.no_plot) {
     std::cout << "roller monotonicity: PNG maps not rendered (--no-plot); run: " << command << "\n";
     return 0;
@@ -212,8 +205,8 @@ int run_monotonicity(const MonotonicityArgs& args) {
   }
   std::cout.flush();
   if (std::system(command.c_str()) != 0) {
-    std::cerr << "roller monotonicity: plotting failed (data are in " << dir.string()
-              << "); rerun: " << command << "\n";
+    std::cerr << "roller monotonicity: plotting failed (data are in " << dir.string() << "); rerun: " << command
+              << "\n";
     return 1;
   }
   return 0;

@@ -32,8 +32,8 @@ Command add_scene_keys_command(CLI::App& app) {
       w_range = std::max(w_range, r.range.size());
     }
     for (const Row& r : rows)
-      std::cout << fmt::format("{:<{}}  {:<{}}  {:<{}}  {:<{}}  {}\n", r.key, w_key, r.type, w_type,
-                               r.default_text, w_default, r.range, w_range, r.doc);
+      std::cout << fmt::format("{:<{}}  {:<{}}  {:<{}}  {:<{}}  {}\n", r.key, w_key, r.type, w_type, r.default_text,
+                               w_default, r.range, w_range, r.doc);
     return 0;
   };
 }

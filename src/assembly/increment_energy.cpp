@@ -7,7 +7,9 @@ namespace roller {
 
 IncrementEnergy::IncrementEnergy(StripModel& model, VecX prescribed, VecX external_force,
                                  std::optional<InertiaTerm> inertia)
-    : model_(model), prescribed_(std::move(prescribed)), external_(std::move(external_force)),
+    : model_(model),
+      prescribed_(std::move(prescribed)),
+      external_(std::move(external_force)),
       inertia_(std::move(inertia)) {
   // Internal forces at the start of the increment balance the previous loads; their size is a
   // force scale that exists even for purely displacement-driven or unloaded steps.

@@ -144,10 +144,11 @@ StripEvaluation StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix
 }
 
 StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
-                                 std::vector<MaterialState>* trial) {
+                                            std::vector<MaterialState>* trial) {
   if (!u.allFinite())
-    throw NumericalError("the displacement increment contains NaN or Inf: the solver diverged; "
-                         "use smaller steps");
+    throw NumericalError(
+        "the displacement increment contains NaN or Inf: the solver diverged; "
+        "use smaller steps");
   if (gradient) gradient->setZero(n_dofs());
   if (hessian_free) zero_hessian(*hessian_free);
   Real energy = 0.0;
@@ -224,9 +225,10 @@ Index StripModel::commit(const VecX& u) {
 void StripModel::restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states) {
   if (static_cast<Index>(reference.size()) != mesh_.n_nodes() || total_displacement.size() != n_dofs() ||
       states.size() != committed_.size())
-    throw InputError(fmt::format("the saved state does not fit this mesh: it has {} nodes and {} integration "
-                                 "points, the mesh {} and {} (same [mesh] and refine needed)",
-                                 reference.size(), states.size(), mesh_.n_nodes(), committed_.size()));
+    throw InputError(
+        fmt::format("the saved state does not fit this mesh: it has {} nodes and {} integration "
+                    "points, the mesh {} and {} (same [mesh] and refine needed)",
+                    reference.size(), states.size(), mesh_.n_nodes(), committed_.size()));
   check_not_inverted(reference);
   reference_ = std::move(reference);
   total_displacement_ = std::move(total_displacement);
@@ -235,8 +237,7 @@ void StripModel::restore(std::vector<Vec2> reference, VecX total_displacement, s
 
 std::vector<Vec2> StripModel::current_coordinates() const {
   std::vector<Vec2> x(mesh_.nodes);
-  for (Index a = 0; a < mesh_.n_nodes(); ++a)
-    x[a] += Vec2(total_displacement_(2 * a), total_displacement_(2 * a + 1));
+  for (Index a = 0; a < mesh_.n_nodes(); ++a) x[a] += Vec2(total_displacement_(2 * a), total_displacement_(2 * a + 1));
   return x;
 }
 

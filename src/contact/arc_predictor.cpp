@@ -7,7 +7,7 @@ namespace roller {
 Vec2 arc_predicted_position(const Vec2& start, const Vec2& end, const Vec2& centre, Real radius, Real dphi) {
   const Vec2 p0 = start - centre, p1 = end - centre;
   if (p1.norm() >= radius) return end;
-  Vec2 c;          // first touch, relative to the centre
+  Vec2 c;           // first touch, relative to the centre
   Real w_fr = 0.0;  // distance travelled outside
   Real w_in = 0.0;  // distance that would be travelled inside
   if (p0.norm() <= radius) {

@@ -51,16 +51,16 @@ std::string BackendResult::brief_report() const {
 
 BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
   if (x0.size() != problem.n_free())
-    throw std::logic_error(fmt::format("{} backend: start vector has {} entries, the problem {} free dofs",
-                                       name(), x0.size(), problem.n_free()));
+    throw std::logic_error(fmt::format("{} backend: start vector has {} entries, the problem {} free dofs", name(),
+                                       x0.size(), problem.n_free()));
   const auto t0 = std::chrono::steady_clock::now();
   BackendResult r = do_solve(problem, x0);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Nothing non-finite leaves a backend: a converged result with NaN is a failure.
   bool finite = r.x.size() == problem.n_free() && r.x.allFinite();
   for (const auto& c : r.contact)
-    finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) &&
-             std::isfinite(c.gap) && std::isfinite(c.slip);
+    finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) && std::isfinite(c.gap) &&
+             std::isfinite(c.slip);
   if (!finite && r.converged()) {
     r.status = ContactTermination::Failed;
     r.message = fmt::format("{} backend returned non-finite values; use smaller steps", name());
@@ -91,8 +91,10 @@ bool IpoptOptions::is_valid(std::string* why) const {
   if (max_iter < 1) return bad(fmt::format("contact.ipopt.max_iter = {}: must be >= 1", max_iter));
   if (print_level < 0 || print_level > 12)
     return bad(fmt::format("contact.ipopt.print_level = {}: expected 0..12", print_level));
-  if (!(regularization > 0.0)) return bad(fmt::format("contact.ipopt.regularization = {}: must be > 0", regularization));
-  if (!(fixed_point_tol > 0.0)) return bad(fmt::format("contact.ipopt.fixed_point_tol = {}: must be > 0", fixed_point_tol));
+  if (!(regularization > 0.0))
+    return bad(fmt::format("contact.ipopt.regularization = {}: must be > 0", regularization));
+  if (!(fixed_point_tol > 0.0))
+    return bad(fmt::format("contact.ipopt.fixed_point_tol = {}: must be > 0", fixed_point_tol));
   if (fixed_point_max < 1) return bad(fmt::format("contact.ipopt.fixed_point_max = {}: must be >= 1", fixed_point_max));
   return true;
 }
@@ -105,8 +107,7 @@ bool ContactOptions::is_valid(std::string* why) const {
   return penalty.is_valid(why) && ipopt.is_valid(why);
 }
 
-std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options,
-                                                     const NewtonOptions& newton) {
+std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options, const NewtonOptions& newton) {
   std::string why;
   if (!options.is_valid(&why)) throw InputError(why);
   if (options.backend == ContactBackendKind::Ipopt) return std::make_unique<IpoptBackend>(options, newton.linear);

@@ -39,11 +39,9 @@ std::vector<Real> element_depths(const StripModel& model, const std::vector<Inde
 
 }  // namespace
 
-std::vector<ContactCandidate> make_contact_candidates(const StripModel& model,
-                                                      const std::vector<Index>& nodes,
+std::vector<ContactCandidate> make_contact_candidates(const StripModel& model, const std::vector<Index>& nodes,
                                                       const VecX& prescribed, const VecX& predictor,
-                                                      const Vec2& roller_end_centre, Real radius,
-                                                      Real reach) {
+                                                      const Vec2& roller_end_centre, Real radius, Real reach) {
   const std::vector<Vec2> x = model.current_coordinates();
   const std::vector<Real> lengths = tributary_lengths(x, nodes);
   const std::vector<Real> depths = element_depths(model, nodes);

@@ -61,14 +61,16 @@ bool ContactTnlp::eval_g(IIndex /*n*/, const Number* x, bool /*new_x*/, IIndex /
 
 bool ContactTnlp::eval_jac_g(IIndex /*n*/, const Number* x, bool /*new_x*/, IIndex /*m*/, IIndex /*nele_jac*/,
                              IIndex* i_row, IIndex* j_col, Number* values) {
-  if (values) rows_.jacobian_values(x, values);
-  else rows_.jacobian_structure(i_row, j_col);
+  if (values)
+    rows_.jacobian_values(x, values);
+  else
+    rows_.jacobian_structure(i_row, j_col);
   return true;
 }
 
 bool ContactTnlp::eval_h(IIndex /*n*/, const Number* x, bool /*new_x*/, Number obj_factor, IIndex /*m*/,
-                         const Number* lambda, bool /*new_lambda*/, IIndex /*nele_hess*/, IIndex* i_row,
-                         IIndex* j_col, Number* values) {
+                         const Number* lambda, bool /*new_lambda*/, IIndex /*nele_hess*/, IIndex* i_row, IIndex* j_col,
+                         Number* values) {
   const int n_objective = objective_.hessian_nnz();
   if (!values) {
     objective_.hessian_structure(i_row, j_col);
@@ -87,10 +89,9 @@ bool ContactTnlp::eval_h(IIndex /*n*/, const Number* x, bool /*new_x*/, Number o
   return true;
 }
 
-void ContactTnlp::finalize_solution(Ipopt::SolverReturn /*status*/, IIndex n, const Number* x,
-                                    const Number* /*z_l*/, const Number* /*z_u*/, IIndex /*m*/,
-                                    const Number* /*g*/, const Number* lambda, Number /*obj_value*/,
-                                    const Ipopt::IpoptData* /*ip_data*/,
+void ContactTnlp::finalize_solution(Ipopt::SolverReturn /*status*/, IIndex n, const Number* x, const Number* /*z_l*/,
+                                    const Number* /*z_u*/, IIndex /*m*/, const Number* /*g*/, const Number* lambda,
+                                    Number /*obj_value*/, const Ipopt::IpoptData* /*ip_data*/,
                                     Ipopt::IpoptCalculatedQuantities* /*ip_cq*/) {
   solution_.finalized = true;
   solution_.z = Eigen::Map<const VecX>(x, n);

@@ -61,10 +61,10 @@ class ContactTnlp : public Ipopt::TNLP {
   bool eval_g(IIndex n, const Number* x, bool new_x, IIndex m, Number* g) override;
   bool eval_jac_g(IIndex n, const Number* x, bool new_x, IIndex m, IIndex nele_jac, IIndex* i_row, IIndex* j_col,
                   Number* values) override;
-  bool eval_h(IIndex n, const Number* x, bool new_x, Number obj_factor, IIndex m, const Number* lambda,
-              bool new_lambda, IIndex nele_hess, IIndex* i_row, IIndex* j_col, Number* values) override;
-  void finalize_solution(Ipopt::SolverReturn status, IIndex n, const Number* x, const Number* z_l,
-                         const Number* z_u, IIndex m, const Number* g, const Number* lambda, Number obj_value,
+  bool eval_h(IIndex n, const Number* x, bool new_x, Number obj_factor, IIndex m, const Number* lambda, bool new_lambda,
+              IIndex nele_hess, IIndex* i_row, IIndex* j_col, Number* values) override;
+  void finalize_solution(Ipopt::SolverReturn status, IIndex n, const Number* x, const Number* z_l, const Number* z_u,
+                         IIndex m, const Number* g, const Number* lambda, Number obj_value,
                          const Ipopt::IpoptData* ip_data, Ipopt::IpoptCalculatedQuantities* ip_cq) override;
 
  private:

@@ -11,8 +11,7 @@ void FrictionHistory::seed(std::vector<ContactCandidate>& candidates) const {
   }
 }
 
-void FrictionHistory::record(const std::vector<ContactCandidate>& candidates,
-                             const std::vector<NodeContact>& contact) {
+void FrictionHistory::record(const std::vector<ContactCandidate>& candidates, const std::vector<NodeContact>& contact) {
   nodes_.clear();
   for (std::size_t i = 0; i < candidates.size(); ++i)
     if (contact[i].status != ContactStatus::Open) nodes_[candidates[i].node] = contact[i];

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 
-#include <IpSolveStatistics.hpp>
 #include <fmt/format.h>
+#include <IpSolveStatistics.hpp>
 
 #include "ipopt_common.hpp"
 

@@ -33,7 +33,10 @@ class NormalForceFixedPoint {
   bool update(const std::vector<Real>& normal);
   bool iterated() const { return mu_ > 0.0 && o_.fixed_point == FixedPointRule::Converge; }
   // Restart the halving test (a new linearisation of the strip starts a new sequence).
-  void restart() { previous_change_ = 1e300; relaxation_ = 1.0; }
+  void restart() {
+    previous_change_ = 1e300;
+    relaxation_ = 1.0;
+  }
   // The message of a fixed point that ran out of passes.
   std::string failure_message(int passes) const;
 
@@ -50,14 +53,14 @@ class NormalForceFixedPoint {
 struct FrictionPasses {
   ContactTermination status = ContactTermination::Converged;  // not Converged: a pass's NLP failed (message)
   std::string message;
-  int passes = 0;               // passes run, the failed one included
-  int iterations = 0;           // interior-point iterations of all passes
+  int passes = 0;      // passes run, the failed one included
+  int iterations = 0;  // interior-point iterations of all passes
   double ipopt_time_s = 0.0;
   bool acceptable_level = false;
   bool fixed_point_converged = false;
   int nlp_variables = 0, nlp_constraints = 0;  // of the last pass
-  NlpSolution last;             // of the last pass that Ipopt finalised
-  FrictionTerms friction;       // of the last solved pass
+  NlpSolution last;                            // of the last pass that Ipopt finalised
+  FrictionTerms friction;                      // of the last solved pass
   // Of the last solved pass, per candidate (0 / false for candidates without a row):
   std::vector<Real> normal, tangential, fbar;
   std::vector<bool> has_friction;

@@ -48,8 +48,8 @@
 // soft mode (the part of the strip beyond the roller sliding in x, held only by a plastic zone
 // through the thickness, when no friction holds it): frictionless Z1 failed at step 4 after 500
 // iterations; with the merit function every step must lower energy + violation, and Z1 needs
-// 15-27 iterations per step with or without friction, the Z2 and friction tests 3x fewer); obj_scaling_factor 1/F_ref; dual_inf_tol and
-// compl_inf_tol (Ipopt's unscaled checks): the first raised to 100 tol F_ref so that it never binds,
+// 15-27 iterations per step with or without friction, the Z2 and friction tests 3x fewer); obj_scaling_factor 1/F_ref;
+// dual_inf_tol and compl_inf_tol (Ipopt's unscaled checks): the first raised to 100 tol F_ref so that it never binds,
 // the second set to tol F_ref so that max F_N g / F_ref ends below tol
 // before tol does; sb yes (no banner); Initialize("") so that a stray ./ipopt.opt is ignored.
 // Warm start (warm_start_init_point, mu_init and pushes 1e-6): pass 1 only when
@@ -82,9 +82,9 @@
 #include <memory>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <IpIpoptApplication.hpp>
 #include <IpJournalist.hpp>
-#include <fmt/format.h>
 
 #include "friction_passes.hpp"
 #include "ipopt_common.hpp"

@@ -32,9 +32,10 @@ void apply_raw_options(Ipopt::IpoptApplication& app, const std::vector<RawIpoptO
       case RawIpoptOption::Kind::String: ok = app.Options()->SetStringValue(r.name, r.text); break;
     }
     if (!ok)
-      throw InputError(fmt::format("contact.ipopt.options.{} = {}: Ipopt rejects it (unknown option, wrong type "
-                                   "or value out of range; see Ipopt's option list)",
-                                   r.name, r.text));
+      throw InputError(
+          fmt::format("contact.ipopt.options.{} = {}: Ipopt rejects it (unknown option, wrong type "
+                      "or value out of range; see Ipopt's option list)",
+                      r.name, r.text));
   }
 }
 
@@ -45,7 +46,6 @@ void set_warm_start(Ipopt::IpoptApplication& app, bool on) {
                            "warm_start_slack_bound_frac", "warm_start_mult_bound_push"})
     set(app, name, on ? 1e-6 : 1e-3);
 }
-
 
 Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real strip_force_scale) {
   const RollerMotion& r = problem.roller();
@@ -85,11 +85,11 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,
                       const std::string& evaluation_error) {
   using S = ContactTermination;
-  const std::string cause = evaluation_error.empty() ? "" : fmt::format(" (last evaluation error: {})", evaluation_error);
+  const std::string cause =
+      evaluation_error.empty() ? "" : fmt::format(" (last evaluation error: {})", evaluation_error);
   switch (s) {
     case Ipopt::Solve_Succeeded:
-    case Ipopt::Solved_To_Acceptable_Level:
-      return {S::Converged, ""};
+    case Ipopt::Solved_To_Acceptable_Level: return {S::Converged, ""};
     case Ipopt::Maximum_Iterations_Exceeded:
       return {S::LimitReached,
               fmt::format("Ipopt stopped after {} iterations without reaching contact.ipopt.tol = {:g} "
@@ -101,7 +101,8 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
       return {S::LimitReached,
               fmt::format("Ipopt's feasibility restoration failed after {} iterations: the roller cannot be "
                           "placed without penetration from this start (or the strip cannot follow it){}; "
-                          "use smaller steps", iterations, cause)};
+                          "use smaller steps",
+                          iterations, cause)};
     case Ipopt::Infeasible_Problem_Detected:
       return {S::LimitReached,
               "Ipopt found the increment locally infeasible: the roller cannot be placed without "
@@ -111,7 +112,8 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
       return {S::LimitReached,
               fmt::format("Ipopt's search direction became too small before reaching contact.ipopt.tol = {:g}: "
                           "the tolerance is below what round-off allows for this problem; raise "
-                          "contact.ipopt.tol or use smaller steps", o.tol)};
+                          "contact.ipopt.tol or use smaller steps",
+                          o.tol)};
     case Ipopt::Feasible_Point_Found:
       return {S::LimitReached, "Ipopt found a feasible point but not an optimum; use smaller steps"};
     case Ipopt::Diverging_Iterates:
@@ -121,26 +123,26 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
     case Ipopt::Error_In_Step_Computation:
       return {S::Failed,
               fmt::format("Ipopt could not solve its Newton system (singular KKT matrix after regularisation){}; "
-                          "check the boundary conditions (rigid-body modes) or use smaller steps", cause)};
+                          "check the boundary conditions (rigid-body modes) or use smaller steps",
+                          cause)};
     case Ipopt::Invalid_Number_Detected:
       return {S::Failed,
               fmt::format("the strip's energy or its derivatives could not be evaluated at an Ipopt iterate{}; "
-                          "use smaller steps", cause)};
+                          "use smaller steps",
+                          cause)};
     case Ipopt::Not_Enough_Degrees_Of_Freedom:
       return {S::Failed, "Ipopt: more equality constraints than free variables (internal error; please report)"};
     case Ipopt::Invalid_Problem_Definition:
     case Ipopt::Invalid_Option:
       return {S::Failed, "Ipopt rejected the problem definition or an option (internal error; please report)"};
-    case Ipopt::Insufficient_Memory:
-      return {S::Failed, "Ipopt/MUMPS ran out of memory; use a coarser mesh"};
-    case Ipopt::User_Requested_Stop:
-      return {S::Failed, "Ipopt stopped on request"};
+    case Ipopt::Insufficient_Memory: return {S::Failed, "Ipopt/MUMPS ran out of memory; use a coarser mesh"};
+    case Ipopt::User_Requested_Stop: return {S::Failed, "Ipopt stopped on request"};
     case Ipopt::Unrecoverable_Exception:
     case Ipopt::NonIpopt_Exception_Thrown:
-    case Ipopt::Internal_Error:
-      break;
+    case Ipopt::Internal_Error: break;
   }
-  return {S::Failed, fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
+  return {S::Failed,
+          fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
 }
 
 bool report_increment(IncrementProblem& problem, const VecX& x, const std::vector<Real>& normal,
@@ -155,7 +157,8 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
     force_scale = std::max(problem.strip_energy(x, &gradient, nullptr).force_scale, scales.force);
   } catch (const NumericalError& error) {
     result->status = ContactTermination::Failed;
-    result->message = fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", error.what());
+    result->message =
+        fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", error.what());
     return false;
   }
   Real fn_max = 0.0;

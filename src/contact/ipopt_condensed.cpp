@@ -20,9 +20,9 @@
 //   min q_C(d_C) + friction   s.t.  |x_i^n + u_i(x_k + d) - c| - R >= 0   (exact circle)
 // with the contact rows of the full formulation (nlp_contact_rows.hpp: the node increment of a
 // working candidate is its increment at x_k plus its entries of d_C), the same scaling and
-// options, and a dense Hessian S + sum lambda_i (I - n n^T)/rho. A second interior solve gives d_I. Because the gap of a node depends on that node's dofs only,
-// the condensation is exact: for an elastic strip with small kinematics (Hertz) one linearisation
-// solves the increment.
+// options, and a dense Hessian S + sum lambda_i (I - n n^T)/rho. A second interior solve gives d_I. Because the gap of
+// a node depends on that node's dofs only, the condensation is exact: for an elastic strip with small kinematics
+// (Hertz) one linearisation solves the increment.
 //
 // Step and convergence. x_{k+1} = x_k + alpha d, alpha from backtracking on the l1 merit
 // Pi + friction + nu sum max(0, -g_i) (nu = 2 max F_N), alpha = 1 whenever the predicted decrease
@@ -48,8 +48,8 @@
 #include <string>
 #include <vector>
 
-#include <IpIpoptApplication.hpp>
 #include <fmt/format.h>
+#include <IpIpoptApplication.hpp>
 
 #include "friction_passes.hpp"
 #include "ipopt_common.hpp"
@@ -85,8 +85,8 @@ std::vector<int> working_set(const IncrementProblem& problem, const VecX& x, Rea
 }
 
 // Merit of a point: strip energy + friction (with the pass's weights) + nu * penetration.
-Real merit(const IncrementProblem& problem, const std::vector<RowMap>& rows, const FrictionTerms& friction,
-           Real energy, const VecX& x, Real nu) {
+Real merit(const IncrementProblem& problem, const std::vector<RowMap>& rows, const FrictionTerms& friction, Real energy,
+           const VecX& x, Real nu) {
   Real m = energy;
   const auto& cands = problem.candidates();
   for (std::size_t j = 0; j < friction.rows.size(); ++j) {
@@ -253,8 +253,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
         // Ipopt's own failure on the small NLP: reported as such (the driver cuts the step), no
         // fall-back to the full formulation, which would meet the same NLP.
         result.status = passes.status;
-        result.message = fmt::format("{} (condensed NLP, linearisation {}, friction pass {})", passes.message, outer,
-                                     passes.passes);
+        result.message =
+            fmt::format("{} (condensed NLP, linearisation {}, friction pass {})", passes.message, outer, passes.passes);
         return {std::move(result), false};
       }
       passes_last = passes.passes;
@@ -304,8 +304,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
         continue;
       }
       const Real phi = merit(problem, rows, friction, energy_new, x_new, nu);
-      accepted = std::isfinite(phi) && (pred <= roundoff || phi <= phi0 - 1e-4 * alpha * pred ||
-                                        (alpha == 1.0 && phi <= phi0 + roundoff));
+      accepted = std::isfinite(phi) &&
+                 (pred <= roundoff || phi <= phi0 - 1e-4 * alpha * pred || (alpha == 1.0 && phi <= phi0 + roundoff));
       // Minimiser of the parabola through phi0 (slope -pred) and phi(alpha), kept in [0.1, 0.9] alpha.
       if (!accepted && std::isfinite(phi) && pred > 0.0) {
         const Real curvature = phi - phi0 + alpha * pred;
@@ -364,9 +364,9 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   }
   result.status = ContactTermination::Converged;
   const int nlp_solves = result.stats.nlp_solves;
-  result.message = fmt::format("Ipopt converged: {} linearisation{}, {} interior-point iterations ({} pass{})",
-                               linearisations, linearisations == 1 ? "" : "s", result.iterations, nlp_solves,
-                               nlp_solves == 1 ? "" : "es");
+  result.message =
+      fmt::format("Ipopt converged: {} linearisation{}, {} interior-point iterations ({} pass{})", linearisations,
+                  linearisations == 1 ? "" : "s", result.iterations, nlp_solves, nlp_solves == 1 ? "" : "es");
   return {std::move(result), false};
 }
 

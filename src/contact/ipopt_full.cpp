@@ -4,8 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <IpIpoptApplication.hpp>
 #include <fmt/format.h>
+#include <IpIpoptApplication.hpp>
 
 #include "friction_passes.hpp"
 #include "ipopt_common.hpp"
@@ -126,8 +126,10 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
     scales = increment_scales(problem, x0, objective->start_force_scale());
   } catch (const NumericalError& error) {
     result.status = ContactTermination::Failed;
-    result.message = fmt::format("ipopt backend: the strip cannot be evaluated at the start vector ({}); "
-                                 "use smaller steps", error.what());
+    result.message = fmt::format(
+        "ipopt backend: the strip cannot be evaluated at the start vector ({}); "
+        "use smaller steps",
+        error.what());
     return result;
   }
 
@@ -154,7 +156,8 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   if (passes.status != ContactTermination::Converged) {
     result.status = passes.status;
     result.message = passes.message;
-    if (problem.roller().friction > 0.0) result.message += fmt::format(" (friction fixed-point pass {})", passes.passes);
+    if (problem.roller().friction > 0.0)
+      result.message += fmt::format(" (friction fixed-point pass {})", passes.passes);
     return result;
   }
   result.factorizations = result.iterations;  // one KKT factorisation per interior-point iteration

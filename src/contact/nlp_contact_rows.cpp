@@ -5,8 +5,8 @@
 
 namespace roller::ipopt_detail {
 
-FrictionTerms friction_terms(const std::vector<RowMap>& rows, const std::vector<Real>& fbar, Real mu,
-                             Real force_tol, const IpoptOptions& o) {
+FrictionTerms friction_terms(const std::vector<RowMap>& rows, const std::vector<Real>& fbar, Real mu, Real force_tol,
+                             const IpoptOptions& o) {
   FrictionTerms f;
   f.law = o.friction;
   f.eps = o.regularization;
@@ -34,8 +34,7 @@ ContactRows::ContactRows(const IncrementProblem& problem, std::vector<RowMap> ro
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b <= a; ++b) {
         if (slot[a] < 0 || slot[b] < 0) continue;
-        hessian_entries_.push_back(
-            {static_cast<int>(k), a, b, std::max(slot[a], slot[b]), std::min(slot[a], slot[b])});
+        hessian_entries_.push_back({static_cast<int>(k), a, b, std::max(slot[a], slot[b]), std::min(slot[a], slot[b])});
       }
   }
 }
@@ -215,8 +214,8 @@ RowForces ContactRows::forces(const Real* z, const Real* lambda) const {
   f.tangential.assign(n_rows, 0.0);
   for (int k = 0; k < n_rows; ++k) f.normal[k] = -lambda[k];
   for (std::size_t j = 0; j < friction_.rows.size(); ++j)
-    f.tangential[friction_.rows[j]] = friction_.split() ? -lambda[n_rows + static_cast<int>(j)]
-                                                        : -regularized_force(static_cast<int>(j), z);
+    f.tangential[friction_.rows[j]] =
+        friction_.split() ? -lambda[n_rows + static_cast<int>(j)] : -regularized_force(static_cast<int>(j), z);
   return f;
 }
 

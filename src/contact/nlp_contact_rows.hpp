@@ -26,9 +26,9 @@ namespace roller::ipopt_detail {
 
 // One candidate as seen by an NLP (a "row": its gap constraint).
 struct RowMap {
-  int candidate = -1;              // index into IncrementProblem::candidates()
-  std::array<int, 2> slot{-1, -1}; // primal variable of the node's x / y increment, -1: none
-  Vec2 base = Vec2::Zero();        // the node's increment when its primal variables are zero
+  int candidate = -1;               // index into IncrementProblem::candidates()
+  std::array<int, 2> slot{-1, -1};  // primal variable of the node's x / y increment, -1: none
+  Vec2 base = Vec2::Zero();         // the node's increment when its primal variables are zero
 };
 
 // The friction terms of one fixed-point pass.
@@ -36,14 +36,14 @@ struct FrictionTerms {
   std::vector<int> rows;     // rows carrying friction
   std::vector<Real> weight;  // mu Fbar per friction row
   IpoptFriction law = IpoptFriction::Split;
-  Real eps = 1e-8;           // regularisation [mm] (regularized law)
+  Real eps = 1e-8;  // regularisation [mm] (regularized law)
   bool split() const { return law == IpoptFriction::Split; }
 };
 
 // Rows with a friction term: those whose normal-force estimate fbar (per candidate) exceeds
 // force_tol (a zero-cost slack pair would be unbounded under the barrier).
-FrictionTerms friction_terms(const std::vector<RowMap>& rows, const std::vector<Real>& fbar, Real mu,
-                             Real force_tol, const IpoptOptions& o);
+FrictionTerms friction_terms(const std::vector<RowMap>& rows, const std::vector<Real>& fbar, Real mu, Real force_tol,
+                             const IpoptOptions& o);
 
 // Forces of a solved NLP, per row.
 struct RowForces {

@@ -22,8 +22,8 @@ constexpr Real kMaxRoundoffResidual = 1e-3;
 // force f = F_N n + F_T t acting on the node. With `frozen`, the node keeps that status (and slip
 // direction) whatever x: open nodes carry no force, closed ones a bilateral normal penalty (also
 // in tension), so the system is smooth for Newton; the caller updates the statuses between solves.
-NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, const Stiffness& k,
-                          const VecX& x, Mat2* block, const NodeContact* frozen = nullptr) {
+NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, const Stiffness& k, const VecX& x,
+                          Mat2* block, const NodeContact* frozen = nullptr) {
   NodeContact s;
   const Vec2 u = p.increment(c, x);
   const Vec2 d = p.from_centre(c, u);
@@ -36,8 +36,7 @@ NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, 
   s.normal_force = -k.normal * s.gap;
   const Real mu = p.roller().friction;
   const Vec2& t = c.tangent;
-  if (block)
-    *block += k.normal * n * n.transpose() - s.normal_force * (Mat2::Identity() - n * n.transpose()) / rho;
+  if (block) *block += k.normal * n * n.transpose() - s.normal_force * (Mat2::Identity() - n * n.transpose()) / rho;
   if (mu == 0.0) {
     s.status = ContactStatus::Slip;
     return s;
@@ -83,8 +82,8 @@ struct Evaluation {
 };
 
 // Residual r = dPi/dx - (contact forces) on the free dofs, and its Jacobian when asked.
-void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian,
-              Evaluation& e, const std::vector<NodeContact>* frozen = nullptr) {
+void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian, Evaluation& e,
+              const std::vector<NodeContact>* frozen = nullptr) {
   const Real strip_scale = p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr).force_scale;
   e.contact.assign(p.candidates().size(), NodeContact{});
   e.symmetric = true;
@@ -95,8 +94,8 @@ void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
     NodeContact& s = e.contact[i];
     s = contact_state(p, c, k[i], x, want_jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
     if (s.status == ContactStatus::Open) continue;
-    const Real floor_i = 10.0 * std::numeric_limits<Real>::epsilon() * k[i].normal *
-                         (p.position(c, x) - p.roller().end.centre).norm();
+    const Real floor_i =
+        10.0 * std::numeric_limits<Real>::epsilon() * k[i].normal * (p.position(c, x) - p.roller().end.centre).norm();
     floor2 += floor_i * floor_i;
     const Vec2 f = contact_force(s.normal_force, s.tangential_force, p.normal(c, x), c.tangent);
     contact_norm2 += f.squaredNorm();
@@ -157,9 +156,8 @@ void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r,
 }
 
 // One Newton solve at fixed penalty stiffnesses, from x (updated in place).
-BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k,
-                                           VecX& x, Real tolerance,
-                                           const std::vector<NodeContact>* frozen) const {
+BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
+                                           Real tolerance, const std::vector<NodeContact>* frozen) const {
   BackendResult result;
   VecX d, x_trial;
   Evaluation e, trial;
@@ -207,8 +205,9 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
     }
     ++result.factorizations;
     if (!solve_linear(e, newton_.linear, d)) {
-      result.message = "penalty Newton: the tangent matrix is singular (missing supports, or a "
-                       "mechanism); check the boundary conditions";
+      result.message =
+          "penalty Newton: the tangent matrix is singular (missing supports, or a "
+          "mechanism); check the boundary conditions";
       return result;
     }
     // Backtracking on ||r||: once friction slips no energy exists to backtrack on.
@@ -321,8 +320,8 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   for (std::size_t stage = 0; stage < factors.size(); ++stage) {
     const auto k = penalty_stiffnesses(problem, factors[stage], options_.penalty.tangential_factor);
     const bool last = stage + 1 == factors.size();
-    BackendResult r = newton_stage(problem, k, x, last ? newton_.residual_tolerance
-                                                      : std::max(1e-6, newton_.residual_tolerance));
+    BackendResult r =
+        newton_stage(problem, k, x, last ? newton_.residual_tolerance : std::max(1e-6, newton_.residual_tolerance));
     r.iterations += total.iterations;
     r.factorizations += total.factorizations;
     r.stats.penalty_stages = stage + 1;

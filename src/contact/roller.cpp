@@ -18,8 +18,8 @@ bool RollerSpec::is_valid(std::string* why) const {
       if (!(v >= 0.0 && std::isfinite(v)))
         return bad(fmt::format("roller.suspension.{} = {}: must be a finite value >= 0", name, v));
     if (!(q.stiffness > 0.0 || q.mass > 0.0))
-      return bad(fmt::format("roller.suspension.stiffness = {}: a suspension needs stiffness > 0 or mass > 0",
-                             q.stiffness));
+      return bad(
+          fmt::format("roller.suspension.stiffness = {}: a suspension needs stiffness > 0 or mass > 0", q.stiffness));
   }
   for (std::size_t i = 0; i < path.size(); ++i) {
     const PathSegment& s = path[i];
@@ -27,12 +27,14 @@ bool RollerSpec::is_valid(std::string* why) const {
     if (s.first_step < 1 || s.last_step < s.first_step)
       return bad(fmt::format("{}.steps = [{}, {}]: expected 1 <= first <= last", at, s.first_step, s.last_step));
     if (i > 0 && s.first_step <= path[i - 1].last_step)
-      return bad(fmt::format("{}.steps = [{}, {}]: overlaps the previous segment (ends at step {})", at,
-                             s.first_step, s.last_step, path[i - 1].last_step));
+      return bad(fmt::format("{}.steps = [{}, {}]: overlaps the previous segment (ends at step {})", at, s.first_step,
+                             s.last_step, path[i - 1].last_step));
     for (Real slip : {s.slip_start, s.slip_end})
       if (!(slip >= -1.0 && slip <= 1.0))
-        return bad(fmt::format("{}.slip = {}: expected -1 <= slip <= 1 (1: the roller slides "
-                               "without turning)", at, slip));
+        return bad(
+            fmt::format("{}.slip = {}: expected -1 <= slip <= 1 (1: the roller slides "
+                        "without turning)",
+                        at, slip));
     if (s.harmonic_wavelength < 0.0)
       return bad(fmt::format("{}.harmonic.wavelength = {}: must be > 0", at, s.harmonic_wavelength));
   }

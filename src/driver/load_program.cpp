@@ -17,8 +17,8 @@ LoadProgram::LoadProgram(const Scene& scene, const Mesh& mesh) : n_dofs_(mesh.n_
     if (it != seen.end()) {
       const Ramp& o = it->second.first;
       if (o.value != r.value || o.ramp_first != r.ramp_first || o.ramp_last != r.ramp_last)
-        throw InputError(fmt::format("{}: node {} {} is already prescribed differently by {}",
-                                     context, dof / 2 + 1, dof % 2 ? "y" : "x", it->second.second));
+        throw InputError(fmt::format("{}: node {} {} is already prescribed differently by {}", context, dof / 2 + 1,
+                                     dof % 2 ? "y" : "x", it->second.second));
       return;
     }
     seen.emplace(dof, std::make_pair(r, context));

@@ -23,9 +23,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Peak resident memory of this process [MiB] (Linux reports ru_maxrss in KiB): what
 // /usr/bin/time -v prints, so users see whether a mesh needs [linear_solver] out_of_core.
@@ -55,8 +53,8 @@ void print_progress(std::ostream& out, const Simulation& sim, int step, const Si
       << std::flush;
 }
 
-void write_summary(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary,
-                   int first_step, bool resumed) {
+void write_summary(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary, int first_step,
+                   bool resumed) {
   const Scene& scene = sim.scene();
   nlohmann::json j;
   j["scene"] = scene.name;
@@ -128,9 +126,10 @@ void Simulation::start_or_resume(const RunOptions& options) {
     return;
   }
   if (!std::filesystem::exists(checkpoint))
-    throw InputError(fmt::format("--resume: {} does not exist (the run wrote no checkpoint; set "
-                                 "output.checkpoint_every >= 1)",
-                                 checkpoint.string()));
+    throw InputError(
+        fmt::format("--resume: {} does not exist (the run wrote no checkpoint; set "
+                    "output.checkpoint_every >= 1)",
+                    checkpoint.string()));
   load_state(checkpoint, /*strip_only=*/false);
   if (options.progress)
     *options.progress << fmt::format("resuming after step {} from {}\n", steps_done_, checkpoint.string());

@@ -11,8 +11,8 @@ namespace roller {
 namespace {
 
 // A table created afresh, or continued after the resumed step.
-std::unique_ptr<CsvTable> open_table(const std::filesystem::path& path, std::vector<std::string> columns,
-                                     bool resume, int resumed_step) {
+std::unique_ptr<CsvTable> open_table(const std::filesystem::path& path, std::vector<std::string> columns, bool resume,
+                                     int resumed_step) {
   if (resume) return std::make_unique<CsvTable>(path, std::move(columns), resumed_step);
   return std::make_unique<CsvTable>(path, std::move(columns));
 }
@@ -34,17 +34,36 @@ VtuField nodal_vector(const std::string& name, const VecX& v) {
 RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume)
     : sim_(sim), out_dir_(out_dir), series_(out_dir / "fields.pvd") {
   const int done = sim.steps_done();
-  solver_csv_ = open_table(
-      out_dir / "solver.csv",
-      {"step", "time", "iterations", "residual", "max_penetration", "wall_s", "cuts", "yielded_points",
-       "factorizations", "complementarity", "constraint_violation", "fixed_point_iterations", "contact_nodes",
-       "a_not_pd_points", "a_lambda_min", "k_eff_positive_definite", "k_eff_negative_pivots", "dt_restore",
-       "kinetic_energy", "suspension_passes", "linearisations", "nlp_solves", "condensed_dofs", "ipopt_time_s",
-       "status"},
-      resume, done);
+  solver_csv_ = open_table(out_dir / "solver.csv",
+                           {"step",
+                            "time",
+                            "iterations",
+                            "residual",
+                            "max_penetration",
+                            "wall_s",
+                            "cuts",
+                            "yielded_points",
+                            "factorizations",
+                            "complementarity",
+                            "constraint_violation",
+                            "fixed_point_iterations",
+                            "contact_nodes",
+                            "a_not_pd_points",
+                            "a_lambda_min",
+                            "k_eff_positive_definite",
+                            "k_eff_negative_pivots",
+                            "dt_restore",
+                            "kinetic_energy",
+                            "suspension_passes",
+                            "linearisations",
+                            "nlp_solves",
+                            "condensed_dofs",
+                            "ipopt_time_s",
+                            "status"},
+                           resume, done);
   if (sim.scene().roller) {
-    contact_csv_ = open_table(out_dir / "contact.csv", {"step", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"},
-                              resume, done);
+    contact_csv_ = open_table(out_dir / "contact.csv",
+                              {"step", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"}, resume, done);
     roller_csv_ = open_table(out_dir / "roller.csv",
                              {"step", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
                               "deflection_velocity", "deflection_acceleration"},
@@ -83,16 +102,30 @@ void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, c
   const StripMonotonicity& mono = monitor.pointwise;
   const Index not_checked = -1;
   solver_csv_->add_row(
-      {static_cast<Index>(step), step * sim_.scene().steps.dt, static_cast<Index>(res.iterations), res.last.residual,
-       res.max_penetration, wall_s, static_cast<Index>(res.cuts), res.n_yielded,
-       static_cast<Index>(res.factorizations), stats.complementarity, stats.constraint_violation,
-       static_cast<Real>(stats.fixed_point_iterations), n_contact, monitor.checked ? mono.n_not_pd : not_checked,
+      {static_cast<Index>(step),
+       step * sim_.scene().steps.dt,
+       static_cast<Index>(res.iterations),
+       res.last.residual,
+       res.max_penetration,
+       wall_s,
+       static_cast<Index>(res.cuts),
+       res.n_yielded,
+       static_cast<Index>(res.factorizations),
+       stats.complementarity,
+       stats.constraint_violation,
+       static_cast<Real>(stats.fixed_point_iterations),
+       n_contact,
+       monitor.checked ? mono.n_not_pd : not_checked,
        std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0,
        monitor.checked ? static_cast<Index>(monitor.assembled.positive_definite() ? 1 : 0) : not_checked,
        monitor.checked ? monitor.assembled.n_negative : not_checked,
-       std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0, sim_.kinetic_energy(),
-       static_cast<Real>(res.last.suspension_passes), static_cast<Real>(stats.linearisations),
-       static_cast<Real>(stats.nlp_solves), static_cast<Real>(stats.condensed_dofs), stats.ipopt_time_s,
+       std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0,
+       sim_.kinetic_energy(),
+       static_cast<Real>(res.last.suspension_passes),
+       static_cast<Real>(stats.linearisations),
+       static_cast<Real>(stats.nlp_solves),
+       static_cast<Real>(stats.condensed_dofs),
+       stats.ipopt_time_s,
        std::string(res.converged ? "converged" : "failed")});
 }
 
@@ -102,15 +135,15 @@ void RunOutputs::write_step(int step) {
     for (const auto& c : sim_.contact())
       contact_csv_->add_row({static_cast<Index>(step), c.node + 1, c.position.x(), c.position.y(), c.contact.gap,
                              c.contact.normal_force / c.tributary_length,
-                             c.contact.tangential_force / c.tributary_length,
-                             std::string(to_string(c.contact.status)), c.contact.slip});
+                             c.contact.tangential_force / c.tributary_length, std::string(to_string(c.contact.status)),
+                             c.contact.slip});
     const Vec2 f = sim_.roller_force();
     const RollerPose& pose = sim_.pose();
     const Vec2 v = sim_.roller_velocity();
     const Real anchor_y = sim_.prescribed_pose(step).centre.y();
     const Suspension* suspension = sim_.suspension();
-    roller_csv_->add_row({static_cast<Index>(step), step * scene.steps.dt, pose.centre.x(), pose.centre.y(),
-                          pose.angle, f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
+    roller_csv_->add_row({static_cast<Index>(step), step * scene.steps.dt, pose.centre.x(), pose.centre.y(), pose.angle,
+                          f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
                           sim_.suspension_velocity(), sim_.suspension_acceleration()});
   }
   if (step % scene.output.every == 0 || step == scene.steps.n_steps) write_fields(step);

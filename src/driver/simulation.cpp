@@ -60,8 +60,7 @@ BackendResult Simulation::solve_contact(IncrementEnergy& energy, const VecX& pre
   candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor, motion.end.centre,
                                        motion.radius, reach);
   friction_.seed(candidates);
-  IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus,
-                           scene_.material.poisson_ratio);
+  IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus, scene_.material.poisson_ratio);
   BackendResult result = backend_->solve(problem, x);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
   // harmonic's crests): retry once from the start-of-step configuration before giving up.
@@ -86,8 +85,8 @@ void Simulation::record_contact(const std::vector<ContactCandidate>& candidates,
     rec.contact = nc;
     rec.tributary_length = c.tributary_length;
     rec.element_size = c.element_size;
-    rec.force = contact_force(nc.normal_force, nc.tangential_force, (rec.position - pose_.centre).normalized(),
-                              c.tangent);
+    rec.force =
+        contact_force(nc.normal_force, nc.tangential_force, (rec.position - pose_.centre).normalized(), c.tangent);
     contact_.push_back(rec);
   }
   friction_.record(candidates, result.contact);
@@ -157,9 +156,8 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
   return solution;
 }
 
-Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const VecX& prescribed,
-                                                 const VecX& predictor, RollerMotion& motion, VecX& x,
-                                                 Increment& inc) {
+Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
+                                                 RollerMotion& motion, VecX& x, Increment& inc) {
   // The roller hangs at anchor + w; w and the contact converge together (suspension.hpp).
   Solution solution;
   const Vec2 anchor = motion.end.centre;
@@ -184,8 +182,7 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
     return fy;
   };
   const Suspension& suspension = *dynamics_.suspension();
-  const CouplingResult cr =
-      couple_suspension(suspension, suspension.deflection(), force_at, 1e-10 * motion.radius, 40);
+  const CouplingResult cr = couple_suspension(suspension, suspension.deflection(), force_at, 1e-10 * motion.radius, 40);
   inc.suspension_passes = cr.iterations;
   if (!cr.converged) {
     inc.converged = false;
@@ -195,8 +192,7 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   return solution;
 }
 
-void Simulation::commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to,
-                        Increment& inc) {
+void Simulation::commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to, Increment& inc) {
   try {
     inc.n_yielded = model_->commit(solution.u);
   } catch (const NumericalError& e) {
@@ -233,8 +229,8 @@ Simulation::StepResult Simulation::advance_step(int step) {
       continue;
     }
     if (res.cuts >= scene_.steps.max_cuts) {
-      res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}", step,
-                                res.cuts, ds, inc.message);
+      res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}", step, res.cuts,
+                                ds, inc.message);
       return res;
     }
     ++res.cuts;

@@ -55,9 +55,10 @@ void Simulation::save_state(const std::filesystem::path& file) const {
 void Simulation::load_state(const std::filesystem::path& file, bool strip_only) {
   std::ifstream in(file, std::ios::binary);
   if (!in)
-    throw InputError(fmt::format("{}: cannot open the state file (a run writes state_final.cbor and "
-                                 "checkpoint.cbor into its output folder)",
-                                 file.string()));
+    throw InputError(
+        fmt::format("{}: cannot open the state file (a run writes state_final.cbor and "
+                    "checkpoint.cbor into its output folder)",
+                    file.string()));
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   nlohmann::json j;
   try {

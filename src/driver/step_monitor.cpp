@@ -36,8 +36,7 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
     *progress_ << fmt::format(
         "warning: step {}: the assembled tangent stiffness is not positive definite ({} negative, {} zero "
         "pivots) near x = {:.4g}, y = {:.4g} mm: operator A lost monotonicity ({}); {}\n",
-        step, r.assembled.n_negative, r.assembled.n_zero, r.worst_place.x(), r.worst_place.y(),
-        mono.brief_report(),
+        step, r.assembled.n_negative, r.assembled.n_zero, r.worst_place.x(), r.worst_place.y(), mono.brief_report(),
         mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
             ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
             : "in a quasistatic strip no time step restores it: use smaller steps or check the supports");

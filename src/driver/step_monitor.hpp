@@ -12,8 +12,8 @@ namespace roller {
 
 struct MonitorReport {
   bool checked = false;
-  StripMonotonicity pointwise;   // operator A at the integration points
-  SparseDefiniteness assembled;  // the effective tangent K (+ 2M/dt^2 with strip inertia)
+  StripMonotonicity pointwise;      // operator A at the integration points
+  SparseDefiniteness assembled;     // the effective tangent K (+ 2M/dt^2 with strip inertia)
   Vec2 worst_place = Vec2::Zero();  // centroid of the element with the worst point [mm]
 };
 

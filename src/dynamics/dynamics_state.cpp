@@ -96,9 +96,10 @@ void DynamicsState::save(nlohmann::json& j) const {
 
 void DynamicsState::load(const nlohmann::json& j, const std::string& file) {
   if (j.contains("strip_history") != strip_inertia_ || j.contains("suspension_history") != suspension_step_.has_value())
-    throw InputError(fmt::format("{}: the saved state's dynamics (strip inertia, suspension) differ from the "
-                                 "scene's",
-                                 file));
+    throw InputError(
+        fmt::format("{}: the saved state's dynamics (strip inertia, suspension) differ from the "
+                    "scene's",
+                    file));
   if (strip_inertia_) {
     strip_step_history_ = history_from(j.at("strip_history"));
     strip_history_ = strip_step_history_;

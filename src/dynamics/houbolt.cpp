@@ -25,21 +25,15 @@ HouboltHistory HouboltHistory::from_values(VecX u_n, VecX u_nm1, VecX u_nm2, Rea
   return h;
 }
 
-VecX HouboltHistory::acceleration_offset() const {
-  return (-5.0 * u_[0] + 4.0 * u_[1] - u_[2]) / (dt_ * dt_);
-}
+VecX HouboltHistory::acceleration_offset() const { return (-5.0 * u_[0] + 4.0 * u_[1] - u_[2]) / (dt_ * dt_); }
 
-VecX HouboltHistory::velocity_offset() const {
-  return (-18.0 * u_[0] + 9.0 * u_[1] - 2.0 * u_[2]) / (6.0 * dt_);
-}
+VecX HouboltHistory::velocity_offset() const { return (-18.0 * u_[0] + 9.0 * u_[1] - 2.0 * u_[2]) / (6.0 * dt_); }
 
 VecX HouboltHistory::acceleration(const VecX& u_next) const {
   return acceleration_coefficient() * u_next + acceleration_offset();
 }
 
-VecX HouboltHistory::velocity(const VecX& u_next) const {
-  return velocity_coefficient() * u_next + velocity_offset();
-}
+VecX HouboltHistory::velocity(const VecX& u_next) const { return velocity_coefficient() * u_next + velocity_offset(); }
 
 void HouboltHistory::advance(const VecX& u_next) {
   u_[2] = std::move(u_[1]);

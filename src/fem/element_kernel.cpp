@@ -24,8 +24,7 @@ Mat2 displacement_gradient(const PointGeometry& g, const ElementVector& u) {
 
 // Strain vector [E_xx, E_yy, 0, 2E_xy] and its Jacobian dE/du; with F = I + H,
 // dE_ij/du_aA = 1/2 (F_ai N_A,j + F_aj N_A,i).
-void strain_and_jacobian(const PointGeometry& g, const ElementVector& u, bool finite, Vec4& e,
-                         StrainJacobian& b) {
+void strain_and_jacobian(const PointGeometry& g, const ElementVector& u, bool finite, Vec4& e, StrainJacobian& b) {
   const Mat2 h = displacement_gradient(g, u);
   Mat2 strain = 0.5 * (h + h.transpose());
   Mat2 f = Mat2::Identity();
@@ -63,15 +62,12 @@ void add_geometric(const PointGeometry& g, const Mat2& s, Real w, ElementMatrix&
 }
 
 // Adds w * (N_A,x N_B,x + N_A,y N_B,y) to the (x,x) and (y,y) blocks: d2(tr E)/du2 scaled by w.
-void add_trace_hessian(const PointGeometry& g, Real w, ElementMatrix& k) {
-  add_geometric(g, Mat2::Identity(), w, k);
-}
+void add_trace_hessian(const PointGeometry& g, Real w, ElementMatrix& k) { add_geometric(g, Mat2::Identity(), w, k); }
 
 }  // namespace
 
-void evaluate_element(const ElementOptions& options, const MaterialParams& material,
-                      const ElementInput& in, bool want_residual, bool want_tangent,
-                      ElementOutput& out) {
+void evaluate_element(const ElementOptions& options, const MaterialParams& material, const ElementInput& in,
+                      bool want_residual, bool want_tangent, ElementOutput& out) {
   const auto& geometry = *in.geometry;
   const std::size_t n_points = geometry.size();
   const Index n_dof = in.displacement.size();
@@ -136,13 +132,11 @@ void evaluate_element(const ElementOptions& options, const MaterialParams& mater
   }
   if (want_tangent && finite && bbar) {
     for (std::size_t q = 0; q < n_points; ++q)
-      add_trace_hessian(geometry[q], weighted_pressure_sum * geometry[q].weight / volume,
-                        out.tangent);
+      add_trace_hessian(geometry[q], weighted_pressure_sum * geometry[q].weight / volume, out.tangent);
   }
 }
 
-std::vector<Mat2> deformation_gradients(const std::vector<PointGeometry>& geometry,
-                                        const ElementVector& displacement) {
+std::vector<Mat2> deformation_gradients(const std::vector<PointGeometry>& geometry, const ElementVector& displacement) {
   std::vector<Mat2> f;
   f.reserve(geometry.size());
   for (const auto& g : geometry) f.push_back(Mat2::Identity() + displacement_gradient(g, displacement));
@@ -157,8 +151,7 @@ Vec4 push_forward(const Mat2& f, const Vec4& second_piola) {
   return Vec4(sigma(0, 0), sigma(1, 1), second_piola(2) / j, 0.5 * (sigma(0, 1) + sigma(1, 0)));
 }
 
-ElementMatrix element_mass(ElementType type, const std::vector<PointGeometry>& geometry,
-                           Real density, bool lumped) {
+ElementMatrix element_mass(ElementType type, const std::vector<PointGeometry>& geometry, Real density, bool lumped) {
   const Index n = geometry.front().shape.size();
   ElementMatrix mass = ElementMatrix::Zero(2 * n, 2 * n);
   if (type == ElementType::T3) {

@@ -46,8 +46,7 @@ const std::vector<ReferencePoint>& rule(ElementType t) {
 
 }  // namespace
 
-std::vector<PointGeometry> element_geometry(ElementType t, const std::vector<Vec2>& coordinates,
-                                            Index element_id) {
+std::vector<PointGeometry> element_geometry(ElementType t, const std::vector<Vec2>& coordinates, Index element_id) {
   std::vector<PointGeometry> out;
   element_geometry(t, coordinates, element_id, out);
   return out;
@@ -65,10 +64,10 @@ void element_geometry(ElementType t, const std::vector<Vec2>& coordinates, Index
     for (Index a = 0; a < g.shape.size(); ++a) jac += coordinates[a] * dn.row(a);
     const Real det = jac.determinant();
     if (!(det > 0.0)) {
-      throw NumericalError(fmt::format(
-          "element {} is inverted or degenerate (det J = {:.3e} at integration point {}); "
-          "the step is too large for the mesh: use smaller steps or a finer mesh",
-          element_id, det, q));
+      throw NumericalError(
+          fmt::format("element {} is inverted or degenerate (det J = {:.3e} at integration point {}); "
+                      "the step is too large for the mesh: use smaller steps or a finer mesh",
+                      element_id, det, q));
     }
     g.gradients = dn * jac.inverse();
     g.weight = det * points[q].weight;

@@ -50,13 +50,11 @@ CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> c
   out_.open(path_, std::ios::out | std::ios::trunc | std::ios::binary);
   if (!out_) {
     throw std::runtime_error(fmt::format(
-        "cannot open CSV file '{}' for writing (does the folder exist and is it writable?)",
-        path_.string()));
+        "cannot open CSV file '{}' for writing (does the folder exist and is it writable?)", path_.string()));
   }
   out_ << header_line() << std::flush;
   if (!out_) {
-    throw std::runtime_error(
-        fmt::format("cannot write the header of CSV file '{}' (disk full?)", path_.string()));
+    throw std::runtime_error(fmt::format("cannot write the header of CSV file '{}' (disk full?)", path_.string()));
   }
 }
 
@@ -92,9 +90,8 @@ std::string CsvTable::header_line() const {
 
 void CsvTable::add_row(const std::vector<Cell>& cells) {
   if (cells.size() != columns_.size()) {
-    throw std::invalid_argument(fmt::format(
-        "CsvTable '{}': row has {} cells; the table has {} columns ({})", path_.string(),
-        cells.size(), columns_.size(), fmt::join(columns_, ", ")));
+    throw std::invalid_argument(fmt::format("CsvTable '{}': row has {} cells; the table has {} columns ({})",
+                                            path_.string(), cells.size(), columns_.size(), fmt::join(columns_, ", ")));
   }
   std::string line;
   for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -105,8 +102,7 @@ void CsvTable::add_row(const std::vector<Cell>& cells) {
   // Flushed per row so finished steps survive a later failure or a killed run.
   out_ << line << std::flush;
   if (!out_) {
-    throw std::runtime_error(
-        fmt::format("cannot write a row to CSV file '{}' (disk full?)", path_.string()));
+    throw std::runtime_error(fmt::format("cannot write a row to CSV file '{}' (disk full?)", path_.string()));
   }
 }
 

@@ -8,8 +8,7 @@ namespace {
 
 const std::vector<std::string> kTensorComponents{"xx", "yy", "zz", "xy"};
 
-VtuField field(std::string name, int n_components, Index n_items,
-               std::vector<std::string> component_names = {}) {
+VtuField field(std::string name, int n_components, Index n_items, std::vector<std::string> component_names = {}) {
   VtuField f;
   f.name = std::move(name);
   f.n_components = n_components;

@@ -40,9 +40,7 @@ struct Range {
     if (max) return fmt::format("{} {}", max_open ? "<" : "<=", *max);
     return "";
   }
-  std::string rule(const std::string& name) const {
-    return (min && max ? "must satisfy " : "must be ") + text(name);
-  }
+  std::string rule(const std::string& name) const { return (min && max ? "must satisfy " : "must be ") + text(name); }
 };
 
 Range at_least(Real v) { return {v, std::nullopt, false, false}; }
@@ -75,11 +73,16 @@ std::string choices_text(const std::vector<std::string>& choices) {
 
 template <class T>
 std::string type_name() {
-  if constexpr (std::is_same_v<T, Real>) return "number";
-  else if constexpr (std::is_same_v<T, int>) return "integer";
-  else if constexpr (std::is_same_v<T, bool>) return "bool";
-  else if constexpr (std::is_same_v<T, std::string>) return "string";
-  else if constexpr (std::is_same_v<T, std::vector<Real>>) return "array of numbers";
+  if constexpr (std::is_same_v<T, Real>)
+    return "number";
+  else if constexpr (std::is_same_v<T, int>)
+    return "integer";
+  else if constexpr (std::is_same_v<T, bool>)
+    return "bool";
+  else if constexpr (std::is_same_v<T, std::string>)
+    return "string";
+  else if constexpr (std::is_same_v<T, std::vector<Real>>)
+    return "array of numbers";
   else {
     static_assert(std::is_enum_v<T>, "a scene key is a number, integer, bool, string, array or enum");
     return "choice";
@@ -88,22 +91,30 @@ std::string type_name() {
 
 template <class T>
 std::string value_text(const T& v) {
-  if constexpr (std::is_same_v<T, bool>) return v ? "true" : "false";
-  else if constexpr (std::is_same_v<T, std::string>) return fmt::format("\"{}\"", v);
-  else if constexpr (std::is_same_v<T, std::vector<Real>>) return fmt::format("[{}]", fmt::join(v, ", "));
-  else if constexpr (std::is_enum_v<T>) return fmt::format("\"{}\"", enum_name(v));
-  else return fmt::format("{}", v);
+  if constexpr (std::is_same_v<T, bool>)
+    return v ? "true" : "false";
+  else if constexpr (std::is_same_v<T, std::string>)
+    return fmt::format("\"{}\"", v);
+  else if constexpr (std::is_same_v<T, std::vector<Real>>)
+    return fmt::format("[{}]", fmt::join(v, ", "));
+  else if constexpr (std::is_enum_v<T>)
+    return fmt::format("\"{}\"", enum_name(v));
+  else
+    return fmt::format("{}", v);
 }
 
 template <class T>
 void insert(toml::table& t, const std::string& name, const T& v) {
-  if constexpr (std::is_same_v<T, int>) t.insert(name, static_cast<int64_t>(v));
+  if constexpr (std::is_same_v<T, int>)
+    t.insert(name, static_cast<int64_t>(v));
   else if constexpr (std::is_same_v<T, std::vector<Real>>) {
     toml::array a;
     for (Real x : v) a.push_back(x);
     t.insert(name, a);
-  } else if constexpr (std::is_enum_v<T>) t.insert(name, std::string(enum_name(v)));
-  else t.insert(name, v);
+  } else if constexpr (std::is_enum_v<T>)
+    t.insert(name, std::string(enum_name(v)));
+  else
+    t.insert(name, v);
 }
 
 // Reads and checks one value; nullopt when the key is absent.
@@ -160,8 +171,7 @@ struct Decl {
 
   // Absent is an error saying what the key holds.
   Decl&& required(const std::string& message) && {
-    key.read = [read = std::move(key.read), name = key.name, message](TomlSection& s, Scene& scene,
-                                                                      std::size_t block) {
+    key.read = [read = std::move(key.read), name = key.name, message](TomlSection& s, Scene& scene, std::size_t block) {
       if (!s.has(name)) s.fail(name, message);
       read(s, scene, block);
     };
@@ -170,10 +180,11 @@ struct Decl {
   }
   // Absent: `fill` sets a default that depends on other keys (listed as `text`).
   Decl&& when_absent(const std::string& text, std::function<void(Scene&)> fill) && {
-    key.read = [read = std::move(key.read), name = key.name, fill](TomlSection& s, Scene& scene,
-                                                                   std::size_t block) {
-      if (s.has(name)) read(s, scene, block);
-      else fill(scene);
+    key.read = [read = std::move(key.read), name = key.name, fill](TomlSection& s, Scene& scene, std::size_t block) {
+      if (s.has(name))
+        read(s, scene, block);
+      else
+        fill(scene);
     };
     key.default_text = text;
     return std::move(*this);
@@ -202,8 +213,10 @@ Decl field(const std::string& dotted, std::function<T(const Scene&, std::size_t)
   const bool choice = std::is_enum_v<T> || !rule.choices.empty();
   k.type = choice ? "choice" : type_name<T>();
   k.default_text = value_text(get(default_scene(), 0));
-  if constexpr (std::is_enum_v<T>) k.range = choices_text(enum_names<T>());
-  else k.range = choice ? choices_text(rule.choices) : rule.range.text(k.name);
+  if constexpr (std::is_enum_v<T>)
+    k.range = choices_text(enum_names<T>());
+  else
+    k.range = choice ? choices_text(rule.choices) : rule.range.text(k.name);
   k.doc = doc;
   k.read = [name = k.name, set, rule](TomlSection& s, Scene& scene, std::size_t block) {
     if (auto v = read_value<T>(s, name, rule)) set(scene, block, *v);
@@ -394,9 +407,12 @@ void read_ipopt_options(TomlSection& s, Scene& scene, std::size_t) {
 void write_ipopt_options(toml::table& t, const Scene& scene, std::size_t) {
   toml::table raw_options;
   for (const RawIpoptOption& r : scene.contact.ipopt.raw) {
-    if (r.kind == RawIpoptOption::Kind::Integer) raw_options.insert(r.name, std::stoll(r.text));
-    else if (r.kind == RawIpoptOption::Kind::Number) raw_options.insert(r.name, std::stod(r.text));
-    else raw_options.insert(r.name, r.text);
+    if (r.kind == RawIpoptOption::Kind::Integer)
+      raw_options.insert(r.name, std::stoll(r.text));
+    else if (r.kind == RawIpoptOption::Kind::Number)
+      raw_options.insert(r.name, std::stod(r.text));
+    else
+      raw_options.insert(r.name, r.text);
   }
   t.insert("options", raw_options);
 }
@@ -409,21 +425,26 @@ std::vector<SceneKey> make_keys() {
   using Ref = std::size_t;  // block index of keys in arrays of tables
   return {
       // The root.
-      key("name", [](auto& s) -> auto& { return s.name; }, "name of the run, used for the output folder out/<name>")
+      key(
+          "name", [](auto& s) -> auto& { return s.name; }, "name of the run, used for the output folder out/<name>")
           .when_absent("file stem", [](Scene& s) { s.name = s.file.stem().string(); }),
-      key("title", [](auto& s) -> auto& { return s.title; }, "one-line description")
+      key(
+          "title", [](auto& s) -> auto& { return s.title; }, "one-line description")
           .written_if([](const Scene& s) { return !s.title.empty(); }),
-      key("kinematics", [](auto& s) -> auto& { return s.element.kinematics; },
+      key(
+          "kinematics", [](auto& s) -> auto& { return s.element.kinematics; },
           "finite: updated Lagrangian, Green-Lagrange strain, geometric stiffness (thesis LARGE); "
           "small: linear strain on the initial mesh (thesis INFINI)"),
 
       // [material], read before [mesh]: the Q4 default depends on plasticity.
-      key("material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]",
-          above(0.0))
+      key(
+          "material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]", above(0.0))
           .required("Young's modulus E [MPa] is required"),
-      key("material.nu", [](auto& s) -> auto& { return s.material.poisson_ratio; }, "Poisson's ratio",
+      key(
+          "material.nu", [](auto& s) -> auto& { return s.material.poisson_ratio; }, "Poisson's ratio",
           right_open(0.0, 0.5)),
-      key("material.density", [](auto& s) -> auto& { return s.material.density; },
+      key(
+          "material.density", [](auto& s) -> auto& { return s.material.density; },
           "density [t/mm^3] (steel 7.8e-9), needed by strip inertia", at_least(0.0)),
       custom(
           "material.yield_stress", "number", "absent = elastic", "> 0",
@@ -460,24 +481,30 @@ std::vector<SceneKey> make_keys() {
             scene.material.tangent_modulus = *kappa * scene.material.youngs_modulus;
           },
           write_nothing),
-      key("material.stress_integration", [](auto& s) -> auto& { return s.material.integration; },
+      key(
+          "material.stress_integration", [](auto& s) -> auto& { return s.material.integration; },
           "return_mapping: radial return with the consistent tangent; substep: the thesis's sub-stepped "
           "continuum tangent")
           .written_if(plastic),
-      key("material.substeps", [](auto& s) -> auto& { return s.material.n_substeps; },
+      key(
+          "material.substeps", [](auto& s) -> auto& { return s.material.n_substeps; },
           "sub-steps of the substep integration", at_least(1))
           .written_if(plastic),
 
       // [mesh]
-      key("mesh.element", [](auto& s) -> auto& { return s.mesh.element; },
+      key(
+          "mesh.element", [](auto& s) -> auto& { return s.mesh.element; },
           "bilinear quads (2x2 Gauss) or linear triangles (each quad split in two)"),
-      key("mesh.length", [](auto& s) -> auto& { return s.mesh.length; }, "strip length L_s [mm]", above(0.0)),
-      key("mesh.height", [](auto& s) -> auto& { return s.mesh.height; }, "half-thickness H [mm]", above(0.0)),
-      key("mesh.nx", [](auto& s) -> auto& { return s.mesh.nx; }, "elements along x before refinement",
-          at_least(1)),
-      key("mesh.ny", [](auto& s) -> auto& { return s.mesh.ny; }, "elements along y before refinement",
-          at_least(1)),
-      key("mesh.refine", [](auto& s) -> auto& { return s.mesh.refine; },
+      key(
+          "mesh.length", [](auto& s) -> auto& { return s.mesh.length; }, "strip length L_s [mm]", above(0.0)),
+      key(
+          "mesh.height", [](auto& s) -> auto& { return s.mesh.height; }, "half-thickness H [mm]", above(0.0)),
+      key(
+          "mesh.nx", [](auto& s) -> auto& { return s.mesh.nx; }, "elements along x before refinement", at_least(1)),
+      key(
+          "mesh.ny", [](auto& s) -> auto& { return s.mesh.ny; }, "elements along y before refinement", at_least(1)),
+      key(
+          "mesh.refine", [](auto& s) -> auto& { return s.mesh.refine; },
           "every interval split into refine equal parts (--refine)", at_least(1)),
       custom(
           "mesh.grading_x", "{ ratio, focus }", "uniform", "ratio >= 1",
@@ -488,16 +515,20 @@ std::vector<SceneKey> make_keys() {
           "mesh.grading_y", "{ ratio, focus }", "uniform", "ratio >= 1", "geometric grading along y, as grading_x",
           [](TomlSection& s, Scene& scene, Ref) { scene.mesh.grading_y = read_grading(s, "grading_y"); },
           [](toml::table& t, const Scene& scene, Ref) { write_grading(t, "grading_y", scene.mesh.grading_y); }),
-      key("mesh.x_lines", [](auto& s) -> auto& { return s.mesh.x_lines; },
+      key(
+          "mesh.x_lines", [](auto& s) -> auto& { return s.mesh.x_lines; },
           "explicit grid lines from 0 to length, strictly increasing; replace nx and grading_x")
           .written_if([](const Scene& s) { return !s.mesh.x_lines.empty(); })
           .shown_default("absent"),
-      key("mesh.y_lines", [](auto& s) -> auto& { return s.mesh.y_lines; },
+      key(
+          "mesh.y_lines", [](auto& s) -> auto& { return s.mesh.y_lines; },
           "explicit grid lines from 0 to height, strictly increasing; replace ny and grading_y")
           .written_if([](const Scene& s) { return !s.mesh.y_lines.empty(); })
           .shown_default("absent"),
-      key("mesh.diagonal", [](auto& s) -> auto& { return s.mesh.diagonal; }, "how T3 split the quads"),
-      key("mesh.q4_formulation", [](auto& s) -> auto& { return s.element.q4; },
+      key(
+          "mesh.diagonal", [](auto& s) -> auto& { return s.mesh.diagonal; }, "how T3 split the quads"),
+      key(
+          "mesh.q4_formulation", [](auto& s) -> auto& { return s.element.q4; },
           "B-bar (volumetric strain averaged over the element) or full integration")
           .when_absent("\"bbar\" if plastic, else \"standard\"",
                        [](Scene& s) {
@@ -506,35 +537,48 @@ std::vector<SceneKey> make_keys() {
                        }),
 
       // [steps]
-      key("steps.count", [](auto& s) -> auto& { return s.steps.n_steps; },
+      key(
+          "steps.count", [](auto& s) -> auto& { return s.steps.n_steps; },
           "number of steps; fields are written at the end of steps (--steps)", at_least(1)),
-      key("steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", above(0.0)),
-      key("steps.max_cuts", [](auto& s) -> auto& { return s.steps.max_cuts; },
+      key(
+          "steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", above(0.0)),
+      key(
+          "steps.max_cuts", [](auto& s) -> auto& { return s.steps.max_cuts; },
           "a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments", closed(0, 20)),
 
       // [newton]
-      key("newton.max_iterations", [](auto& s) -> auto& { return s.newton.max_iterations; },
+      key(
+          "newton.max_iterations", [](auto& s) -> auto& { return s.newton.max_iterations; },
           "Newton iterations per increment", at_least(1)),
-      key("newton.residual_tolerance", [](auto& s) -> auto& { return s.newton.residual_tolerance; },
+      key(
+          "newton.residual_tolerance", [](auto& s) -> auto& { return s.newton.residual_tolerance; },
           "converged when |r| <= tol * force scale", open(0.0, 1.0)),
-      key("newton.line_search", [](auto& s) -> auto& { return s.newton.line_search; },
+      key(
+          "newton.line_search", [](auto& s) -> auto& { return s.newton.line_search; },
           "backtracking on the incremental energy"),
 
       // [linear_solver]
-      key("linear_solver.out_of_core", [](auto& s) -> auto& { return s.newton.linear.out_of_core; },
+      key(
+          "linear_solver.out_of_core", [](auto& s) -> auto& { return s.newton.linear.out_of_core; },
           "MUMPS factors written to disk instead of kept in memory"),
-      key("linear_solver.ordering", [](auto& s) -> auto& { return s.newton.linear.ordering; },
+      key(
+          "linear_solver.ordering", [](auto& s) -> auto& { return s.newton.linear.ordering; },
           "fill-reducing ordering of MUMPS (auto: MUMPS chooses)", one_of(LinearSolverOptions::orderings())),
-      key("linear_solver.directory", [](auto& s) -> auto& { return s.newton.linear.directory; },
+      key(
+          "linear_solver.directory", [](auto& s) -> auto& { return s.newton.linear.directory; },
           "existing directory for the out-of-core files (\"\": MUMPS's default, /tmp)"),
 
       // [output]
-      key("output.every", [](auto& s) -> auto& { return s.output.every; },
+      key(
+          "output.every", [](auto& s) -> auto& { return s.output.every; },
           "write fields every N steps (the last step always)", at_least(1)),
-      key("output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
-      key("output.monitor", [](auto& s) -> auto& { return s.output.monitor; },
+      key(
+          "output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
+      key(
+          "output.monitor", [](auto& s) -> auto& { return s.output.monitor; },
           "run-time monotonicity monitor (one extra assembly and factorisation per step)"),
-      key("output.checkpoint_every", [](auto& s) -> auto& { return s.output.checkpoint_every; },
+      key(
+          "output.checkpoint_every", [](auto& s) -> auto& { return s.output.checkpoint_every; },
           "write checkpoint.cbor every N steps (0 = never), for --resume", at_least(0)),
       custom(
           "output.save_states", "array of steps", "[]", "1..steps.count",
@@ -556,7 +600,8 @@ std::vector<SceneKey> make_keys() {
           }),
 
       // [dynamics]
-      key("dynamics.strip_inertia", [](auto& s) -> auto& { return s.dynamics.strip_inertia; },
+      key(
+          "dynamics.strip_inertia", [](auto& s) -> auto& { return s.dynamics.strip_inertia; },
           "Houbolt inertia of the strip; needs material.density > 0"),
       field<MassMatrix>(
           "dynamics.mass",
@@ -570,8 +615,7 @@ std::vector<SceneKey> make_keys() {
           "state file of another run (state_final.cbor), relative to the scene file (--initial-state)",
           [](TomlSection& s, Scene& scene, Ref) {
             const auto from = s.string("from");
-            if (!from || from->empty())
-              s.fail("from", "expected the path of a state file (state_final.cbor of a run)");
+            if (!from || from->empty()) s.fail("from", "expected the path of a state file (state_final.cbor of a run)");
             std::filesystem::path p(*from);
             // Relative to the scene file, so that a scene and its predecessor's output travel together.
             if (p.is_relative() && !scene.file.empty()) p = scene.file.parent_path() / p;
@@ -590,10 +634,10 @@ std::vector<SceneKey> make_keys() {
       ramp_key("load.fy", &Scene::loads, &NodalLoad::fy, "force on each selected node in y, as fx"),
 
       // [roller]
-      key("roller.radius", [](auto& s) -> auto& { return s.roller->radius; }, "R [mm]", above(0.0)),
+      key(
+          "roller.radius", [](auto& s) -> auto& { return s.roller->radius; }, "R [mm]", above(0.0)),
       custom(
-          "roller.centre", "[x, y]", "[length/2, height + radius] (touching)", "",
-          "centre at the start [mm]",
+          "roller.centre", "[x, y]", "[length/2, height + radius] (touching)", "", "centre at the start [mm]",
           [](TomlSection& s, Scene& scene, Ref) {
             if (auto c = s.real_array("centre")) {
               if (c->size() != 2) s.fail("centre", "expected [x, y] of the roller centre at the start [mm]");
@@ -603,13 +647,17 @@ std::vector<SceneKey> make_keys() {
           [](toml::table& t, const Scene& scene, Ref) {
             if (const auto& c = scene.roller->start_centre) t.insert("centre", pair_array(c->x(), c->y()));
           }),
-      key("roller.angle", [](auto& s) -> auto& { return s.roller->start_angle; },
+      key(
+          "roller.angle", [](auto& s) -> auto& { return s.roller->start_angle; },
           "rotation angle at the start [rad], counter-clockwise positive"),
-      key("roller.suspension.mass", [](auto& s) -> auto& { return s.roller->suspension->mass; },
+      key(
+          "roller.suspension.mass", [](auto& s) -> auto& { return s.roller->suspension->mass; },
           "m [t per mm of roller length]", at_least(0.0)),
-      key("roller.suspension.damping", [](auto& s) -> auto& { return s.roller->suspension->damping; },
+      key(
+          "roller.suspension.damping", [](auto& s) -> auto& { return s.roller->suspension->damping; },
           "c [N s/mm per mm]", at_least(0.0)),
-      key("roller.suspension.stiffness", [](auto& s) -> auto& { return s.roller->suspension->stiffness; },
+      key(
+          "roller.suspension.stiffness", [](auto& s) -> auto& { return s.roller->suspension->stiffness; },
           "k [N/mm per mm]; k or m must be > 0", at_least(0.0)),
       custom(
           "roller.path.steps", "[first, last]", "required", "1 <= first <= last",
@@ -625,9 +673,11 @@ std::vector<SceneKey> make_keys() {
             const PathSegment& p = scene.roller->path[i];
             t.insert("steps", toml::array{static_cast<int64_t>(p.first_step), static_cast<int64_t>(p.last_step)});
           }),
-      key("roller.path.dx", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dx; },
+      key(
+          "roller.path.dx", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dx; },
           "travel of the centre in x over the segment [mm]"),
-      key("roller.path.dy", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dy; },
+      key(
+          "roller.path.dy", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dy; },
           "travel of the centre in y over the segment [mm] (negative = press in)"),
       custom(
           "roller.path.slip", "number or [start, end]", "0", "-1 <= slip <= 1",
@@ -666,44 +716,61 @@ std::vector<SceneKey> make_keys() {
           [](toml::table& t, const Scene& scene, Ref i) {
             const PathSegment& p = scene.roller->path[i];
             if (p.harmonic_wavelength > 0.0)
-              t.insert("harmonic", toml::table{{"amplitude", p.harmonic_amplitude},
-                                               {"wavelength", p.harmonic_wavelength}});
+              t.insert("harmonic",
+                       toml::table{{"amplitude", p.harmonic_amplitude}, {"wavelength", p.harmonic_wavelength}});
           }),
 
       // [contact]
-      key("contact.backend", [](auto& s) -> auto& { return s.contact.backend; },
+      key(
+          "contact.backend", [](auto& s) -> auto& { return s.contact.backend; },
           "contact solver (--contact): interior point (exact non-penetration) or the thesis's penalty Newton"),
-      key("contact.friction", [](auto& s) -> auto& { return s.contact.friction; }, "Coulomb coefficient mu",
+      key(
+          "contact.friction", [](auto& s) -> auto& { return s.contact.friction; }, "Coulomb coefficient mu",
           closed(0.0, 10.0)),
-      key("contact.candidates", [](auto& s) -> auto& { return s.contact.candidates; },
+      key(
+          "contact.candidates", [](auto& s) -> auto& { return s.contact.candidates; },
           "node set (or union \"top+right\") of the nodes that may touch the roller"),
-      key("contact.predictor", [](auto& s) -> auto& { return s.contact.predictor; },
+      key(
+          "contact.predictor", [](auto& s) -> auto& { return s.contact.predictor; },
           "start of each increment: the previous increment scaled, or that and the thesis's arc rule"),
-      key("contact.penalty.factor", [](auto& s) -> auto& { return s.contact.penalty.factor; },
+      key(
+          "contact.penalty.factor", [](auto& s) -> auto& { return s.contact.penalty.factor; },
           "normal penalty kappa_N = factor * E* * l_i / h_i", above(0.0)),
-      key("contact.penalty.tangential_factor", [](auto& s) -> auto& { return s.contact.penalty.tangential_factor; },
+      key(
+          "contact.penalty.tangential_factor", [](auto& s) -> auto& { return s.contact.penalty.tangential_factor; },
           "kappa_T = tangential_factor * kappa_N", above(0.0)),
-      key("contact.ipopt.formulation", [](auto& s) -> auto& { return s.contact.ipopt.formulation; },
+      key(
+          "contact.ipopt.formulation", [](auto& s) -> auto& { return s.contact.ipopt.formulation; },
           "condensed: MUMPS condensation onto the contact dofs, small dense NLP; full: every free dof in the NLP"),
-      key("contact.ipopt.tol", [](auto& s) -> auto& { return s.contact.ipopt.tol; },
-          "Ipopt's tol on the scaled NLP", open(0.0, 1.0)),
-      key("contact.ipopt.max_iter", [](auto& s) -> auto& { return s.contact.ipopt.max_iter; },
+      key(
+          "contact.ipopt.tol", [](auto& s) -> auto& { return s.contact.ipopt.tol; }, "Ipopt's tol on the scaled NLP",
+          open(0.0, 1.0)),
+      key(
+          "contact.ipopt.max_iter", [](auto& s) -> auto& { return s.contact.ipopt.max_iter; },
           "Ipopt's iteration limit per NLP", at_least(1)),
-      key("contact.ipopt.mu_strategy", [](auto& s) -> auto& { return s.contact.ipopt.mu_strategy; },
+      key(
+          "contact.ipopt.mu_strategy", [](auto& s) -> auto& { return s.contact.ipopt.mu_strategy; },
           "Ipopt's barrier update"),
-      key("contact.ipopt.print_level", [](auto& s) -> auto& { return s.contact.ipopt.print_level; },
+      key(
+          "contact.ipopt.print_level", [](auto& s) -> auto& { return s.contact.ipopt.print_level; },
           "Ipopt's output level", closed(0, 12)),
-      key("contact.ipopt.warm_start", [](auto& s) -> auto& { return s.contact.ipopt.warm_start; },
+      key(
+          "contact.ipopt.warm_start", [](auto& s) -> auto& { return s.contact.ipopt.warm_start; },
           "warm-start the first Ipopt pass of an increment from multipliers guessed from the last forces"),
-      key("contact.ipopt.friction", [](auto& s) -> auto& { return s.contact.ipopt.friction; },
+      key(
+          "contact.ipopt.friction", [](auto& s) -> auto& { return s.contact.ipopt.friction; },
           "split: v_T = s+ - s-, exact; regularized: sqrt(v_T^2 + eps^2)"),
-      key("contact.ipopt.regularization", [](auto& s) -> auto& { return s.contact.ipopt.regularization; },
+      key(
+          "contact.ipopt.regularization", [](auto& s) -> auto& { return s.contact.ipopt.regularization; },
           "eps of the regularized friction [mm]", above(0.0)),
-      key("contact.ipopt.fixed_point", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point; },
+      key(
+          "contact.ipopt.fixed_point", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point; },
           "converge: Coulomb's normal-force fixed point iterated; single: one pass with the previous F_N"),
-      key("contact.ipopt.fixed_point_tol", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_tol; },
+      key(
+          "contact.ipopt.fixed_point_tol", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_tol; },
           "max |dF_N| / max F_N that ends the friction fixed point", above(0.0)),
-      key("contact.ipopt.fixed_point_max", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_max; },
+      key(
+          "contact.ipopt.fixed_point_max", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_max; },
           "passes of the friction fixed point at most", at_least(1)),
       custom("contact.ipopt.options", "table", "{}", "Ipopt's options",
              "any further Ipopt option, passed through after roller's own settings (booleans become yes/no)",
@@ -763,7 +830,8 @@ std::vector<SceneTable> make_tables() {
   SceneTable& displacement = add("displacement", true);
   displacement.enter = [](TomlSection&, Scene& scene) { scene.displacements.emplace_back(); };
   displacement.check = [](TomlSection& s, Scene& scene, Ref i) {
-    if (!scene.displacements[i].x && !scene.displacements[i].y) s.fail("x", "a [[displacement]] block needs x and/or y");
+    if (!scene.displacements[i].x && !scene.displacements[i].y)
+      s.fail("x", "a [[displacement]] block needs x and/or y");
   };
   displacement.count = [](const Scene& s) { return s.displacements.size(); };
 

@@ -30,9 +30,7 @@ void apply_override(toml::table& root, const SceneOverride& o) {
       n = t->get(parts[i]);
     }
     t = n->as_table();
-    if (!t)
-      throw InputError(fmt::format("--set {}={}: '{}' is not a table in the scene", o.key, o.value,
-                                   parts[i]));
+    if (!t) throw InputError(fmt::format("--set {}={}: '{}' is not a table in the scene", o.key, o.value, parts[i]));
   }
   toml::table parsed;
   try {
@@ -92,8 +90,8 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file_nam
   try {
     table = toml::parse(text, file_name.string());
   } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_name.string(),
-                                 e.source().begin.line, e.source().begin.column, e.description()));
+    throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_name.string(), e.source().begin.line,
+                                 e.source().begin.column, e.description()));
   }
   for (const auto& o : overrides) apply_override(table, o);
   return scene_from_table(table, file_name);
@@ -107,8 +105,7 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<SceneOverr
   return parse_scene(buffer.str(), file, overrides);
 }
 
-std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
-                                 const std::string& context) {
+std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh, const std::string& context) {
   if (selector.near) {
     Index best = 0;
     for (Index a = 1; a < mesh.n_nodes(); ++a)
@@ -132,9 +129,10 @@ std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
   std::vector<Index> out;
   for (Index number : selector.numbers) {
     if (number < 1 || number > mesh.n_nodes())
-      throw InputError(fmt::format("{}: node {} does not exist: the mesh has nodes 1..{} "
-                                   "(thesis numbering: column by column from the left, top to bottom)",
-                                   context, number, mesh.n_nodes()));
+      throw InputError(
+          fmt::format("{}: node {} does not exist: the mesh has nodes 1..{} "
+                      "(thesis numbering: column by column from the left, top to bottom)",
+                      context, number, mesh.n_nodes()));
     out.push_back(number - 1);
   }
   return out;
@@ -164,13 +162,15 @@ bool LinearSolverOptions::is_valid(std::string* why) const {
   };
   const auto& known = orderings();
   if (std::find(known.begin(), known.end(), ordering) == known.end())
-    return bad(fmt::format("linear_solver.ordering = \"{}\": expected one of \"{}\"", ordering,
-                           fmt::join(known, "\", \"")));
+    return bad(
+        fmt::format("linear_solver.ordering = \"{}\": expected one of \"{}\"", ordering, fmt::join(known, "\", \"")));
   if (!directory.empty()) {
     std::error_code ec;
     if (!std::filesystem::is_directory(directory, ec))
-      return bad(fmt::format("linear_solver.directory = \"{}\": expected an existing directory (for the "
-                             "out-of-core factor files)", directory));
+      return bad(
+          fmt::format("linear_solver.directory = \"{}\": expected an existing directory (for the "
+                      "out-of-core factor files)",
+                      directory));
     if (directory.size() > 250)
       return bad(fmt::format("linear_solver.directory = \"{}\": MUMPS takes at most 250 characters", directory));
   }

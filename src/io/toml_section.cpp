@@ -12,9 +12,7 @@ namespace roller {
 TomlSection::TomlSection(const toml::table& table, std::string path, std::filesystem::path file)
     : table_(&table), path_(std::move(path)), file_(std::move(file)) {}
 
-std::string TomlSection::full_key(const std::string& key) const {
-  return path_.empty() ? key : path_ + "." + key;
-}
+std::string TomlSection::full_key(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
 
 std::string TomlSection::where(const std::string& key) const {
   const toml::node* n = key.empty() ? nullptr : table_->get(key);
@@ -47,8 +45,7 @@ std::string TomlSection::value_text(const std::string& key) const {
 }
 
 void TomlSection::fail(const std::string& key, const std::string& expected) const {
-  if (table_->contains(key))
-    throw InputError(fmt::format("{} = {}: {}", where(key), value_text(key), expected));
+  if (table_->contains(key)) throw InputError(fmt::format("{} = {}: {}", where(key), value_text(key), expected));
   throw InputError(fmt::format("{}: {}", where(key), expected));
 }
 
@@ -124,8 +121,7 @@ std::vector<TomlSection> TomlSection::table_array(const std::string& key) {
   std::vector<TomlSection> out;
   if (!n) return out;
   const toml::array* arr = n->as_array();
-  if (!arr || !arr->is_array_of_tables())
-    fail(key, fmt::format("expected one or more [[{}]] blocks", full_key(key)));
+  if (!arr || !arr->is_array_of_tables()) fail(key, fmt::format("expected one or more [[{}]] blocks", full_key(key)));
   for (std::size_t i = 0; i < arr->size(); ++i)
     out.emplace_back(*arr->get(i)->as_table(), fmt::format("{}[{}]", full_key(key), i), file_);
   return out;
@@ -153,7 +149,8 @@ void TomlSection::finish() const {
       }
     }
     std::string message = fmt::format("{}: unknown key", where(key));
-    if (!suggestion.empty()) message += fmt::format("; did you mean '{}'?", full_key(suggestion));
+    if (!suggestion.empty())
+      message += fmt::format("; did you mean '{}'?", full_key(suggestion));
     else {
       std::string known;
       for (const auto& r : read_) known += (known.empty() ? "" : ", ") + r;
@@ -169,8 +166,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   for (std::size_t i = 1; i <= a.size(); ++i) {
     cur[0] = i;
     for (std::size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1,
-                         prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1)});
+      cur[j] = std::min(
+          {prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1)});
     std::swap(prev, cur);
   }
   return prev[b.size()];

@@ -43,13 +43,10 @@ void append_f64(std::string& bytes, double value) {
   append_le(bytes, bits, 8);
 }
 
-void append_i64(std::string& bytes, std::int64_t value) {
-  append_le(bytes, static_cast<std::uint64_t>(value), 8);
-}
+void append_i64(std::string& bytes, std::int64_t value) { append_le(bytes, static_cast<std::uint64_t>(value), 8); }
 
 std::string base64(const std::string& bytes) {
-  static const char* const table =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  static const char* const table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
@@ -111,19 +108,18 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) {
-      throw std::runtime_error(fmt::format(
-          "cannot write '{}': cannot open temporary file '{}' (does the folder exist and is "
-          "it writable?)",
-          path.string(), tmp.string()));
+      throw std::runtime_error(
+          fmt::format("cannot write '{}': cannot open temporary file '{}' (does the folder exist and is "
+                      "it writable?)",
+                      path.string(), tmp.string()));
     }
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.close();
     if (!out) {
       std::error_code ignored;
       fs::remove(tmp, ignored);
-      throw std::runtime_error(fmt::format(
-          "cannot write '{}': writing temporary file '{}' failed (disk full?)", path.string(),
-          tmp.string()));
+      throw std::runtime_error(fmt::format("cannot write '{}': writing temporary file '{}' failed (disk full?)",
+                                           path.string(), tmp.string()));
     }
   }
   std::error_code ec;
@@ -131,43 +127,37 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
   if (ec) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
-    throw std::runtime_error(fmt::format("cannot write '{}': renaming '{}' onto it failed: {}",
-                                         path.string(), tmp.string(), ec.message()));
+    throw std::runtime_error(
+        fmt::format("cannot write '{}': renaming '{}' onto it failed: {}", path.string(), tmp.string(), ec.message()));
   }
 }
 
 // Checks a field against the number of tuples it must hold; `kind` is "point" or "cell".
-void check_field(const VtuField& field, Index n_tuples, const char* kind,
-                 std::set<std::string>& seen_names) {
+void check_field(const VtuField& field, Index n_tuples, const char* kind, std::set<std::string>& seen_names) {
   if (field.name.empty()) {
     throw std::invalid_argument(
-        fmt::format("write_vtu: a {} data field has an empty name; give every field a name",
-                    kind));
+        fmt::format("write_vtu: a {} data field has an empty name; give every field a name", kind));
   }
   if (!seen_names.insert(field.name).second) {
-    throw std::invalid_argument(fmt::format(
-        "write_vtu: {} data field '{}' appears twice; field names must be unique", kind,
-        field.name));
+    throw std::invalid_argument(
+        fmt::format("write_vtu: {} data field '{}' appears twice; field names must be unique", kind, field.name));
   }
   if (field.n_components < 1) {
-    throw std::invalid_argument(
-        fmt::format("write_vtu: {} data field '{}' has n_components = {}; expected >= 1", kind,
-                    field.name, field.n_components));
+    throw std::invalid_argument(fmt::format("write_vtu: {} data field '{}' has n_components = {}; expected >= 1", kind,
+                                            field.name, field.n_components));
   }
-  const std::size_t expected =
-      static_cast<std::size_t>(n_tuples) * static_cast<std::size_t>(field.n_components);
+  const std::size_t expected = static_cast<std::size_t>(n_tuples) * static_cast<std::size_t>(field.n_components);
   if (field.values.size() != expected) {
-    throw std::invalid_argument(fmt::format(
-        "write_vtu: {} data field '{}' has {} values; expected {} ({} {}s x {} components)",
-        kind, field.name, field.values.size(), expected, n_tuples,
-        std::string(kind) == "point" ? "node" : "element", field.n_components));
+    throw std::invalid_argument(
+        fmt::format("write_vtu: {} data field '{}' has {} values; expected {} ({} {}s x {} components)", kind,
+                    field.name, field.values.size(), expected, n_tuples,
+                    std::string(kind) == "point" ? "node" : "element", field.n_components));
   }
-  if (!field.component_names.empty() &&
-      field.component_names.size() != static_cast<std::size_t>(field.n_components)) {
-    throw std::invalid_argument(fmt::format(
-        "write_vtu: {} data field '{}' has {} component names for {} components; give one "
-        "name per component or none",
-        kind, field.name, field.component_names.size(), field.n_components));
+  if (!field.component_names.empty() && field.component_names.size() != static_cast<std::size_t>(field.n_components)) {
+    throw std::invalid_argument(
+        fmt::format("write_vtu: {} data field '{}' has {} component names for {} components; give one "
+                    "name per component or none",
+                    kind, field.name, field.component_names.size(), field.n_components));
   }
   for (std::size_t i = 0; i < field.values.size(); ++i) {
     if (!std::isfinite(field.values[i])) {
@@ -175,8 +165,7 @@ void check_field(const VtuField& field, Index n_tuples, const char* kind,
       throw std::invalid_argument(fmt::format(
           "write_vtu: {} data field '{}' has a non-finite value ({}) at index {} ({} {}, "
           "component {}); refusing to write NaN/Inf",
-          kind, field.name, field.values[i], i,
-          std::string(kind) == "point" ? "node" : "element", i / nc, i % nc));
+          kind, field.name, field.values[i], i, std::string(kind) == "point" ? "node" : "element", i / nc, i % nc));
     }
   }
 }
@@ -185,8 +174,8 @@ void append_field(std::string& xml, const VtuField& field) {
   std::string payload;
   payload.reserve(8 * field.values.size());
   for (const Real v : field.values) append_f64(payload, v);
-  xml += fmt::format(R"(        <DataArray type="Float64" Name="{}" NumberOfComponents="{}")",
-                     xml_attr(field.name), field.n_components);
+  xml += fmt::format(R"(        <DataArray type="Float64" Name="{}" NumberOfComponents="{}")", xml_attr(field.name),
+                     field.n_components);
   for (std::size_t c = 0; c < field.component_names.size(); ++c) {
     xml += fmt::format(R"( ComponentName{}="{}")", c, xml_attr(field.component_names[c]));
   }
@@ -197,25 +186,23 @@ void append_field(std::string& xml, const VtuField& field) {
 
 }  // namespace
 
-void write_vtu(const std::filesystem::path& path, const Mesh& mesh,
-               const std::vector<Vec2>& coordinates, const std::vector<VtuField>& point_data,
-               const std::vector<VtuField>& cell_data) {
+void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
+               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
   const Index n_nodes = mesh.n_nodes();
   const Index n_elements = mesh.n_elements();
 
   // Validate everything before touching the file system.
   if (static_cast<Index>(coordinates.size()) != n_nodes) {
-    throw std::invalid_argument(fmt::format(
-        "write_vtu: 'coordinates' has {} points; the mesh has {} nodes", coordinates.size(),
-        n_nodes));
+    throw std::invalid_argument(
+        fmt::format("write_vtu: 'coordinates' has {} points; the mesh has {} nodes", coordinates.size(), n_nodes));
   }
   for (std::size_t i = 0; i < coordinates.size(); ++i) {
     for (int d = 0; d < 2; ++d) {
       if (!std::isfinite(coordinates[i][d])) {
-        throw std::invalid_argument(fmt::format(
-            "write_vtu: 'coordinates' has a non-finite value ({}) at index {} (node {}, "
-            "component {}); refusing to write NaN/Inf",
-            coordinates[i][d], 2 * i + static_cast<std::size_t>(d), i, d));
+        throw std::invalid_argument(
+            fmt::format("write_vtu: 'coordinates' has a non-finite value ({}) at index {} (node {}, "
+                        "component {}); refusing to write NaN/Inf",
+                        coordinates[i][d], 2 * i + static_cast<std::size_t>(d), i, d));
       }
     }
   }
@@ -223,15 +210,13 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh,
   for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
     const auto& conn = mesh.elements[e];
     if (conn.size() != npe) {
-      throw std::invalid_argument(fmt::format(
-          "write_vtu: element {} has {} nodes; a {} mesh needs {}", e, conn.size(),
-          mesh.element_type == ElementType::T3 ? "T3" : "Q4", npe));
+      throw std::invalid_argument(fmt::format("write_vtu: element {} has {} nodes; a {} mesh needs {}", e, conn.size(),
+                                              mesh.element_type == ElementType::T3 ? "T3" : "Q4", npe));
     }
     for (const Index node : conn) {
       if (node < 0 || node >= n_nodes) {
         throw std::invalid_argument(
-            fmt::format("write_vtu: element {} refers to node {}; valid nodes are 0..{}", e,
-                        node, n_nodes - 1));
+            fmt::format("write_vtu: element {} refers to node {}; valid nodes are 0..{}", e, node, n_nodes - 1));
       }
     }
   }
@@ -246,8 +231,7 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh,
       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
       "header_type=\"UInt64\">\n";
   xml += "  <UnstructuredGrid>\n";
-  xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n_nodes,
-                     n_elements);
+  xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n_nodes, n_elements);
 
   xml += "      <PointData>\n";
   for (const auto& f : point_data) append_field(xml, f);
@@ -280,8 +264,7 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh,
     connectivity.reserve(8 * npe * mesh.elements.size());
     offsets.reserve(8 * mesh.elements.size());
     types.reserve(mesh.elements.size());
-    const std::uint8_t cell_type =
-        mesh.element_type == ElementType::T3 ? kVtkTriangle : kVtkQuad;
+    const std::uint8_t cell_type = mesh.element_type == ElementType::T3 ? kVtkTriangle : kVtkQuad;
     std::int64_t offset = 0;
     for (const auto& conn : mesh.elements) {
       for (const Index node : conn) append_i64(connectivity, node);
@@ -317,8 +300,7 @@ PvdSeries::PvdSeries(std::filesystem::path pvd_path) : path_(std::move(pvd_path)
 
 void PvdSeries::add(Real time, const std::filesystem::path& vtu_file) {
   if (!std::isfinite(time)) {
-    throw std::invalid_argument(fmt::format(
-        "PvdSeries::add: time {} for '{}' is not finite", time, vtu_file.string()));
+    throw std::invalid_argument(fmt::format("PvdSeries::add: time {} for '{}' is not finite", time, vtu_file.string()));
   }
   const fs::path folder = fs::absolute(path_).parent_path().lexically_normal();
   const fs::path file = fs::absolute(vtu_file).lexically_normal();
@@ -339,9 +321,7 @@ void PvdSeries::rewrite() const {
   xml += "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n";
   xml += "  <Collection>\n";
   for (const auto& [time, file] : entries_) {
-    xml += fmt::format(
-        "    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time,
-        xml_attr(file));
+    xml += fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time, xml_attr(file));
   }
   xml += "  </Collection>\n";
   xml += "</VTKFile>\n";

@@ -26,9 +26,7 @@ Vec4 deviator(const Vec4& stress) {
 }
 
 // a:b of two symmetric tensors stored as [xx, yy, zz, xy]: the shear pair counts twice.
-Real contract(const Vec4& a, const Vec4& b) {
-  return a(0) * b(0) + a(1) * b(1) + a(2) * b(2) + 2.0 * a(3) * b(3);
-}
+Real contract(const Vec4& a, const Vec4& b) { return a(0) * b(0) + a(1) * b(1) + a(2) * b(2) + 2.0 * a(3) * b(3); }
 
 // The same tensor in the strain convention [xx, yy, zz, 2xy], so that a . b_strain = a:b.
 Vec4 as_strain_vector(const Vec4& tensor) {
@@ -60,14 +58,12 @@ Mat4 compliance_matrix(const MaterialParams& p) {
 
 // psi_e(C^-1 new) - psi_e(C^-1 old) written as 1/2 (new - old) . C^-1 (new + old), which
 // avoids cancelling two large stored energies when the increment is small.
-Real elastic_energy_change(const MaterialParams& p, const Vec4& stress_old,
-                           const Vec4& stress_new) {
+Real elastic_energy_change(const MaterialParams& p, const Vec4& stress_old, const Vec4& stress_new) {
   return 0.5 * (stress_new - stress_old).dot(compliance_matrix(p) * (stress_new + stress_old));
 }
 
 void require_finite(const Vec4& strain_increment, const MaterialState& committed) {
-  if (strain_increment.allFinite() && committed.stress.allFinite() &&
-      std::isfinite(committed.eq_plastic_strain)) {
+  if (strain_increment.allFinite() && committed.stress.allFinite() && std::isfinite(committed.eq_plastic_strain)) {
     return;
   }
   std::ostringstream msg;
@@ -77,13 +73,11 @@ void require_finite(const Vec4& strain_increment, const MaterialState& committed
   throw NumericalError(msg.str());
 }
 
-MaterialUpdate elastic_update(const MaterialParams& p, const Vec4& strain_increment,
-                              const MaterialState& committed) {
+MaterialUpdate elastic_update(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
   MaterialUpdate u;
   u.tangent = elastic_matrix(p);
   u.stress = committed.stress + u.tangent * strain_increment;
-  u.energy = committed.stress.dot(strain_increment) +
-             0.5 * strain_increment.dot(u.tangent * strain_increment);
+  u.energy = committed.stress.dot(strain_increment) + 0.5 * strain_increment.dot(u.tangent * strain_increment);
   u.trial = committed;
   u.trial.stress = u.stress;
   u.trial.yield_stress = 0.0;
@@ -96,8 +90,7 @@ MaterialUpdate elastic_update(const MaterialParams& p, const Vec4& strain_increm
 //   theta = 1 - 3G d/q_trial,  theta_bar = 1/(1 + H'/(3G)) - (1 - theta),
 // n = s_trial/|s_trial|. As a [xx,yy,zz,2xy] -> [xx,yy,zz,xy] map, I_dev = diag(1,1,1,1/2)
 // - 1/3 m m^T and n(x)n is n n^T of the stress-like n.
-Mat4 consistent_tangent(const MaterialParams& p, const Vec4& unit_normal, Real theta,
-                        Real theta_bar) {
+Mat4 consistent_tangent(const MaterialParams& p, const Vec4& unit_normal, Real theta, Real theta_bar) {
   const Real g = p.shear_modulus();
   Mat4 i_dev = Mat4::Zero();
   i_dev.diagonal() << 1.0, 1.0, 1.0, 0.5;
@@ -130,8 +123,7 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
     const Real theta = 1.0 - 3.0 * g * d / q_trial;
     const Real theta_bar = 3.0 * g / (3.0 * g + h) - (1.0 - theta);
     u.stress = trial_stress - (1.0 - theta) * s_trial;
-    u.tangent =
-        consistent_tangent(p, s_trial / std::sqrt(contract(s_trial, s_trial)), theta, theta_bar);
+    u.tangent = consistent_tangent(p, s_trial / std::sqrt(contract(s_trial, s_trial)), theta, theta_bar);
     u.yielded = true;
     u.trial.eq_plastic_strain = eps_p + d;
     u.trial.plastic_work += plastic_work_increment(p, eps_p, d);
@@ -184,8 +176,7 @@ Real elastic_fraction(const Vec4& stress, const Vec4& d_stress, Real sigma_pl) {
 void return_to_yield_surface(const MaterialParams& p, PointState& state) {
   const Real q = von_mises(state.stress);
   const Real g = p.shear_modulus();
-  const Real d =
-      (q - yield_stress_at(p, state.eq_plastic_strain)) / (3.0 * g + p.plastic_modulus());
+  const Real d = (q - yield_stress_at(p, state.eq_plastic_strain)) / (3.0 * g + p.plastic_modulus());
   state.stress -= 3.0 * g * d / q * deviator(state.stress);
   add_plastic_strain(p, d, state);
 }
@@ -194,11 +185,9 @@ void return_to_yield_surface(const MaterialParams& p, PointState& state) {
 // at the stress where plastic flow starts, then the drift correction whenever plastic flow
 // occurred or the step left the surface (neutral loading, s:dE = 0, moves tangentially and
 // leaves it at second order). Returns true when plastic flow occurred.
-bool advance_substep(const MaterialParams& p, const Mat4& c, const Vec4& d_strain,
-                     PointState& state) {
+bool advance_substep(const MaterialParams& p, const Mat4& c, const Vec4& d_strain, PointState& state) {
   const Vec4 d_stress_elastic = c * d_strain;
-  const Real alpha =
-      elastic_fraction(state.stress, d_stress_elastic, yield_stress_at(p, state.eq_plastic_strain));
+  const Real alpha = elastic_fraction(state.stress, d_stress_elastic, yield_stress_at(p, state.eq_plastic_strain));
   state.stress += alpha * d_stress_elastic;
   if (alpha >= 1.0) return false;
 
@@ -208,8 +197,7 @@ bool advance_substep(const MaterialParams& p, const Mat4& c, const Vec4& d_strai
   const Real ss = contract(s, s);
   const Vec4 n = as_strain_vector(s);
   const Vec4 c_n = c * n;
-  const Real d_lambda =
-      std::max(c_n.dot(rest) / (n.dot(c_n) + 2.0 / 3.0 * p.plastic_modulus() * ss), 0.0);
+  const Real d_lambda = std::max(c_n.dot(rest) / (n.dot(c_n) + 2.0 / 3.0 * p.plastic_modulus() * ss), 0.0);
   state.stress += c * rest - d_lambda * c_n;
   add_plastic_strain(p, d_lambda * std::sqrt(2.0 / 3.0 * ss), state);
   const bool outside = von_mises(state.stress) > yield_stress_at(p, state.eq_plastic_strain);
@@ -217,8 +205,7 @@ bool advance_substep(const MaterialParams& p, const Mat4& c, const Vec4& d_strai
   return d_lambda > 0.0 || outside;
 }
 
-MaterialUpdate substep_update(const MaterialParams& p, const Vec4& strain_increment,
-                              const MaterialState& committed) {
+MaterialUpdate substep_update(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
   ROLLER_ASSERT(p.n_substeps >= 1);
   const int n = std::max(p.n_substeps, 1);
   const Mat4 c = elastic_matrix(p);
@@ -241,8 +228,7 @@ MaterialUpdate substep_update(const MaterialParams& p, const Vec4& strain_increm
   return u;
 }
 
-MaterialUpdate integrate(const MaterialParams& p, const Vec4& strain_increment,
-                         const MaterialState& committed) {
+MaterialUpdate integrate(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
   if (!p.plastic) return elastic_update(p, strain_increment, committed);
   if (p.integration == StressIntegration::Substep) {
     return substep_update(p, strain_increment, committed);
@@ -278,8 +264,7 @@ Mat4 plastic_tangent(const MaterialParams& p, const Vec4& stress, Real yield_str
 }
 
 Mat4 continuum_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress) {
-  if (!p.plastic || von_mises(stress) < yield_stress * (1.0 - kOnSurfaceTolerance) ||
-      !(yield_stress > 0.0)) {
+  if (!p.plastic || von_mises(stress) < yield_stress * (1.0 - kOnSurfaceTolerance) || !(yield_stress > 0.0)) {
     return elastic_matrix(p);
   }
   return plastic_tangent(p, stress, yield_stress);
@@ -291,8 +276,7 @@ MaterialState initial_state(const MaterialParams& p) {
   return state;
 }
 
-MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment,
-                               const MaterialState& committed) {
+MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
   require_finite(strain_increment, committed);
   MaterialUpdate u = integrate(p, strain_increment, committed);
   // Finite input with non-finite output means inadmissible parameters (e.g. E_T = E).

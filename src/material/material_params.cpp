@@ -6,13 +6,9 @@
 
 namespace roller {
 
-Real MaterialParams::shear_modulus() const {
-  return youngs_modulus / (2.0 * (1.0 + poisson_ratio));
-}
+Real MaterialParams::shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
 
-Real MaterialParams::bulk_modulus() const {
-  return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio));
-}
+Real MaterialParams::bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
 
 Real MaterialParams::lame_lambda() const {
   return youngs_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));

@@ -26,8 +26,7 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 // The closest known name, if it is close enough to be a plausible typo.
-std::string suggestion(const std::string& name,
-                       const std::map<std::string, std::vector<Index>>& sets) {
+std::string suggestion(const std::string& name, const std::map<std::string, std::vector<Index>>& sets) {
   constexpr std::size_t max_typo_distance = 2;
   std::string best;
   std::size_t best_distance = max_typo_distance + 1;

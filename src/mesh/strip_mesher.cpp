@@ -96,8 +96,7 @@ std::vector<Real> walk(Real start, const std::vector<Real>& intervals, Real sign
 
 std::vector<Real> one_sided_lines(Real extent, int n, Real ratio, bool fine_at_start) {
   const std::vector<Real> intervals = full_ratio_progression(extent, n, ratio);
-  std::vector<Real> lines =
-      fine_at_start ? walk(0.0, intervals, 1.0) : walk(extent, intervals, -1.0);
+  std::vector<Real> lines = fine_at_start ? walk(0.0, intervals, 1.0) : walk(extent, intervals, -1.0);
   if (!fine_at_start) std::reverse(lines.begin(), lines.end());
   lines.front() = 0.0;
   lines.back() = extent;
@@ -142,8 +141,8 @@ FocusSplit best_split(Real left, Real right, int n, Real ratio) {
   FocusSplit best = evaluate_split(left, right, n, 1, ratio);
   for (int n_left = 2; n_left < n; ++n_left) {
     const FocusSplit split = evaluate_split(left, right, n, n_left, ratio);
-    const bool better = split.common_spacing == best.common_spacing ? split.mismatch < best.mismatch
-                                                                    : split.common_spacing;
+    const bool better =
+        split.common_spacing == best.common_spacing ? split.mismatch < best.mismatch : split.common_spacing;
     if (better) best = split;
   }
   return best;
@@ -152,8 +151,7 @@ FocusSplit best_split(Real left, Real right, int n, Real ratio) {
 // Intervals of both sides listed outwards from the focus. The side that needs the coarser
 // start spans the full ratio; the other starts with the same interval and grows less.
 void common_spacing_intervals(Real left, Real right, int n, Real ratio, const FocusSplit& split,
-                              std::vector<Real>* left_intervals,
-                              std::vector<Real>* right_intervals) {
+                              std::vector<Real>* left_intervals, std::vector<Real>* right_intervals) {
   const int n_right = n - split.n_left;
   const Real first = std::max(split.first_left, split.first_right);
   if (split.first_left >= split.first_right) {
@@ -161,8 +159,7 @@ void common_spacing_intervals(Real left, Real right, int n, Real ratio, const Fo
     *right_intervals = progression_from_first(right, n_right, first, growth_factor(n_right, ratio));
   } else {
     *right_intervals = full_ratio_progression(right, n_right, ratio);
-    *left_intervals =
-        progression_from_first(left, split.n_left, first, growth_factor(split.n_left, ratio));
+    *left_intervals = progression_from_first(left, split.n_left, first, growth_factor(split.n_left, ratio));
   }
 }
 
@@ -190,8 +187,7 @@ std::vector<Real> two_sided_lines(Real extent, int n, Real ratio, Real focus) {
   // The focus lies about one finest interval from an end: a line there would leave a sliver,
   // so grade from that end (the ratio stays exact, the finest spacing is next to the focus).
   const bool near_left = left <= right;
-  if ((near_left ? split.n_left : n - split.n_left) == 1)
-    return one_sided_lines(extent, n, ratio, near_left);
+  if ((near_left ? split.n_left : n - split.n_left) == 1) return one_sided_lines(extent, n, ratio, near_left);
   // Integer counts forbid a common focus spacing (small ratio, lopsided counts): each side
   // spans the ratio on its own, and the focus spacings differ by exp(mismatch).
   return lines_around(focus, extent, full_ratio_progression(left, split.n_left, ratio),
@@ -223,8 +219,7 @@ std::vector<Real> refine_lines(const std::vector<Real>& lines, int refine) {
   return refined;
 }
 
-std::vector<Real> base_lines(const std::vector<Real>& explicit_lines, Real extent, int n,
-                             const Grading& grading) {
+std::vector<Real> base_lines(const std::vector<Real>& explicit_lines, Real extent, int n, const Grading& grading) {
   if (explicit_lines.empty()) return grid_lines(extent, n, grading);
   std::vector<Real> lines = explicit_lines;
   lines.front() = 0.0;
@@ -243,12 +238,10 @@ std::string check_positive(const std::string& key, Real value) {
 
 std::string check_grading(const std::string& key, const Grading& grading, Real extent) {
   if (grading.kind != Grading::Kind::Uniform && grading.kind != Grading::Kind::Geometric)
-    return key + ".kind = " + std::to_string(static_cast<int>(grading.kind)) +
-           ": must be uniform or geometric";
+    return key + ".kind = " + std::to_string(static_cast<int>(grading.kind)) + ": must be uniform or geometric";
   if (grading.kind == Grading::Kind::Uniform) return {};
   if (!std::isfinite(grading.ratio) || grading.ratio < 1.0)
-    return key + ".ratio = " + to_text(grading.ratio) +
-           ": must be >= 1 (largest / smallest interval)";
+    return key + ".ratio = " + to_text(grading.ratio) + ": must be >= 1 (largest / smallest interval)";
   if (!std::isfinite(grading.focus) || grading.focus < 0.0 || grading.focus > extent)
     return key + ".focus = " + to_text(grading.focus) + ": must lie in [0, " + to_text(extent) +
            "] (the strip's extent along that axis)";
@@ -257,29 +250,26 @@ std::string check_grading(const std::string& key, const Grading& grading, Real e
 
 std::string check_lines(const std::string& key, const std::vector<Real>& lines, Real extent) {
   if (lines.size() < 2)
-    return key + " has " + std::to_string(lines.size()) +
-           " entries: needs at least 2 (from 0 to the strip's extent)";
+    return key + " has " + std::to_string(lines.size()) + " entries: needs at least 2 (from 0 to the strip's extent)";
   for (std::size_t i = 0; i < lines.size(); ++i) {
     if (!std::isfinite(lines[i]))
       return key + "[" + std::to_string(i) + "] = " + to_text(lines[i]) + ": must be finite";
   }
-  if (std::abs(lines.front()) > kEndTolerance * extent)
-    return key + "[0] = " + to_text(lines.front()) + ": must be 0";
+  if (std::abs(lines.front()) > kEndTolerance * extent) return key + "[0] = " + to_text(lines.front()) + ": must be 0";
   if (std::abs(lines.back() - extent) > kEndTolerance * extent)
     return key + "[" + std::to_string(lines.size() - 1) + "] = " + to_text(lines.back()) +
            ": must equal the strip's extent " + to_text(extent);
   for (std::size_t i = 1; i < lines.size(); ++i) {
     if (lines[i] <= lines[i - 1])
-      return key + "[" + std::to_string(i) + "] = " + to_text(lines[i]) + ": must be > " + key +
-             "[" + std::to_string(i - 1) + "] = " + to_text(lines[i - 1]) +
-             " (strictly increasing)";
+      return key + "[" + std::to_string(i) + "] = " + to_text(lines[i]) + ": must be > " + key + "[" +
+             std::to_string(i - 1) + "] = " + to_text(lines[i - 1]) + " (strictly increasing)";
   }
   return {};
 }
 
 // One axis: explicit lines, or a count with its grading.
-std::string check_axis(const std::string& axis, const std::vector<Real>& lines, int n,
-                       const Grading& grading, Real extent) {
+std::string check_axis(const std::string& axis, const std::vector<Real>& lines, int n, const Grading& grading,
+                       Real extent) {
   if (!lines.empty()) return check_lines("mesh." + axis + "_lines", lines, extent);
   if (n < 1) return "mesh.n" + axis + " = " + std::to_string(n) + ": must be >= 1";
   return check_grading("mesh.grading_" + axis, grading, extent);
@@ -294,26 +284,22 @@ std::string check_size(const StripMeshSpec& spec) {
   const Real rows = static_cast<Real>(intervals_along(spec.y_lines, spec.ny)) * spec.refine;
   const Real n_nodes = (columns + 1.0) * (rows + 1.0);
   if (n_nodes <= kMaxNodes) return {};
-  return "mesh.refine = " + std::to_string(spec.refine) + ": the mesh would have " +
-         to_text(n_nodes) + " nodes, more than the limit " + to_text(kMaxNodes) +
-         " (lower refine, nx or ny)";
+  return "mesh.refine = " + std::to_string(spec.refine) + ": the mesh would have " + to_text(n_nodes) +
+         " nodes, more than the limit " + to_text(kMaxNodes) + " (lower refine, nx or ny)";
 }
 
 std::string first_problem(const StripMeshSpec& spec) {
   if (spec.element != ElementType::T3 && spec.element != ElementType::Q4)
-    return "mesh.element = " + std::to_string(static_cast<int>(spec.element)) +
-           ": must be T3 or Q4";
-  if (spec.diagonal != Diagonal::Rising && spec.diagonal != Diagonal::Falling &&
-      spec.diagonal != Diagonal::Alternating)
+    return "mesh.element = " + std::to_string(static_cast<int>(spec.element)) + ": must be T3 or Q4";
+  if (spec.diagonal != Diagonal::Rising && spec.diagonal != Diagonal::Falling && spec.diagonal != Diagonal::Alternating)
     return "mesh.diagonal = " + std::to_string(static_cast<int>(spec.diagonal)) +
            ": must be rising, falling or alternating";
   for (const std::string& problem :
        {check_positive("mesh.length", spec.length), check_positive("mesh.height", spec.height)}) {
     if (!problem.empty()) return problem;
   }
-  for (const std::string& problem :
-       {check_axis("x", spec.x_lines, spec.nx, spec.grading_x, spec.length),
-        check_axis("y", spec.y_lines, spec.ny, spec.grading_y, spec.height)}) {
+  for (const std::string& problem : {check_axis("x", spec.x_lines, spec.nx, spec.grading_x, spec.length),
+                                     check_axis("y", spec.y_lines, spec.ny, spec.grading_y, spec.height)}) {
     if (!problem.empty()) return problem;
   }
   if (spec.refine < 1) return "mesh.refine = " + std::to_string(spec.refine) + ": must be >= 1";
@@ -348,8 +334,7 @@ bool rising_diagonal(Diagonal diagonal, const Grid& grid, Index i, Index j) {
 }
 
 // The two counter-clockwise triangles of a quad, the one on the bottom edge first.
-void append_triangles(const std::vector<Index>& q, bool rising,
-                      std::vector<std::vector<Index>>* elements) {
+void append_triangles(const std::vector<Index>& q, bool rising, std::vector<std::vector<Index>>* elements) {
   if (rising) {
     elements->push_back({q[0], q[1], q[2]});
     elements->push_back({q[0], q[2], q[3]});
@@ -359,11 +344,9 @@ void append_triangles(const std::vector<Index>& q, bool rising,
   }
 }
 
-std::vector<std::vector<Index>> strip_elements(const Grid& grid, ElementType type,
-                                               Diagonal diagonal) {
+std::vector<std::vector<Index>> strip_elements(const Grid& grid, ElementType type, Diagonal diagonal) {
   std::vector<std::vector<Index>> elements;
-  elements.reserve(
-      static_cast<std::size_t>(grid.n_columns * grid.n_rows * (type == ElementType::T3 ? 2 : 1)));
+  elements.reserve(static_cast<std::size_t>(grid.n_columns * grid.n_rows * (type == ElementType::T3 ? 2 : 1)));
   for (Index i = 0; i < grid.n_columns; ++i) {
     for (Index j = 0; j < grid.n_rows; ++j) {
       const std::vector<Index> quad = quad_corners(grid, i, j);
@@ -423,12 +406,11 @@ std::vector<Real> grid_lines(Real extent, int n, const Grading& grading) {
   const std::string problem = check_grading("grid_lines: grading", grading, extent);
   require_input(problem.empty(), problem);
 
-  std::vector<Real> lines = grading.kind == Grading::Kind::Uniform
-                                ? uniform_lines(extent, n)
-                                : geometric_lines(extent, n, grading);
-  require_input(strictly_increasing(lines),
-                "grid_lines: grading.ratio = " + to_text(grading.ratio) + " over " +
-                    std::to_string(n) + " intervals shrinks some below round-off: lower it");
+  std::vector<Real> lines =
+      grading.kind == Grading::Kind::Uniform ? uniform_lines(extent, n) : geometric_lines(extent, n, grading);
+  require_input(strictly_increasing(lines), "grid_lines: grading.ratio = " + to_text(grading.ratio) + " over " +
+                                                std::to_string(n) +
+                                                " intervals shrinks some below round-off: lower it");
   return lines;
 }
 

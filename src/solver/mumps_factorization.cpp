@@ -18,7 +18,7 @@ struct MumpsSolver::Impl {
   std::vector<MUMPS_INT> rows, cols;
   std::vector<double> values;
   std::vector<MUMPS_INT> schur_list;  // 1-based; empty = no Schur complement
-  std::vector<double> schur;         // size_schur^2, by rows
+  std::vector<double> schur;          // size_schur^2, by rows
   bool initialised = false;
   bool analysed = false;
   // ICNTL(14) now: percentage added to the workspace MUMPS estimates in the analysis, for
@@ -39,9 +39,9 @@ struct MumpsSolver::Impl {
     id.icntl[1] = -1;
     id.icntl[2] = -1;
     id.icntl[3] = 0;
-    id.icntl[13] = workspace_percent;  // ICNTL(14)
-    id.icntl[18] = schur_list.empty() ? 0 : 1;  // ICNTL(19): centralised Schur complement, by rows
-    id.icntl[25] = 0;   // ICNTL(26): with a Schur complement, solve the interior problem only
+    id.icntl[13] = workspace_percent;            // ICNTL(14)
+    id.icntl[18] = schur_list.empty() ? 0 : 1;   // ICNTL(19): centralised Schur complement, by rows
+    id.icntl[25] = 0;                            // ICNTL(26): with a Schur complement, solve the interior problem only
     id.icntl[21] = options.out_of_core ? 1 : 0;  // ICNTL(22): factors on disk
     // ICNTL(7): 7 = MUMPS chooses, 0 = AMD, 5 = METIS.
     id.icntl[6] = options.ordering == "amd" ? 0 : options.ordering == "metis" ? 5 : 7;
@@ -50,7 +50,7 @@ struct MumpsSolver::Impl {
   bool failed(const char* what) {
     if (id.infog[0] >= 0) return false;
     const int info = id.infog[0];
-    const char* why = info == -10 ? " (numerically singular matrix)"
+    const char* why = info == -10   ? " (numerically singular matrix)"
                       : info == -13 ? " (out of memory: a coarser mesh, or [linear_solver] out_of_core = true)"
                       : info <= -90 ? " (out-of-core files: is [linear_solver] directory writable, with room?)"
                                     : "";

@@ -70,9 +70,10 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
       return report;
     }
     if (!direction(h, g, options.linear, d, report.factorizations)) {
-      report.message = "the tangent stiffness could not be factorised into a descent direction "
-                       "(singular or strongly indefinite: a mechanism, missing supports, or loss "
-                       "of monotonicity); check the boundary conditions or use smaller steps";
+      report.message =
+          "the tangent stiffness could not be factorised into a descent direction "
+          "(singular or strongly indefinite: a mechanism, missing supports, or loss "
+          "of monotonicity); check the boundary conditions or use smaller steps";
       return report;
     }
     // Backtracking on Pi (Armijo). Near the solution Pi changes only at round-off level, so a
@@ -85,8 +86,8 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
       try {
         const Real pi_trial = objective.evaluate(x_trial, &g_trial, nullptr).value;
         const bool armijo = pi_trial <= value.value + 1e-4 * alpha * slope;
-        const bool residual_drop = alpha == 1.0 && g_trial.norm() < 0.5 * gnorm &&
-                                   pi_trial <= value.value + 1e-12 * std::abs(value.value);
+        const bool residual_drop =
+            alpha == 1.0 && g_trial.norm() < 0.5 * gnorm && pi_trial <= value.value + 1e-12 * std::abs(value.value);
         accepted = !options.line_search || armijo || residual_drop;
       } catch (const NumericalError&) {
         accepted = false;  // e.g. an inverted element: shorten the step

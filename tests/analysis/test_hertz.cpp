@@ -44,8 +44,7 @@ TEST_CASE("Hertz work-equivalent nodal forces sum to the load and match p h insi
   CHECK(f[0] == 0.0);  // far outside the contact
 }
 
-TEST_CASE("Hertz L2 measures: nodal samples of the exact profile differ from its averages at first order",
-          "[hertz]") {
+TEST_CASE("Hertz L2 measures: nodal samples of the exact profile differ from its averages at first order", "[hertz]") {
   const Real radius = 100.0, e_star = 2.1e5 / 0.91, load = 7613.0;
   const HertzSolution h = hertz_line_contact(load, radius, e_star);
   std::vector<Real> averaged_errors;

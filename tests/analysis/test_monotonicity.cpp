@@ -11,12 +11,12 @@
 #include <Eigen/Eigenvalues>
 
 #include "../support/impose_field.hpp"
+#include "../support/strip_spec.hpp"
 #include "roller/analysis/monotonicity.hpp"
 #include "roller/analysis/monotonicity_map.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/fem/element_kernel.hpp"
 #include "roller/mesh/strip_mesher.hpp"
-#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -67,8 +67,7 @@ using test::impose_field;
 
 }  // namespace
 
-TEST_CASE("the thesis's split: S_nu has eigenvalues 1, 1/(1-2nu), 1/2, 1/2 and S* 20/9, 0, 0, 0",
-          "[monotonicity]") {
+TEST_CASE("the thesis's split: S_nu has eigenvalues 1, 1/(1-2nu), 1/2, 1/2 and S* 20/9, 0, 0, 0", "[monotonicity]") {
   for (Real nu : {0.0, 0.2, 0.3, 0.45}) {
     const Vec4 ev = sorted_eigenvalues(thesis_elastic_split(nu));
     CHECK(ev(0) == Approx(0.5));
@@ -81,8 +80,7 @@ TEST_CASE("the thesis's split: S_nu has eigenvalues 1, 1/(1-2nu), 1/2, 1/2 and S
   CHECK(ev.head<3>().cwiseAbs().maxCoeff() < 1e-14);
 }
 
-TEST_CASE("C in the thesis layout is E/(1+nu) [S_nu - beta D S* D], D = diag(a, b, c, c)",
-          "[monotonicity]") {
+TEST_CASE("C in the thesis layout is E/(1+nu) [S_nu - beta D S* D], D = diag(a, b, c, c)", "[monotonicity]") {
   const MaterialParams p = steel();
   const Real g = p.shear_modulus();
   std::mt19937 rng(7);
@@ -95,21 +93,17 @@ TEST_CASE("C in the thesis layout is E/(1+nu) [S_nu - beta D S* D], D = diag(a, 
     CHECK(deviator(stress)(0) == Approx(t.a / 3.0));
     const Real beta = 1.5 / (sigma * sigma) / (1.0 + p.plastic_modulus() / (3.0 * g));
     const Mat4 d = Vec4(t.a, t.b, t.c, t.c).asDiagonal();
-    const Mat4 expected =
-        2.0 * g * (thesis_elastic_split(p.poisson_ratio) - beta * d * thesis_plastic_pattern() * d);
-    const Mat4 c = operator_a(
-        p, stress, sigma, layout_only(GradientLayout::Thesis, TangentKind::PlasticBranch, false));
+    const Mat4 expected = 2.0 * g * (thesis_elastic_split(p.poisson_ratio) - beta * d * thesis_plastic_pattern() * d);
+    const Mat4 c = operator_a(p, stress, sigma, layout_only(GradientLayout::Thesis, TangentKind::PlasticBranch, false));
     CHECK((c - expected).norm() < 1e-10 * expected.norm());
   }
 }
 
-TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenvalues",
-          "[monotonicity]") {
+TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenvalues", "[monotonicity]") {
   const MaterialParams p = elastic_steel();
   const Real g = p.shear_modulus(), lambda = p.lame_lambda(), nu = p.poisson_ratio;
   const auto eig = [&](GradientLayout layout, const Vec4& stress) {
-    return sorted_eigenvalues(
-        operator_a(p, stress, 0.0, layout_only(layout, TangentKind::Continuum)));
+    return sorted_eigenvalues(operator_a(p, stress, 0.0, layout_only(layout, TangentKind::Continuum)));
   };
   const Vec4 zero = Vec4::Zero();
   SECTION("thesis (3.10): 2G {1/2, 1/2, 1, 1/(1-2nu)}, positive definite") {
@@ -132,8 +126,7 @@ TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenv
     CHECK(ev(1) == Approx(2 * g));
     CHECK(ev(2) == Approx(2 * g));
     CHECK(ev(3) == Approx(2 * g / (1 - 2 * nu)));
-    const Mat4 c =
-        operator_a(p, zero, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
+    const Mat4 c = operator_a(p, zero, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
     CHECK((c * Vec4(0, 0, 1, -1)).norm() < 1e-10 * g);
     CHECK_FALSE(definiteness(c).positive_definite());
   }
@@ -141,15 +134,13 @@ TEST_CASE("elastic states: the plane-strain 4x4 forms have their analytic eigenv
     for (Real pr : {-500.0, 300.0}) {
       const Vec4 stress(pr, pr, 0.6 * pr, 0.0);
       CHECK(eig(GradientLayout::Thesis, stress)(0) == Approx(g + pr));
-      CHECK(definiteness(operator_a(p, stress, 0.0,
-                                    layout_only(GradientLayout::Thesis, TangentKind::Elastic)))
+      CHECK(definiteness(operator_a(p, stress, 0.0, layout_only(GradientLayout::Thesis, TangentKind::Elastic)))
                 .positive_definite());
     }
   }
 }
 
-TEST_CASE("lambda_min(T) = (a+b)/2 - sqrt((a-b)^2/9 + 4c^2)/2, the smaller principal stress",
-          "[monotonicity]") {
+TEST_CASE("lambda_min(T) = (a+b)/2 - sqrt((a-b)^2/9 + 4c^2)/2, the smaller principal stress", "[monotonicity]") {
   std::mt19937 rng(11);
   std::uniform_real_distribution<Real> u(-300, 300);
   for (int k = 0; k < 200; ++k) {
@@ -168,8 +159,7 @@ TEST_CASE("lambda_min(T) = (a+b)/2 - sqrt((a-b)^2/9 + 4c^2)/2, the smaller princ
   }
 }
 
-TEST_CASE("the gradient layout of A is the integrand of the element stiffness K_L + K_NL",
-          "[monotonicity]") {
+TEST_CASE("the gradient layout of A is the integrand of the element stiffness K_L + K_NL", "[monotonicity]") {
   // One T3 (constant gradients, one point), finite kinematics, pre-stressed, zero increment:
   // K = area * Bg^T (C + T) Bg with Bg mapping element dofs to [u1,1 u2,2 u1,2 u2,1].
   const MaterialParams p = elastic_steel();
@@ -183,8 +173,7 @@ TEST_CASE("the gradient layout of A is the integrand of the element stiffness K_
   in.committed = &state;
   in.displacement = ElementVector::Zero(6);
   ElementOutput out;
-  evaluate_element(ElementOptions{Kinematics::Finite, Q4Formulation::Standard}, p, in, false, true,
-                   out);
+  evaluate_element(ElementOptions{Kinematics::Finite, Q4Formulation::Standard}, p, in, false, true, out);
   Eigen::Matrix<Real, 4, 6> bg = Eigen::Matrix<Real, 4, 6>::Zero();
   const auto& dn = geometry[0].gradients;
   for (int a = 0; a < 3; ++a) {
@@ -193,15 +182,12 @@ TEST_CASE("the gradient layout of A is the integrand of the element stiffness K_
     bg(2, 2 * a) = dn(a, 1);      // u1,2
     bg(3, 2 * a + 1) = dn(a, 0);  // u2,1
   }
-  const Mat4 a =
-      operator_a(p, state.stress, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
+  const Mat4 a = operator_a(p, state.stress, 0.0, layout_only(GradientLayout::Gradient, TangentKind::Elastic));
   const Eigen::Matrix<Real, 6, 6> expected = geometry[0].weight * bg.transpose() * a * bg;
   CHECK((out.tangent - expected).norm() < 1e-10 * expected.norm());
   // The thesis layout is not: it differs in the shear block.
-  const Mat4 a_thesis =
-      operator_a(p, state.stress, 0.0, layout_only(GradientLayout::Thesis, TangentKind::Elastic));
-  CHECK((out.tangent - geometry[0].weight * bg.transpose() * a_thesis * bg).norm() >
-        1e-3 * expected.norm());
+  const Mat4 a_thesis = operator_a(p, state.stress, 0.0, layout_only(GradientLayout::Thesis, TangentKind::Elastic));
+  CHECK((out.tangent - geometry[0].weight * bg.transpose() * a_thesis * bg).norm() > 1e-3 * expected.norm());
 }
 
 TEST_CASE(
@@ -253,8 +239,7 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
     for (int k = 0; k < 200; ++k) {
       const Real sigma = sig(rng);
       const Vec4 stress = on_yield_surface(mean(rng), Vec4(u(rng), u(rng), u(rng), u(rng)), sigma);
-      const Mat4 c = operator_a(
-          p, stress, sigma, layout_only(GradientLayout::Gradient, TangentKind::Continuum, false));
+      const Mat4 c = operator_a(p, stress, sigma, layout_only(GradientLayout::Gradient, TangentKind::Continuum, false));
       CHECK((c * rotation).norm() < 1e-9 * c.norm());
       CHECK(definiteness(c + g * rotation * rotation.transpose()).positive_definite());
     }
@@ -267,19 +252,16 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
       const Vec4 stress = on_yield_surface(mean(rng), Vec4(u(rng), u(rng), u(rng), u(rng)), sigma);
       const Vec4 s = deviator(stress);
       const Real beta = 1.5 / (sigma * sigma * alpha);
-      const Real q =
-          beta * ((1 - nu) * (s(0) * s(0) + s(1) * s(1)) - 2 * nu * s(0) * s(1) + 4 * s(3) * s(3));
+      const Real q = beta * ((1 - nu) * (s(0) * s(0) + s(1) * s(1)) - 2 * nu * s(0) * s(1) + 4 * s(3) * s(3));
       if (std::abs(q - 1.0) < 1e-6) continue;
-      const Mat4 c = operator_a(p, stress, sigma,
-                                layout_only(GradientLayout::Thesis, TangentKind::Continuum, false));
+      const Mat4 c = operator_a(p, stress, sigma, layout_only(GradientLayout::Thesis, TangentKind::Continuum, false));
       CHECK(definiteness(c).positive_definite() == (q < 1.0));
       (q < 1.0 ? n_pd : n_not)++;
       // With s12 = 0 the thesis layout equals the true tangent: PD on the surface.
       Vec4 normal = stress;
       normal(3) = 0.0;
       normal = on_yield_surface(mean(rng), normal, sigma);
-      CHECK(definiteness(operator_a(p, normal, sigma,
-                                    layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
+      CHECK(definiteness(operator_a(p, normal, sigma, layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
                 .positive_definite());
     }
     CHECK(n_pd > 50);
@@ -288,8 +270,7 @@ TEST_CASE("states on the yield surface with E_T > 0", "[monotonicity]") {
   SECTION("the thesis layout at pure shear on the surface: PD iff H' > 3G (alpha > 2)") {
     const Vec4 shear = on_yield_surface(0.0, Vec4(0, 0, 0, 1), 40.0);
     const auto pd = [&](const MaterialParams& m) {
-      return definiteness(operator_a(m, shear, 40.0,
-                                     layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
+      return definiteness(operator_a(m, shear, 40.0, layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
           .positive_definite();
     };
     CHECK_FALSE(pd(steel(1.0 / 3.0)));  // H'/3G = 0.43
@@ -310,8 +291,7 @@ TEST_CASE(
   // layout's null Lagrangian gives it -G (see "frame" below).
   for (GradientLayout layout : {GradientLayout::Thesis, GradientLayout::Gradient}) {
     INFO("layout " << to_string(layout));
-    const Mat4 c =
-        operator_a(perfect, stress, sigma, layout_only(layout, TangentKind::Continuum, false));
+    const Mat4 c = operator_a(perfect, stress, sigma, layout_only(layout, TangentKind::Continuum, false));
     CHECK((c * flow).norm() < 1e-9 * c.norm());
     const Mat4 a = operator_a(perfect, stress, sigma, layout_only(layout, TangentKind::Continuum));
     const Definiteness d = definiteness(a);
@@ -325,8 +305,8 @@ TEST_CASE(
     const Real h = inverse_estimate_length(ElementType::Q4, square, false);
     const Real dt_star = restoring_time_step(perfect.density, h, d.lambda_min);
     CHECK(dt_star == Approx(h * std::sqrt(perfect.density / -d.lambda_min)));
-    for (auto [factor, expect_pd] : {std::pair{0.99, true}, std::pair{1.01, false},
-                                     std::pair{0.5, true}, std::pair{3.0, false}}) {
+    for (auto [factor, expect_pd] :
+         {std::pair{0.99, true}, std::pair{1.01, false}, std::pair{0.5, true}, std::pair{3.0, false}}) {
       OperatorOptions o = layout_only(layout, TangentKind::Continuum);
       o.mass_scale = mass_scale(perfect.density, h, factor * dt_star);
       const Definiteness dd = definiteness(operator_a(perfect, stress, sigma, o));
@@ -335,16 +315,14 @@ TEST_CASE(
     }
   }
   // The same state with hardening is PD (thesis layout).
-  CHECK(definiteness(operator_a(steel(), stress, sigma,
-                                layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
+  CHECK(definiteness(operator_a(steel(), stress, sigma, layout_only(GradientLayout::Thesis, TangentKind::Continuum)))
             .positive_definite());
   CHECK(restoring_time_step(7.8e-9, 1.0, 10.0) == std::numeric_limits<Real>::infinity());
   CHECK(restoring_time_step(0.0, 1.0, -10.0) == 0.0);
   CHECK(mass_scale(7.8e-9, 1.0, 0.0) == 0.0);
 }
 
-TEST_CASE("inverse-estimate length: d/sqrt(24) for a square Q4, d/6 for a right T3",
-          "[monotonicity]") {
+TEST_CASE("inverse-estimate length: d/sqrt(24) for a square Q4, d/6 for a right T3", "[monotonicity]") {
   const Real d = 3.0;
   const std::vector<Vec2> square{Vec2(1, 1), Vec2(1 + d, 1), Vec2(1 + d, 1 + d), Vec2(1, 1 + d)};
   const std::vector<Vec2> triangle{Vec2(0, 0), Vec2(d, 0), Vec2(0, d)};
@@ -387,8 +365,7 @@ TEST_CASE(
   for (int k = 0; k < 50; ++k) {
     const Vec4 stress = on_yield_surface(100 * u(rng), Vec4(u(rng), u(rng), u(rng), u(rng)), 40.0);
     const Vec4 rotated = rotate(stress, angle(rng));
-    for (GradientLayout layout :
-         {GradientLayout::Navier, GradientLayout::Gradient, GradientLayout::Thesis}) {
+    for (GradientLayout layout : {GradientLayout::Navier, GradientLayout::Gradient, GradientLayout::Thesis}) {
       const OperatorOptions o = layout_only(layout, TangentKind::Continuum);
       const Vec4 ev = sorted_eigenvalues(operator_a(p, stress, 40.0, o));
       const Vec4 ev_rot = sorted_eigenvalues(operator_a(p, rotated, 40.0, o));
@@ -408,18 +385,16 @@ TEST_CASE(
   CHECK(definiteness(operator_a(p, rotate(shear, M_PI / 4), 40.0, thesis)).positive_definite());
 }
 
-TEST_CASE("the three positive-definiteness tests agree on random states away from the boundary",
-          "[monotonicity]") {
+TEST_CASE("the three positive-definiteness tests agree on random states away from the boundary", "[monotonicity]") {
   std::mt19937 rng(13);
   std::uniform_real_distribution<Real> ab(-150, 150), cc(-50, 50), sig(5, 105), big(-2e5, 2e5);
   int n_pd = 0, n_not = 0, n_checked = 0;
-  for (GradientLayout layout :
-       {GradientLayout::Thesis, GradientLayout::Navier, GradientLayout::Gradient}) {
+  for (GradientLayout layout : {GradientLayout::Thesis, GradientLayout::Navier, GradientLayout::Gradient}) {
     MonotonicityMapOptions o;
     o.layout = layout;
     for (int k = 0; k < 3000; ++k) {
-      const ThesisParameters t = k % 3 == 0 ? ThesisParameters{big(rng), big(rng), big(rng) / 3}
-                                            : ThesisParameters{ab(rng), ab(rng), cc(rng)};
+      const ThesisParameters t =
+          k % 3 == 0 ? ThesisParameters{big(rng), big(rng), big(rng) / 3} : ThesisParameters{ab(rng), ab(rng), cc(rng)};
       const Mat4 a = map_operator(o, sig(rng), t);
       const Definiteness d = definiteness(a);
       if (std::abs(d.lambda_min) < 1e-9 * a.norm()) continue;
@@ -434,8 +409,7 @@ TEST_CASE("the three positive-definiteness tests agree on random states away fro
   CHECK(n_not > 1000);
 }
 
-TEST_CASE("the algorithmic operator uses the consistent tangent and tends to the continuum one",
-          "[monotonicity]") {
+TEST_CASE("the algorithmic operator uses the consistent tangent and tends to the continuum one", "[monotonicity]") {
   const MaterialParams p = steel();
   // Load uniaxially in strain past yield, then a further increment along the same path.
   const Vec4 path(-1.0, 0.4, 0.0, 0.6);
@@ -455,8 +429,7 @@ TEST_CASE("the algorithmic operator uses the consistent tangent and tends to the
   CHECK(previous < 1e-3);
 }
 
-TEST_CASE("maps: symmetric under c <-> -c and a <-> b, the thesis's c-slices at sigma_pl = 40",
-          "[monotonicity]") {
+TEST_CASE("maps: symmetric under c <-> -c and a <-> b, the thesis's c-slices at sigma_pl = 40", "[monotonicity]") {
   MonotonicityMapOptions o;
   o.sigma = {20.0, 60.0, 3};
   o.a = {-150.0, 150.0, 7};
@@ -506,11 +479,9 @@ TEST_CASE("maps: symmetric under c <-> -c and a <-> b, the thesis's c-slices at 
   CHECK(why.find("sigma_pl") != std::string::npos);
 }
 
-TEST_CASE("check_strip flags a large compressive initial stress and a small dt restores PD",
-          "[monotonicity]") {
+TEST_CASE("check_strip flags a large compressive initial stress and a small dt restores PD", "[monotonicity]") {
   StripMeshSpec spec = test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2);
-  StripModel model(make_strip_mesh(spec), elastic_steel(),
-                   ElementOptions{Kinematics::Finite, Q4Formulation::Standard});
+  StripModel model(make_strip_mesh(spec), elastic_steel(), ElementOptions{Kinematics::Finite, Q4Formulation::Standard});
   model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));  // every node prescribed
   const Real g = model.material().shear_modulus();
   const auto squeeze = [](const Vec2& x) -> Vec2 { return -0.2 * x; };  // F = 0.8 I
@@ -575,8 +546,7 @@ TEST_CASE("is_positive_definite: sparse LDL^T, inertia from the pivots", "[monot
   // The assembled stiffness of a strip clamped at its bottom: PD unstressed; the mass term
   // 2M/dt^2 keeps K_eff PD.
   StripMeshSpec spec = test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2);
-  StripModel model(make_strip_mesh(spec), elastic_steel(),
-                   ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
+  StripModel model(make_strip_mesh(spec), elastic_steel(), ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
   std::vector<bool> fixed(model.n_dofs(), false);
   for (Index a : model.mesh().node_set("bottom")) fixed[2 * a] = fixed[2 * a + 1] = true;
   model.set_dof_map(DofMap(fixed));
@@ -586,21 +556,18 @@ TEST_CASE("is_positive_definite: sparse LDL^T, inertia from the pivots", "[monot
   CHECK_FALSE(is_positive_definite(SparseMatrix(-1.0 * hessian)));
 }
 
-TEST_CASE("roller monotonicity writes the grid, the slices and the summary",
-          "[monotonicity][cli]") {
+TEST_CASE("roller monotonicity writes the grid, the slices and the summary", "[monotonicity][cli]") {
   namespace fs = std::filesystem;
   const fs::path out = fs::temp_directory_path() / "roller_test_monotonicity";
   fs::remove_all(out);
   const std::string command = std::string(ROLLER_ROLLER_EXE) +
-                              " monotonicity --grid 5 --slice-grid 7 --no-plot --out " +
-                              out.string() + " > /dev/null";
+                              " monotonicity --grid 5 --slice-grid 7 --no-plot --out " + out.string() + " > /dev/null";
   REQUIRE(std::system(command.c_str()) == 0);
   CHECK(fs::exists(out / "monotonicity_grid.csv"));
   CHECK(fs::exists(out / "monotonicity_slices.csv"));
   CHECK(fs::exists(out / "monotonicity.json"));
-  const std::string bad = std::string(ROLLER_ROLLER_EXE) +
-                          " monotonicity --sigma-range 0,10 --no-plot --out " + out.string() +
-                          " > /dev/null 2>&1";
+  const std::string bad = std::string(ROLLER_ROLLER_EXE) + " monotonicity --sigma-range 0,10 --no-plot --out " +
+                          out.string() + " > /dev/null 2>&1";
   CHECK(WEXITSTATUS(std::system(bad.c_str())) == 2);
   fs::remove_all(out);
 }

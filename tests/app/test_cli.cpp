@@ -28,8 +28,8 @@ struct Run {
 Run run_roller(const std::string& args) {
   // Unique per process and call: CTest runs test cases in parallel processes.
   static int calls = 0;
-  const fs::path log = fs::temp_directory_path() /
-                       fs::path("roller_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".log");
+  const fs::path log = fs::temp_directory_path() / fs::path("roller_cli_test_" + std::to_string(::getpid()) + "_" +
+                                                            std::to_string(++calls) + ".log");
   const std::string cmd = std::string(ROLLER_ROLLER_EXE) + " " + args + " > " + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   std::ifstream in(log);
@@ -48,8 +48,8 @@ TEST_CASE("roller run: the default scene runs end to end and writes its results"
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.output, Catch::Contains("step    3/3"));
-  for (const char* f : {"fields.pvd", "step_0000.vtu", "step_0003.vtu", "solver.csv", "summary.json",
-                        "scene.resolved.toml"})
+  for (const char* f :
+       {"fields.pvd", "step_0000.vtu", "step_0003.vtu", "solver.csv", "summary.json", "scene.resolved.toml"})
     CHECK(fs::exists(out / f));
   const std::string csv = roller::test::read_text(out / "solver.csv");
   CHECK_THAT(csv, Catch::StartsWith("step,time,iterations,residual,max_penetration,wall_s"));
@@ -82,12 +82,11 @@ TEST_CASE("roller --version names roller's version and commit and the Ipopt and 
   const Run r = run_roller("--version");
   INFO(r.output);
   CHECK(r.exit_code == 0);
-  CHECK_THAT(r.output, Catch::StartsWith("roller 0.") && Catch::Contains("commit ") &&
-                           Catch::Contains("Ipopt 3.") && Catch::Contains("MUMPS 5."));
+  CHECK_THAT(r.output, Catch::StartsWith("roller 0.") && Catch::Contains("commit ") && Catch::Contains("Ipopt 3.") &&
+                           Catch::Contains("MUMPS 5."));
 }
 
-TEST_CASE("roller run: a step that cannot converge stops the run with code 1, completed steps kept",
-          "[app]") {
+TEST_CASE("roller run: a step that cannot converge stops the run with code 1, completed steps kept", "[app]") {
   // One Newton iteration per increment and no cuts cannot converge the plastic block.
   const fs::path out = fs::temp_directory_path() / "roller_cli_fail";
   fs::remove_all(out);
@@ -101,7 +100,8 @@ TEST_CASE("roller run: a step that cannot converge stops the run with code 1, co
   fs::remove_all(out);
 }
 
-TEST_CASE("roller run --resume continues a shortened run to the same results as an uninterrupted one", "[app][restart][slow]") {
+TEST_CASE("roller run --resume continues a shortened run to the same results as an uninterrupted one",
+          "[app][restart][slow]") {
   // Z4 has strip inertia and a suspended roller: the Houbolt histories must survive the break.
   const fs::path whole = fs::temp_directory_path() / ("roller_cli_whole_" + std::to_string(::getpid()));
   const fs::path split = fs::temp_directory_path() / ("roller_cli_split_" + std::to_string(::getpid()));
@@ -140,5 +140,6 @@ TEST_CASE("roller scene-keys lists every scene key, one line each", "[app]") {
   CHECK_THAT(rows[0], Catch::StartsWith("key "));
   for (std::size_t i = 0; i < roller::scene_keys().size(); ++i)
     CHECK_THAT(rows[i + 1], Catch::StartsWith(roller::scene_keys()[i].dotted() + " "));
-  CHECK_THAT(r.output, Catch::Contains("contact.ipopt.tol") && Catch::Contains("1e-09") && Catch::Contains("0 < tol < 1"));
+  CHECK_THAT(r.output,
+             Catch::Contains("contact.ipopt.tol") && Catch::Contains("1e-09") && Catch::Contains("0 < tol < 1"));
 }

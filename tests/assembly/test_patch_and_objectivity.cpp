@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "../support/impose_field.hpp"
-#include "roller/core/error.hpp"
-#include "roller/assembly/increment_energy.hpp"
-#include "roller/mesh/strip_mesher.hpp"
 #include "../support/strip_spec.hpp"
+#include "roller/assembly/increment_energy.hpp"
+#include "roller/core/error.hpp"
+#include "roller/mesh/strip_mesher.hpp"
 
 using namespace roller;
 
@@ -89,7 +89,8 @@ TEST_CASE("patch test: a linear displacement field is reproduced exactly", "[ass
       Real err = 0.0;
       for (Index a = 0; a < model.mesh().n_nodes(); ++a) {
         const Vec2 exact = shift + grad * model.mesh().nodes[a];
-        err = std::max(err, (Vec2(model.total_displacement()(2 * a), model.total_displacement()(2 * a + 1)) - exact).norm());
+        err = std::max(err,
+                       (Vec2(model.total_displacement()(2 * a), model.total_displacement()(2 * a + 1)) - exact).norm());
       }
       CHECK(err < 1e-10);
       // Constant stress everywhere.
@@ -99,8 +100,7 @@ TEST_CASE("patch test: a linear displacement field is reproduced exactly", "[ass
   }
 }
 
-TEST_CASE("a pre-stressed strip rotated rigidly by 90 degrees keeps its stress invariants",
-          "[assembly][objectivity]") {
+TEST_CASE("a pre-stressed strip rotated rigidly by 90 degrees keeps its stress invariants", "[assembly][objectivity]") {
   for (Kinematics kin : {Kinematics::Finite, Kinematics::Small}) {
     StripMeshSpec spec = test::strip_spec(ElementType::Q4, 2.0, 1.0, 2, 1);
     StripModel model(make_strip_mesh(spec), elastic(), ElementOptions{kin, Q4Formulation::BBar});
@@ -141,8 +141,7 @@ TEST_CASE("Newton converges quadratically on an elastoplastic compression", "[as
   for (Index a : model.mesh().node_set("top")) fixed[2 * a + 1] = true;
   model.set_dof_map(DofMap(fixed));
   VecX prescribed = VecX::Zero(model.n_dofs());
-  for (Index a : model.mesh().node_set("top"))
-    prescribed(2 * a + 1) = -0.02 * (1.0 + 0.05 * model.mesh().nodes[a].x());
+  for (Index a : model.mesh().node_set("top")) prescribed(2 * a + 1) = -0.02 * (1.0 + 0.05 * model.mesh().nodes[a].x());
   IncrementEnergy energy(model, prescribed, VecX::Zero(model.n_dofs()));
   VecX free = VecX::Zero(model.dof_map().n_free());
   NewtonOptions opt;

@@ -21,7 +21,8 @@ TEST_CASE("arc predictor: entering nodes land on the circle after the arc R dphi
   const Real w_fr = c.y() - start.y(), w_in = end.y() - c.y();
   const Vec2 c1 = arc_predicted_position(start, end, centre, radius, dphi);
   CHECK((c1 - centre).norm() == Approx(radius).epsilon(1e-14));
-  const Real arc = radius * (std::atan2((c1 - centre).y(), (c1 - centre).x()) - std::atan2((c - centre).y(), (c - centre).x()));
+  const Real arc =
+      radius * (std::atan2((c1 - centre).y(), (c1 - centre).x()) - std::atan2((c - centre).y(), (c - centre).x()));
   CHECK(arc == Approx(radius * dphi * w_in / (w_fr + w_in)).epsilon(1e-12));
   // Already inside at the start: from the radial projection, the whole rotation.
   const Vec2 in0(0.0, 0.5), in1(0.0, 0.6);

@@ -101,10 +101,10 @@ void check_lockstep_agreement(const std::string& name, const std::vector<SceneOv
   REQUIRE(a.size() == b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].contact.status == b[i].contact.status) continue;
-    const bool boundary = (i > 0 && (b[i - 1].contact.status != b[i].contact.status ||
-                                     a[i - 1].contact.status != a[i].contact.status)) ||
-                          (i + 1 < b.size() && (b[i + 1].contact.status != b[i].contact.status ||
-                                                a[i + 1].contact.status != a[i].contact.status));
+    const bool boundary =
+        (i > 0 && (b[i - 1].contact.status != b[i].contact.status || a[i - 1].contact.status != a[i].contact.status)) ||
+        (i + 1 < b.size() &&
+         (b[i + 1].contact.status != b[i].contact.status || a[i + 1].contact.status != a[i].contact.status));
     INFO("node " << a[i].node + 1 << " ipopt " << to_string(a[i].contact.status) << " penalty "
                  << to_string(b[i].contact.status));
     CHECK(boundary);

@@ -4,13 +4,12 @@
 
 #include <cmath>
 
-#include "roller/analysis/contact_zones.hpp"
 #include "../support/run_scene.hpp"
+#include "roller/analysis/contact_zones.hpp"
 
 using namespace roller;
 
-TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P))",
-          "[contact][cattaneo][slow]") {
+TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P))", "[contact][cattaneo][slow]") {
   const Simulation sim = test::run_scene("cattaneo", {{"mesh.refine", "2"}, {"contact.backend", "\"penalty\""}});
   const Real mu = sim.scene().contact.friction;
   std::vector<Real> x;
@@ -38,8 +37,7 @@ TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P))",
   CHECK(std::abs(c.half_width() / a.half_width() - expected) < 0.08);
 }
 
-TEST_CASE("frictionless rigid translation of strip and roller together gives no tangential force",
-          "[contact]") {
+TEST_CASE("frictionless rigid translation of strip and roller together gives no tangential force", "[contact]") {
   // Press, then translate the strip's base and the roller together by 0.05 mm in x: the relative
   // configuration is unchanged, so the contact forces must not change and no tangential force
   // may appear.

@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "../support/impose_field.hpp"
+#include "../support/strip_spec.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/mesh/strip_mesher.hpp"
-#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -17,8 +17,9 @@ TEST_CASE("contact candidates keep the initial element depth after the surface d
   StripModel model(make_strip_mesh(spec), mat, ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
   model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));
   // A dent: neighbouring top nodes end at different heights (the updated reference moves).
-  REQUIRE(test::impose_field(model, [](const Vec2& p) { return Vec2(0.0, -1e-3 * p.x() * (20.0 - p.x()) * p.y() / 6.0); })
-              .converged());
+  REQUIRE(test::impose_field(model, [](const Vec2& p) {
+            return Vec2(0.0, -1e-3 * p.x() * (20.0 - p.x()) * p.y() / 6.0);
+          }).converged());
   const VecX zero = VecX::Zero(model.n_dofs());
   const auto candidates = make_contact_candidates(model, model.mesh().node_set("top"), zero, zero, Vec2(10.0, 36.0),
                                                   30.0, std::numeric_limits<Real>::infinity());

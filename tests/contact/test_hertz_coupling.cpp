@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "roller/analysis/hertz.hpp"
 #include "../support/run_scene.hpp"
+#include "roller/analysis/hertz.hpp"
 
 using namespace roller;
 

@@ -2,8 +2,8 @@
 // solution, global equilibrium (contact force = support reaction), the penalty penetration bound.
 #include <catch2/catch.hpp>
 
-#include "roller/analysis/hertz.hpp"
 #include "../support/run_scene.hpp"
+#include "roller/analysis/hertz.hpp"
 
 using namespace roller;
 

@@ -12,13 +12,13 @@
 #include <random>
 #include <string>
 
+#include "../support/strip_spec.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/contact/ipopt_backend.hpp"
 #include "roller/core/error.hpp"
 #include "roller/mesh/strip_mesher.hpp"
-#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -45,8 +45,7 @@ MaterialParams steel(Real youngs = 2.1e5) {
 
 // Strip L x H of nx x ny Q4 (B-bar, finite kinematics). Bottom: u_y = 0 everywhere; u_x = 0 at
 // every bottom node (`clamped`) or only at the bottom node under x = L/2.
-std::unique_ptr<StripModel> make_strip(Real length, Real height, int nx, int ny, bool clamped,
-                                       Real youngs = 2.1e5) {
+std::unique_ptr<StripModel> make_strip(Real length, Real height, int nx, int ny, bool clamped, Real youngs = 2.1e5) {
   StripMeshSpec spec = test::strip_spec(ElementType::Q4, length, height, nx, ny);
   auto model = std::make_unique<StripModel>(make_strip_mesh(spec), steel(youngs),
                                             ElementOptions{Kinematics::Finite, Q4Formulation::BBar});
@@ -92,9 +91,7 @@ ContactOptions ipopt_options(const std::string& friction = "split", const std::s
 
 // NLP solves of an increment: the full formulation solves one per fixed-point pass, the condensed
 // one per pass and linearisation.
-Real nlp_solves(const BackendResult& r) {
-  return r.stats.nlp_solves;
-}
+Real nlp_solves(const BackendResult& r) { return r.stats.nlp_solves; }
 
 // Reactions: internal forces at the constrained dofs at the free-dof increment x.
 Vec2 support_reaction(IncrementEnergy& energy, const VecX& x) {
@@ -124,7 +121,8 @@ struct SmallPressed {
     x = VecX(inc.problem.n_free());
     for (Index k = 0; k < x.size(); ++k) x(k) = 2e-3 * u(rng);
     for (auto& c : inc.problem.candidates())
-      if (std::abs(c.position.x() - 4.0) < 1.5) c.normal_force_guess = 0.05 * youngs * (1.6 - std::abs(c.position.x() - 4.0));
+      if (std::abs(c.position.x() - 4.0) < 1.5)
+        c.normal_force_guess = 0.05 * youngs * (1.6 - std::abs(c.position.x() - 4.0));
   }
   std::unique_ptr<StripModel> model;
   Increment inc;
@@ -162,7 +160,7 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
       MatX jac, hess;
       ipopt_testing::evaluate_nlp(p, o, VecX(), 1.0, VecX(), &n, &m, &f, &grad, &g, &jac, &hess);
       const Index n_friction = friction == "split" ? 3 : 0;  // guesses on the nodes at x = 3, 4, 5
-      const Index n_primal = n - 2 * n_friction;                // free dofs, or the condensed contact dofs
+      const Index n_primal = n - 2 * n_friction;             // free dofs, or the condensed contact dofs
       const Index n_rows = m - n_friction;
       if (formulation == "full") {
         REQUIRE(n_rows == static_cast<Index>(p.candidates().size()));
@@ -193,7 +191,8 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
         for (Index j = 0; j < n_friction; ++j) {
           const auto& c = p.candidates()[3 + j];  // friction candidates are the ones with guesses
           REQUIRE(c.normal_force_guess > 0.0);
-          CHECK(g(n_rows + j) == Approx(p.slip(c, xf) - z(p.n_free() + j) + z(p.n_free() + n_friction + j)).margin(1e-14));
+          CHECK(g(n_rows + j) ==
+                Approx(p.slip(c, xf) - z(p.n_free() + j) + z(p.n_free() + n_friction + j)).margin(1e-14));
         }
       }
 
@@ -353,8 +352,10 @@ TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gi
     REQUIRE(r.contact.size() == 41);
     // Full: every candidate; condensed: the working set (gap within 0.25 l_step = 0.025 mm of the
     // roller), empty here: the roller ends 0.1 mm above the strip.
-    if (formulation == "full") CHECK(r.stats.nlp_constraints == 41);
-    else CHECK(r.stats.nlp_constraints == 0);
+    if (formulation == "full")
+      CHECK(r.stats.nlp_constraints == 41);
+    else
+      CHECK(r.stats.nlp_constraints == 0);
     // Interior-point multipliers of inactive constraints are ~ barrier / gap, not exactly 0:
     // their complementarity F_N g is at Ipopt's tolerance (scaled by F_ref = E* |dc|), which
     // makes them ~1e-9 of the forces a 0.1 mm step could produce.
@@ -430,7 +431,7 @@ void check_coulomb(const IncrementProblem& p, const BackendResult& r, Real mu, R
     if (c.status == ContactStatus::Slip && std::abs(c.slip) >= 1e-3 * dx) {
       ++*n_slip;
       CHECK(std::abs(c.tangential_force) >= mu * c.normal_force - tol);  // at the Coulomb bound
-      CHECK(c.tangential_force * c.slip < 0.0);                         // opposing the slip
+      CHECK(c.tangential_force * c.slip < 0.0);                          // opposing the slip
     }
   }
 }

@@ -10,8 +10,7 @@
 
 using namespace roller;
 
-TEST_CASE("penalty residual Jacobian matches finite differences (open, stick, slip nodes)",
-          "[contact][tangent]") {
+TEST_CASE("penalty residual Jacobian matches finite differences (open, stick, slip nodes)", "[contact][tangent]") {
   StripMeshSpec spec;
   spec.length = 20.0;
   spec.height = 5.0;
@@ -35,8 +34,8 @@ TEST_CASE("penalty residual Jacobian matches finite differences (open, stick, sl
   motion.end.centre = Vec2(10.05, 34.985);  // pressed 15 um and moved sideways
   motion.end.angle = -0.0005;
   motion.friction = 0.3;
-  auto candidates = make_contact_candidates(model, model.mesh().node_set("top"), zero, zero, motion.end.centre,
-                                            motion.radius, 1e9);
+  auto candidates =
+      make_contact_candidates(model, model.mesh().node_set("top"), zero, zero, motion.end.centre, motion.radius, 1e9);
   // History: some nodes carry a tangential force from before, so stick and slip both occur.
   for (std::size_t i = 0; i < candidates.size(); ++i) candidates[i].tangential_force = (i % 3 == 0) ? 3.0 : -1.0;
   IncrementProblem problem(energy, candidates, motion, mat.youngs_modulus, mat.poisson_ratio);

@@ -76,4 +76,3 @@ TEST_CASE("bar_impact: contact stress rho c_d v and front arrival d / c_d, both 
     CHECK(r.section_stress.back() == Approx(sigma).epsilon(0.05));
   }
 }
-

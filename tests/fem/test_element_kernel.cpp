@@ -44,8 +44,7 @@ const Case kCases[] = {
 
 }  // namespace
 
-TEST_CASE("element residual and tangent match finite differences of energy and residual",
-          "[fem][tangent]") {
+TEST_CASE("element residual and tangent match finite differences of energy and residual", "[fem][tangent]") {
   const MaterialParams mat = steel_plastic();
   std::mt19937 rng(7);
   std::uniform_real_distribution<Real> uni(-1.0, 1.0);

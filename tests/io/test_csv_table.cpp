@@ -24,7 +24,6 @@ using test::read_text;
 
 namespace {
 
-
 // Minimal RFC-4180 reader: quoted fields may hold ',', '""' and line breaks.
 std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
   std::vector<std::vector<std::string>> rows;
@@ -83,14 +82,9 @@ TEST_CASE("CsvTable writes a header and rows that read back exactly while it is 
   CHECK(table.columns() == std::vector<std::string>{"step", "time", "force", "note"});
   CHECK(read_text(file) == "step,time,force,note\n");
 
-  const std::vector<double> reals = {0.1,
-                                     1.0 / 3.0,
-                                     -2.5e-300,
-                                     1.7976931348623157e308,
-                                     4.9406564584124654e-324,
-                                     -0.0,
-                                     123456789.123456789,
-                                     2.0 / 3.0 * 1e-7};
+  const std::vector<double> reals = {
+      0.1,  1.0 / 3.0,           -2.5e-300,       1.7976931348623157e308, 4.9406564584124654e-324,
+      -0.0, 123456789.123456789, 2.0 / 3.0 * 1e-7};
   for (std::size_t i = 0; i < reals.size(); ++i) {
     table.add_row({Index(i), reals[i], reals[reals.size() - 1 - i], std::string("ok")});
     // Flushed: the row is on disk before the next one is added.
@@ -122,8 +116,7 @@ TEST_CASE("CsvTable writes non-finite reals as nan, inf and -inf", "[io]") {
   const fs::path file = dir.path() / "nonfinite.csv";
   CsvTable table(file, {"a", "b", "c", "d"});
   table.add_row({std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                 -std::numeric_limits<double>::infinity(),
-                 -std::numeric_limits<double>::quiet_NaN()});
+                 -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::quiet_NaN()});
   const auto rows = parse_csv(read_text(file));
   REQUIRE(rows.size() == 2);
   CHECK(rows[1] == std::vector<std::string>{"nan", "inf", "-inf", "nan"});
@@ -148,8 +141,7 @@ TEST_CASE("CsvTable quotes text holding commas, quotes or line breaks", "[io]") 
   CHECK(rows[2] == std::vector<std::string>{"8", "two\nlines", "plain text"});
 }
 
-TEST_CASE("CsvTable rejects a row whose length differs from the header and writes nothing",
-          "[io]") {
+TEST_CASE("CsvTable rejects a row whose length differs from the header and writes nothing", "[io]") {
   test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "short.csv";
   CsvTable table(file, {"step", "time"});
@@ -159,8 +151,7 @@ TEST_CASE("CsvTable rejects a row whose length differs from the header and write
   auto msg = thrown_message<std::invalid_argument>([&] { table.add_row({Index(1)}); });
   CHECK_THAT(msg, Contains("1 cells"));
   CHECK_THAT(msg, Contains("2 columns"));
-  msg = thrown_message<std::invalid_argument>(
-      [&] { table.add_row({Index(1), 0.5, std::string("extra")}); });
+  msg = thrown_message<std::invalid_argument>([&] { table.add_row({Index(1), 0.5, std::string("extra")}); });
   CHECK_THAT(msg, Contains("3 cells"));
   CHECK(read_text(file) == before);
 
@@ -179,7 +170,6 @@ TEST_CASE("CsvTable truncates an existing file", "[io]") {
 TEST_CASE("CsvTable at an unwritable path throws naming the path", "[io]") {
   test::TempDir dir("roller_csv_test");
   const fs::path file = dir.path() / "no_such_folder" / "table.csv";
-  const auto msg =
-      thrown_message<std::runtime_error>([&] { CsvTable table(file, {"a", "b"}); });
+  const auto msg = thrown_message<std::runtime_error>([&] { CsvTable table(file, {"a", "b"}); });
   CHECK_THAT(msg, Contains(file.string()));
 }

@@ -72,7 +72,8 @@ line_search = false
 [linear_solver]
 out_of_core = true
 ordering = "amd"
-directory = ")" + std::filesystem::temp_directory_path().string() + R"("
+directory = ")" +
+         std::filesystem::temp_directory_path().string() + R"("
 [output]
 every = 2
 vtu = false
@@ -199,7 +200,8 @@ TEST_CASE("docs/scenes.md mentions every declared key under its table", "[io][sc
     const std::string marker = doc_marker(scene_table(k.table));
     bool found = false;
     for (const DocBlock& b : blocks)
-      found = found || (b.header.find(marker) != std::string::npos && b.text.find("`" + k.name + "`") != std::string::npos);
+      found =
+          found || (b.header.find(marker) != std::string::npos && b.text.find("`" + k.name + "`") != std::string::npos);
     INFO(k.dotted() << ": `" << k.name << "` is not documented under " << marker);
     CHECK(found);
   }

@@ -99,7 +99,8 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
   CHECK_THAT(error_of(replace(kGood, "E = 2.1e5", "E = \"steel\"")),
              Contains("material.E = 'steel'") && Contains("expected a number"));
   // Out-of-range values name the field, the value and the rule.
-  CHECK_THAT(error_of(replace(kGood, "nu = 0.3", "nu = 0.5")), Contains("bad.toml:11: material.nu = 0.5: must satisfy 0 <= nu < 0.5"));
+  CHECK_THAT(error_of(replace(kGood, "nu = 0.3", "nu = 0.5")),
+             Contains("bad.toml:11: material.nu = 0.5: must satisfy 0 <= nu < 0.5"));
   CHECK_THAT(error_of(replace(kGood, "kappa = 0.07", "kappa = 1.2")), Contains("material.kappa = 1.2"));
   CHECK_THAT(error_of(replace(kGood, "nx = 4", "nx = 0")), Contains("nx") && Contains("0"));
   CHECK_THAT(error_of(replace(kGood, "count = 4", "count = 0")), Contains("steps.count = 0"));
@@ -108,7 +109,8 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
              Contains("mesh.element = 'Q8'") && Contains("\"Q4\", \"T3\""));
   // Missing required parts.
   CHECK_THAT(error_of(replace(kGood, "E = 2.1e5", "")), Contains("material.E") && Contains("required"));
-  CHECK_THAT(error_of(replace(kGood, "[mesh]", "[meshes]")), Contains("meshes: unknown key") && Contains("did you mean 'mesh'"));
+  CHECK_THAT(error_of(replace(kGood, "[mesh]", "[meshes]")),
+             Contains("meshes: unknown key") && Contains("did you mean 'mesh'"));
   // Ramps and selectors.
   CHECK_THAT(error_of(replace(kGood, "ramp = [2, 3]", "ramp = [3, 2]")), Contains("displacement[1].x.ramp"));
   CHECK_THAT(error_of(replace(kGood, "nodes = [1, 2]", "nodes = 7")), Contains("displacement[1].nodes"));
@@ -128,8 +130,7 @@ TEST_CASE("node selectors are checked against the mesh", "[io][scene][errors]") 
   NodeSelector by_number;
   by_number.numbers = {1, 6, 7};
   CHECK_THROWS_WITH(resolve_nodes(by_number, mesh, "displacement[0].nodes"),
-                    Catch::Contains("displacement[0].nodes") && Catch::Contains("node 7") &&
-                        Catch::Contains("1..6"));
+                    Catch::Contains("displacement[0].nodes") && Catch::Contains("node 7") && Catch::Contains("1..6"));
   NodeSelector by_name;
   by_name.set_name = "topp";
   CHECK_THROWS_WITH(resolve_nodes(by_name, mesh, "load[0].nodes"), Catch::Contains("topp"));
@@ -166,7 +167,8 @@ TEST_CASE("contact.ipopt.options pass Ipopt options through and reject unknown o
   CHECK(find("print_timing_statistics").text == "yes");
   CHECK(find("bound_push").kind == RawIpoptOption::Kind::Number);
   CHECK_NOTHROW(Simulation(ok));
-  const Scene bad = load_scene(base, {{"contact.backend", "\"ipopt\""}, {"contact.ipopt.options.mumps_pivot_ordr", "0"}});
+  const Scene bad =
+      load_scene(base, {{"contact.backend", "\"ipopt\""}, {"contact.ipopt.options.mumps_pivot_ordr", "0"}});
   CHECK_THROWS_WITH(Simulation(bad), Catch::Contains("contact.ipopt.options.mumps_pivot_ordr = 0: Ipopt rejects it"));
 }
 
@@ -176,8 +178,8 @@ TEST_CASE("[linear_solver] selects MUMPS's ordering and out-of-core mode, checke
   CHECK_FALSE(plain.newton.linear.out_of_core);
   CHECK(plain.newton.linear.ordering == "auto");
   const std::string dir = std::filesystem::temp_directory_path().string();
-  const Scene s = parse_scene(kGood + "[linear_solver]\nout_of_core = true\nordering = \"amd\"\ndirectory = \"" + dir + "\"\n",
-                              "good.toml");
+  const Scene s = parse_scene(
+      kGood + "[linear_solver]\nout_of_core = true\nordering = \"amd\"\ndirectory = \"" + dir + "\"\n", "good.toml");
   CHECK(s.newton.linear.out_of_core);
   CHECK(s.newton.linear.ordering == "amd");
   CHECK(s.newton.linear.directory == dir);
@@ -192,5 +194,6 @@ TEST_CASE("[linear_solver] selects MUMPS's ordering and out-of-core mode, checke
   CHECK_THAT(error_of(kGood, {{"linear_solver.directory", "/nonexistent/ooc"}}),
              Contains("linear_solver.directory") && Contains("/nonexistent/ooc") && Contains("existing directory"));
   CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_core", "3"}}), Contains("linear_solver.out_of_core"));
-  CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_cor", "true"}}), Contains("did you mean 'linear_solver.out_of_core'"));
+  CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_cor", "true"}}),
+             Contains("did you mean 'linear_solver.out_of_core'"));
 }

@@ -27,14 +27,13 @@ using test::read_text;
 
 namespace {
 
-
 bool have_python() { return fs::exists("/usr/bin/python3"); }
 
 // True when python's minidom parses the file, i.e. the file is well-formed XML.
 bool xml_well_formed(const fs::path& path) {
   const std::string command =
-      "/usr/bin/python3 -c \"import xml.dom.minidom,sys; xml.dom.minidom.parse(sys.argv[1])\" '" +
-      path.string() + "' > /dev/null 2>&1";
+      "/usr/bin/python3 -c \"import xml.dom.minidom,sys; xml.dom.minidom.parse(sys.argv[1])\" '" + path.string() +
+      "' > /dev/null 2>&1";
   return std::system(command.c_str()) == 0;
 }
 
@@ -158,13 +157,13 @@ Mesh two_element_mesh(ElementType type) {
 
 // Values that survive only an exact round trip: thirds, tiny, huge, negative zero.
 double awkward(std::size_t i) {
-  static const double pool[] = {1.0 / 3.0, -0.1, 2.5e-300, -1.7976931348623157e300,
-                                0.0, -0.0, 123456.789, 4.9406564584124654e-324};
+  static const double pool[] = {1.0 / 3.0, -0.1, 2.5e-300,   -1.7976931348623157e300,
+                                0.0,       -0.0, 123456.789, 4.9406564584124654e-324};
   return pool[i % 8] * (1.0 + static_cast<double>(i) * 1e-3);
 }
 
-VtuField make_field(const std::string& name, int n_components, std::size_t n_tuples,
-                    std::size_t seed, std::vector<std::string> component_names = {}) {
+VtuField make_field(const std::string& name, int n_components, std::size_t n_tuples, std::size_t seed,
+                    std::vector<std::string> component_names = {}) {
   VtuField f;
   f.name = name;
   f.n_components = n_components;
@@ -194,10 +193,9 @@ void check_round_trip(ElementType type) {
   for (std::size_t i = 0; i < n_nodes; ++i) {
     coordinates.push_back(mesh.nodes[i] + Vec2(awkward(i), awkward(i + 3)));
   }
-  const std::vector<VtuField> point_data = {
-      make_field("temperature", 1, n_nodes, 0),
-      make_field("displacement", 3, n_nodes, 1, {"x", "y", "z"}),
-      make_field("stress", 4, n_nodes, 2, {"xx", "yy", "zz", "xy"})};
+  const std::vector<VtuField> point_data = {make_field("temperature", 1, n_nodes, 0),
+                                            make_field("displacement", 3, n_nodes, 1, {"x", "y", "z"}),
+                                            make_field("stress", 4, n_nodes, 2, {"xx", "yy", "zz", "xy"})};
   const std::vector<VtuField> cell_data = {make_field("plastic_strain", 1, n_cells, 5)};
 
   write_vtu(file, mesh, coordinates, point_data, cell_data);
@@ -279,13 +277,11 @@ void check_round_trip(ElementType type) {
 
 }  // namespace
 
-TEST_CASE("write_vtu writes a Q4 mesh whose arrays decode to exactly the numbers given",
-          "[io]") {
+TEST_CASE("write_vtu writes a Q4 mesh whose arrays decode to exactly the numbers given", "[io]") {
   check_round_trip(ElementType::Q4);
 }
 
-TEST_CASE("write_vtu writes a T3 mesh whose arrays decode to exactly the numbers given",
-          "[io]") {
+TEST_CASE("write_vtu writes a T3 mesh whose arrays decode to exactly the numbers given", "[io]") {
   check_round_trip(ElementType::T3);
 }
 
@@ -320,36 +316,33 @@ TEST_CASE("write_vtu rejects fields whose size does not match, naming the field"
   SECTION("a point field one value short") {
     auto f = make_field("stress", 4, mesh.nodes.size(), 0);
     f.values.pop_back();
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, mesh.nodes, {ok_point, f}, {ok_cell}); });
+    const auto msg = thrown_message<std::invalid_argument>([&] {
+      write_vtu(file, mesh, mesh.nodes, {ok_point, f}, {ok_cell});
+    });
     CHECK_THAT(msg, Contains("stress"));
     CHECK_THAT(msg, Contains("23"));
     CHECK_THAT(msg, Contains("24"));
   }
   SECTION("a cell field sized per node") {
     auto f = make_field("equivalent_plastic_strain", 1, mesh.nodes.size(), 0);
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, mesh.nodes, {ok_point}, {f}); });
+    const auto msg = thrown_message<std::invalid_argument>([&] { write_vtu(file, mesh, mesh.nodes, {ok_point}, {f}); });
     CHECK_THAT(msg, Contains("equivalent_plastic_strain"));
   }
   SECTION("component names that do not match the component count") {
     auto f = make_field("velocity", 3, mesh.nodes.size(), 0, {"x", "y"});
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, mesh.nodes, {f}, {}); });
+    const auto msg = thrown_message<std::invalid_argument>([&] { write_vtu(file, mesh, mesh.nodes, {f}, {}); });
     CHECK_THAT(msg, Contains("velocity"));
   }
   SECTION("coordinates for fewer nodes than the mesh has") {
     std::vector<Vec2> coordinates = mesh.nodes;
     coordinates.pop_back();
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, coordinates, {}, {}); });
+    const auto msg = thrown_message<std::invalid_argument>([&] { write_vtu(file, mesh, coordinates, {}, {}); });
     CHECK_THAT(msg, Contains("coordinates"));
   }
   SECTION("an element with a node index out of range") {
     Mesh broken = mesh;
     broken.elements[1][2] = 6;
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, broken, broken.nodes, {}, {}); });
+    const auto msg = thrown_message<std::invalid_argument>([&] { write_vtu(file, broken, broken.nodes, {}, {}); });
     CHECK_THAT(msg, Contains("element 1"));
   }
   CHECK_FALSE(fs::exists(file));
@@ -369,23 +362,23 @@ TEST_CASE("write_vtu refuses NaN and Inf, naming the field and the first bad ind
   SECTION("NaN in a point field") {
     stress.values[9] = std::numeric_limits<double>::quiet_NaN();
     stress.values[13] = std::numeric_limits<double>::quiet_NaN();
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, mesh.nodes, {stress}, {plastic}); });
+    const auto msg =
+        thrown_message<std::invalid_argument>([&] { write_vtu(file, mesh, mesh.nodes, {stress}, {plastic}); });
     CHECK_THAT(msg, Contains("stress"));
     CHECK_THAT(msg, Contains("index 9"));
   }
   SECTION("Inf in a cell field") {
     plastic.values[1] = -std::numeric_limits<double>::infinity();
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, mesh.nodes, {stress}, {plastic}); });
+    const auto msg =
+        thrown_message<std::invalid_argument>([&] { write_vtu(file, mesh, mesh.nodes, {stress}, {plastic}); });
     CHECK_THAT(msg, Contains("plastic_strain"));
     CHECK_THAT(msg, Contains("index 1"));
   }
   SECTION("NaN in the coordinates") {
     std::vector<Vec2> coordinates = mesh.nodes;
     coordinates[4][1] = std::numeric_limits<double>::quiet_NaN();
-    const auto msg = thrown_message<std::invalid_argument>(
-        [&] { write_vtu(file, mesh, coordinates, {stress}, {plastic}); });
+    const auto msg =
+        thrown_message<std::invalid_argument>([&] { write_vtu(file, mesh, coordinates, {stress}, {plastic}); });
     CHECK_THAT(msg, Contains("coordinates"));
     CHECK_THAT(msg, Contains("index 9"));
   }
@@ -397,8 +390,7 @@ TEST_CASE("write_vtu to an unwritable path throws naming the path", "[io]") {
   test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "no_such_folder" / "step.vtu";
   const Mesh mesh = two_element_mesh(ElementType::T3);
-  const auto msg = thrown_message<std::runtime_error>(
-      [&] { write_vtu(file, mesh, mesh.nodes, {}, {}); });
+  const auto msg = thrown_message<std::runtime_error>([&] { write_vtu(file, mesh, mesh.nodes, {}, {}); });
   CHECK_THAT(msg, Contains(file.string()));
 }
 
@@ -431,8 +423,7 @@ TEST_CASE("PvdSeries lists its datasets in order with paths relative to its fold
     INFO(xml);
     CHECK_THAT(xml, Contains("type=\"Collection\""));
     std::size_t n_datasets = 0;
-    for (std::size_t p = xml.find("<DataSet"); p != std::string::npos;
-         p = xml.find("<DataSet", p + 1)) {
+    for (std::size_t p = xml.find("<DataSet"); p != std::string::npos; p = xml.find("<DataSet", p + 1)) {
       ++n_datasets;
     }
     CHECK(n_datasets == i + 1);
@@ -443,8 +434,7 @@ TEST_CASE("PvdSeries lists its datasets in order with paths relative to its fold
   const std::regex re("<DataSet timestep=\"([^\"]*)\" group=\"\" part=\"0\" file=\"([^\"]*)\"/>");
   std::vector<std::string> stamps;
   std::vector<std::string> files;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), re); it != std::sregex_iterator();
-       ++it) {
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), re); it != std::sregex_iterator(); ++it) {
     stamps.push_back((*it)[1].str());
     files.push_back((*it)[2].str());
   }

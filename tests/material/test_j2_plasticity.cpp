@@ -17,8 +17,7 @@ namespace {
 
 const Real kSqrt3 = std::sqrt(3.0);
 
-MaterialParams steel(Real tangent_ratio,
-                     StressIntegration integration = StressIntegration::ReturnMapping) {
+MaterialParams steel(Real tangent_ratio, StressIntegration integration = StressIntegration::ReturnMapping) {
   MaterialParams p;
   p.youngs_modulus = 2.1e5;
   p.poisson_ratio = 0.3;
@@ -33,8 +32,7 @@ Real yield_strain(const MaterialParams& p) { return p.yield_stress / p.youngs_mo
 
 Vec4 vec4(Real xx, Real yy, Real zz, Real xy) { return (Vec4() << xx, yy, zz, xy).finished(); }
 
-MaterialState advance(const MaterialParams& p, const Vec4& strain_increment,
-                      const MaterialState& state) {
+MaterialState advance(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& state) {
   return update_material(p, strain_increment, state).trial;
 }
 
@@ -63,8 +61,7 @@ Mat4 fd_stress_derivative(const MaterialParams& p, const Vec4& de, const Materia
     Vec4 plus = de, minus = de;
     plus(j) += h;
     minus(j) -= h;
-    d.col(j) = (update_material(p, plus, state).stress - update_material(p, minus, state).stress) /
-               (2.0 * h);
+    d.col(j) = (update_material(p, plus, state).stress - update_material(p, minus, state).stress) / (2.0 * h);
   }
   return d;
 }
@@ -77,16 +74,14 @@ Vec4 fd_energy_gradient(const MaterialParams& p, const Vec4& de, const MaterialS
     Vec4 plus = de, minus = de;
     plus(j) += h;
     minus(j) -= h;
-    g(j) = (update_material(p, plus, state).energy - update_material(p, minus, state).energy) /
-           (2.0 * h);
+    g(j) = (update_material(p, plus, state).energy - update_material(p, minus, state).energy) / (2.0 * h);
   }
   return g;
 }
 
 // One increment of axial strain under uniaxial stress: Newton on the lateral strain increments
 // (yy, zz; zz is free here) so that S_yy = S_zz = 0, with the consistent tangent.
-MaterialUpdate uniaxial_stress_increment(const MaterialParams& p, Real d_axial,
-                                         const MaterialState& state) {
+MaterialUpdate uniaxial_stress_increment(const MaterialParams& p, Real d_axial, const MaterialState& state) {
   Vec4 de = vec4(d_axial, -p.poisson_ratio * d_axial, -p.poisson_ratio * d_axial, 0.0);
   for (int iteration = 0; iteration < 30; ++iteration) {
     const MaterialUpdate u = update_material(p, de, state);
@@ -100,8 +95,7 @@ MaterialUpdate uniaxial_stress_increment(const MaterialParams& p, Real d_axial,
 }
 
 // The same for plane-strain compression: zz strain held at zero, S_yy = 0.
-MaterialUpdate plane_strain_compression_increment(const MaterialParams& p, Real d_axial,
-                                                  const MaterialState& state) {
+MaterialUpdate plane_strain_compression_increment(const MaterialParams& p, Real d_axial, const MaterialState& state) {
   const Real nu = p.poisson_ratio;
   Vec4 de = vec4(d_axial, -nu / (1.0 - nu) * d_axial, 0.0, 0.0);
   for (int iteration = 0; iteration < 30; ++iteration) {
@@ -139,8 +133,7 @@ UniaxialAnswer bilinear_reversal(const MaterialParams& p, Real eps_max, Real str
 
 // W_pl = int sigma_pl d eps_p for linear hardening.
 Real plastic_work_at(const MaterialParams& p, Real eq_plastic_strain) {
-  return p.yield_stress * eq_plastic_strain +
-         0.5 * p.plastic_modulus() * eq_plastic_strain * eq_plastic_strain;
+  return p.yield_stress * eq_plastic_strain + 0.5 * p.plastic_modulus() * eq_plastic_strain * eq_plastic_strain;
 }
 
 }  // namespace
@@ -179,8 +172,7 @@ TEST_CASE("elastic matrix gives the textbook plane-strain answers", "[material]"
   }
 }
 
-TEST_CASE("an elastic material is linear, stores no plastic state and has the quadratic energy",
-          "[material]") {
+TEST_CASE("an elastic material is linear, stores no plastic state and has the quadratic energy", "[material]") {
   MaterialParams p;  // plastic = false
   MaterialState committed = initial_state(p);
   CHECK(committed.yield_stress == 0.0);
@@ -214,8 +206,7 @@ TEST_CASE("sqrt_j2 and von_mises include zz and count the shear twice", "[materi
   CHECK(von_mises(vec4(-70.0, -70.0, -70.0, 0.0)) == Approx(0.0).margin(1e-13));
   // Plane-strain incompressible flow: S_zz = (S_xx + S_yy)/2 gives q = sqrt(3)/2 |S_xx - S_yy|.
   CHECK(von_mises(vec4(-200.0, 0.0, -100.0, 0.0)) == Approx(100.0 * kSqrt3).epsilon(1e-15));
-  CHECK(von_mises(vec4(3.0, -1.0, 2.0, 5.0)) ==
-        Approx(kSqrt3 * sqrt_j2(vec4(3.0, -1.0, 2.0, 5.0))));
+  CHECK(von_mises(vec4(3.0, -1.0, 2.0, 5.0)) == Approx(kSqrt3 * sqrt_j2(vec4(3.0, -1.0, 2.0, 5.0))));
 }
 
 // ---- closed-form material-point paths ---------------------------------------------------------
@@ -235,14 +226,11 @@ TEST_CASE("uniaxial stress follows the bilinear curve, through reverse yielding"
     const MaterialUpdate u = uniaxial_stress_increment(p, d, state);
     state = u.trial;
     strain += d;
-    const UniaxialAnswer exact =
-        k <= n_load ? bilinear_loading(p, strain) : bilinear_reversal(p, eps_max, strain);
+    const UniaxialAnswer exact = k <= n_load ? bilinear_loading(p, strain) : bilinear_reversal(p, eps_max, strain);
     CAPTURE(k, strain);
     REQUIRE(state.stress(0) == Approx(exact.stress).margin(1e-9 * p.yield_stress));
-    REQUIRE(state.eq_plastic_strain ==
-            Approx(exact.eq_plastic_strain).margin(1e-9 * yield_strain(p)));
-    REQUIRE(state.plastic_work ==
-            Approx(plastic_work_at(p, exact.eq_plastic_strain)).epsilon(1e-9).margin(1e-12));
+    REQUIRE(state.eq_plastic_strain == Approx(exact.eq_plastic_strain).margin(1e-9 * yield_strain(p)));
+    REQUIRE(state.plastic_work == Approx(plastic_work_at(p, exact.eq_plastic_strain)).epsilon(1e-9).margin(1e-12));
     max_lateral_stress = std::max(max_lateral_stress, state.stress.tail<3>().cwiseAbs().maxCoeff());
   }
   CHECK(max_lateral_stress < 1e-10 * p.yield_stress);
@@ -275,8 +263,7 @@ TEST_CASE("simple shear follows tau = (sigma_y0 + H' eps_p)/sqrt(3)", "[material
   }
 }
 
-TEST_CASE("plane-strain compression of a perfectly plastic strip tends to 2/sqrt(3) sigma_y",
-          "[material]") {
+TEST_CASE("plane-strain compression of a perfectly plastic strip tends to 2/sqrt(3) sigma_y", "[material]") {
   const MaterialParams p = steel(0.0);
   const Real sy = p.yield_stress, nu = p.poisson_ratio;
   const Real d = -0.1 * yield_strain(p);
@@ -348,8 +335,7 @@ TEST_CASE("consistent tangent matches central differences of the stress", "[mate
   }
 }
 
-TEST_CASE("continuum tangent: hardening-limited along the flow direction, elastic across it",
-          "[material]") {
+TEST_CASE("continuum tangent: hardening-limited along the flow direction, elastic across it", "[material]") {
   const Real ratio = GENERATE(0.07, 0.0, 0.99);
   CAPTURE(ratio);
   const MaterialParams p = steel(ratio);
@@ -378,8 +364,7 @@ TEST_CASE("continuum tangent: hardening-limited along the flow direction, elasti
   CHECK(relative_error(u.tangent, c_ep) < 1e-7);
 }
 
-TEST_CASE("continuum tangent on the surface is the general form of thesis (2.29)-(2.30)",
-          "[material]") {
+TEST_CASE("continuum tangent on the surface is the general form of thesis (2.29)-(2.30)", "[material]") {
   const Real ratio = GENERATE(0.07, 0.0, 0.99);
   CAPTURE(ratio);
   const MaterialParams p = steel(ratio);
@@ -393,8 +378,7 @@ TEST_CASE("continuum tangent on the surface is the general form of thesis (2.29)
   CHECK(relative_error(continuum_tangent(p, s.stress, s.yield_stress), expected) < 1e-13);
 }
 
-TEST_CASE("plastic tangent is the thesis's explicit C^EP with beta, also off the surface",
-          "[material]") {
+TEST_CASE("plastic tangent is the thesis's explicit C^EP with beta, also off the surface", "[material]") {
   const MaterialParams p = steel(GENERATE(0.07, 1.0 / 3.0, 0.0));
   const Real sigma_pl = GENERATE(5.0, 40.0, 105.0);
   const Vec4 stress = vec4(-150.0, 60.0, -30.0, 25.0);
@@ -403,8 +387,7 @@ TEST_CASE("plastic tangent is the thesis's explicit C^EP with beta, also off the
   const Vec4 s = stress - stress.head<3>().mean() * vec4(1.0, 1.0, 1.0, 0.0);
   // The thesis's (2.29) (docs/model.md, Sub-stepping):
   //   beta = 3/(2 sigma^2) / (1 + 2/3 (E E_T/(E - E_T)) (1 + nu)/E), on [xx, yy, xy].
-  const Real beta =
-      1.5 / (sigma_pl * sigma_pl) / (1.0 + 2.0 / 3.0 * e * et / (e - et) * (1.0 + nu) / e);
+  const Real beta = 1.5 / (sigma_pl * sigma_pl) / (1.0 + 2.0 / 3.0 * e * et / (e - et) * (1.0 + nu) / e);
   const int idx[3] = {0, 1, 3};
   const Real diag[3] = {(1.0 - nu) / (1.0 - 2.0 * nu), (1.0 - nu) / (1.0 - 2.0 * nu), 0.5};
   const Mat4 c_ep = plastic_tangent(p, stress, sigma_pl);
@@ -419,8 +402,7 @@ TEST_CASE("plastic tangent is the thesis's explicit C^EP with beta, also off the
   CHECK_THROWS_AS(plastic_tangent(p, stress, 0.0), std::logic_error);
 }
 
-TEST_CASE("continuum tangent is elastic inside the yield surface and for elastic material",
-          "[material]") {
+TEST_CASE("continuum tangent is elastic inside the yield surface and for elastic material", "[material]") {
   const MaterialParams p = steel(0.07);
   const Vec4 inside = vec4(100.0, 0.0, 30.0, 10.0);
   REQUIRE(von_mises(inside) < p.yield_stress);
@@ -454,10 +436,8 @@ TEST_CASE("energy density is the incremental potential: its gradient is the stre
   const std::vector<Case> cases = {
       {"elastic step", initial_state(p), ey * vec4(0.3, -0.1, 0.05, 0.2), false},
       {"first yield inside the step", initial_state(p), ey * vec4(3.0, -0.9, 0.2, 1.5), true},
-      {"plastic step from a hardened state", plastic_prestate(p), ey * vec4(0.5, -0.2, 0.1, 0.8),
-       true},
-      {"unloading from a hardened state", plastic_prestate(p), -0.5 * ey * vec4(0.3, 0.2, 0.0, 2.5),
-       false},
+      {"plastic step from a hardened state", plastic_prestate(p), ey * vec4(0.5, -0.2, 0.1, 0.8), true},
+      {"unloading from a hardened state", plastic_prestate(p), -0.5 * ey * vec4(0.3, 0.2, 0.0, 2.5), false},
   };
   for (const Case& k : cases) {
     CAPTURE(k.name);
@@ -467,8 +447,7 @@ TEST_CASE("energy density is the incremental potential: its gradient is the stre
   }
 }
 
-TEST_CASE("radial return minimises the incremental energy over the plastic strain increment",
-          "[material]") {
+TEST_CASE("radial return minimises the incremental energy over the plastic strain increment", "[material]") {
   const Real ratio = GENERATE(0.07, 0.0, 0.99);
   CAPTURE(ratio);
   const MaterialParams p = steel(ratio);
@@ -484,8 +463,7 @@ TEST_CASE("radial return minimises the incremental energy over the plastic strai
   const Vec4 eps_e_old = compliance * s.stress;
   const auto energy_for = [&](const Vec4& d_plastic) {
     const Vec4 eps_e = eps_e_old + de - d_plastic;
-    const Real dep = std::sqrt(
-        2.0 / 3.0 * (d_plastic.head<3>().squaredNorm() + 0.5 * d_plastic(3) * d_plastic(3)));
+    const Real dep = std::sqrt(2.0 / 3.0 * (d_plastic.head<3>().squaredNorm() + 0.5 * d_plastic(3) * d_plastic(3)));
     const Real eps_p = s.eq_plastic_strain;
     return 0.5 * eps_e.dot(c * eps_e) - 0.5 * eps_e_old.dot(c * eps_e_old) + p.yield_stress * dep +
            p.plastic_modulus() * (eps_p * dep + 0.5 * dep * dep);
@@ -505,8 +483,7 @@ TEST_CASE("radial return minimises the incremental energy over the plastic strai
 
 // ---- Substep ------------------------------------------------------------------------------------
 
-TEST_CASE("Substep equals the radial return on radial paths, for any number of sub-steps",
-          "[material]") {
+TEST_CASE("Substep equals the radial return on radial paths, for any number of sub-steps", "[material]") {
   // With a fixed deviator direction forward Euler on C^EP is exact for linear hardening, and
   // the elastic fraction puts first yield exactly where it is.
   const Real ratio = GENERATE(0.07, 0.0, 0.99);
@@ -516,8 +493,7 @@ TEST_CASE("Substep equals the radial return on radial paths, for any number of s
   MaterialParams sub = steel(ratio, StressIntegration::Substep);
   sub.n_substeps = n;
   const Real ey = yield_strain(rm);
-  const std::vector<Vec4> radial_increments = {ey * vec4(4.0, 0.0, 0.0, 0.0),
-                                               ey * vec4(0.0, 0.0, 0.0, 7.0)};
+  const std::vector<Vec4> radial_increments = {ey * vec4(4.0, 0.0, 0.0, 0.0), ey * vec4(0.0, 0.0, 0.0, 7.0)};
   for (const Vec4& de : radial_increments) {
     CAPTURE(de.transpose());
     const MaterialUpdate a = update_material(rm, de, initial_state(rm));
@@ -532,8 +508,7 @@ TEST_CASE("Substep equals the radial return on radial paths, for any number of s
   }
 }
 
-TEST_CASE("Substep converges at first order on a non-radial path, to the fine return map",
-          "[material]") {
+TEST_CASE("Substep converges at first order on a non-radial path, to the fine return map", "[material]") {
   const Real ratio = GENERATE(0.07, 0.0, 0.99);
   CAPTURE(ratio);
   MaterialParams rm = steel(ratio);
@@ -556,8 +531,7 @@ TEST_CASE("Substep converges at first order on a non-radial path, to the fine re
     CAPTURE(n, errors.back());
     CHECK(von_mises(u.stress) == Approx(u.trial.yield_stress).epsilon(1e-12));
   }
-  const Real rm_error =
-      (update_material(rm, de, start).stress - fine.stress).norm() / rm.yield_stress;
+  const Real rm_error = (update_material(rm, de, start).stress - fine.stress).norm() / rm.yield_stress;
   CAPTURE(errors, rm_error);
   for (std::size_t i = 1; i < errors.size(); ++i) {
     CHECK(errors[i] < errors[i - 1]);
@@ -570,8 +544,7 @@ TEST_CASE("Substep converges at first order on a non-radial path, to the fine re
   CHECK(errors.back() < 1e-2 * rm_error);
 }
 
-TEST_CASE("Substep energy is exact for an elastic step and tends to the return-map potential",
-          "[material]") {
+TEST_CASE("Substep energy is exact for an elastic step and tends to the return-map potential", "[material]") {
   MaterialParams rm = steel(0.07);
   MaterialParams sub = steel(0.07, StressIntegration::Substep);
   const Real ey = yield_strain(rm);
@@ -585,8 +558,7 @@ TEST_CASE("Substep energy is exact for an elastic step and tends to the return-m
   Real previous_error = std::numeric_limits<Real>::infinity();
   for (int n : {1, 4, 16, 64}) {
     sub.n_substeps = n;
-    const Real error =
-        std::abs(update_material(sub, de, initial_state(sub)).energy - exact) / exact;
+    const Real error = std::abs(update_material(sub, de, initial_state(sub)).energy - exact) / exact;
     CAPTURE(n, error);
     CHECK(error < previous_error);
     previous_error = error;
@@ -598,8 +570,7 @@ TEST_CASE("Substep energy is exact for an elastic step and tends to the return-m
 
 TEST_CASE("after plastic flow the stress lies on the hardened yield surface", "[material]") {
   const Real ratio = GENERATE(0.07, 0.0, 0.99);
-  const StressIntegration integration =
-      GENERATE(StressIntegration::ReturnMapping, StressIntegration::Substep);
+  const StressIntegration integration = GENERATE(StressIntegration::ReturnMapping, StressIntegration::Substep);
   CAPTURE(ratio, static_cast<int>(integration));
   const MaterialParams p = steel(ratio, integration);
   const Real ey = yield_strain(p);
@@ -610,9 +581,8 @@ TEST_CASE("after plastic flow the stress lies on the hardened yield surface", "[
   for (const Vec4& de : path) {
     const MaterialUpdate u = update_material(p, de, state);
     CAPTURE(de.transpose(), u.yielded);
-    REQUIRE(
-        u.trial.yield_stress ==
-        Approx(p.yield_stress + p.plastic_modulus() * u.trial.eq_plastic_strain).epsilon(1e-14));
+    REQUIRE(u.trial.yield_stress ==
+            Approx(p.yield_stress + p.plastic_modulus() * u.trial.eq_plastic_strain).epsilon(1e-14));
     if (u.yielded) {
       CHECK(std::abs(von_mises(u.stress) - u.trial.yield_stress) < 1e-10 * u.trial.yield_stress);
       CHECK(u.trial.eq_plastic_strain > state.eq_plastic_strain);
@@ -625,10 +595,8 @@ TEST_CASE("after plastic flow the stress lies on the hardened yield surface", "[
   CHECK(state.eq_plastic_strain > 0.0);
 }
 
-TEST_CASE("zero and volumetric increments from a state on the yield surface are elastic",
-          "[material]") {
-  const StressIntegration integration =
-      GENERATE(StressIntegration::ReturnMapping, StressIntegration::Substep);
+TEST_CASE("zero and volumetric increments from a state on the yield surface are elastic", "[material]") {
+  const StressIntegration integration = GENERATE(StressIntegration::ReturnMapping, StressIntegration::Substep);
   CAPTURE(static_cast<int>(integration));
   const MaterialParams p = steel(0.07, integration);
   MaterialState s = plastic_prestate(steel(0.07));
@@ -645,8 +613,7 @@ TEST_CASE("zero and volumetric increments from a state on the yield surface are 
   const Real dv = 1e-3;
   const MaterialUpdate volumetric = update_material(p, vec4(dv, dv, dv, 0.0), s);
   CHECK_FALSE(volumetric.yielded);
-  CHECK(relative_error(volumetric.stress,
-                       s.stress + 3.0 * p.bulk_modulus() * dv * vec4(1, 1, 1, 0)) < 1e-14);
+  CHECK(relative_error(volumetric.stress, s.stress + 3.0 * p.bulk_modulus() * dv * vec4(1, 1, 1, 0)) < 1e-14);
   CHECK(volumetric.trial.eq_plastic_strain == s.eq_plastic_strain);
 }
 
@@ -655,19 +622,14 @@ TEST_CASE("inadmissible parameters give NumericalError, not NaN", "[material]") 
   p.tangent_modulus = p.youngs_modulus;  // H' = infinity
   std::string why;
   REQUIRE_FALSE(p.is_valid(&why));
-  CHECK_THROWS_WITH(update_material(p, vec4(1e-2, 0.0, 0.0, 0.0), initial_state(p)),
-                    Catch::Contains("is_valid"));
+  CHECK_THROWS_WITH(update_material(p, vec4(1e-2, 0.0, 0.0, 0.0), initial_state(p)), Catch::Contains("is_valid"));
 }
 
-TEST_CASE("a non-finite strain increment throws NumericalError instead of spreading NaN",
-          "[material]") {
-  const Real bad =
-      GENERATE(std::numeric_limits<Real>::quiet_NaN(), std::numeric_limits<Real>::infinity());
-  for (const StressIntegration integration :
-       {StressIntegration::ReturnMapping, StressIntegration::Substep}) {
+TEST_CASE("a non-finite strain increment throws NumericalError instead of spreading NaN", "[material]") {
+  const Real bad = GENERATE(std::numeric_limits<Real>::quiet_NaN(), std::numeric_limits<Real>::infinity());
+  for (const StressIntegration integration : {StressIntegration::ReturnMapping, StressIntegration::Substep}) {
     MaterialParams p = steel(0.07, integration);
-    CHECK_THROWS_AS(update_material(p, vec4(1e-4, bad, 0.0, 0.0), initial_state(p)),
-                    NumericalError);
+    CHECK_THROWS_AS(update_material(p, vec4(1e-4, bad, 0.0, 0.0), initial_state(p)), NumericalError);
     p.plastic = false;
     CHECK_THROWS_WITH(update_material(p, vec4(bad, 0.0, 0.0, 0.0), initial_state(p)),
                       Catch::Contains("non-finite") && Catch::Contains("cut the step"));

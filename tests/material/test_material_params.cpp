@@ -82,8 +82,7 @@ TEST_CASE("is_valid names the field, its value and the violated rule", "[materia
   SECTION("zero Young's modulus") {
     MaterialParams p;
     p.youngs_modulus = 0.0;
-    CHECK_THAT(violation(p),
-               Catch::StartsWith("material.youngs_modulus = 0: must be finite and > 0"));
+    CHECK_THAT(violation(p), Catch::StartsWith("material.youngs_modulus = 0: must be finite and > 0"));
   }
   SECTION("infinite Young's modulus") {
     MaterialParams p;
@@ -93,27 +92,23 @@ TEST_CASE("is_valid names the field, its value and the violated rule", "[materia
   SECTION("zero yield stress of a plastic material") {
     MaterialParams p = plastic_steel();
     p.yield_stress = 0.0;
-    CHECK_THAT(violation(p),
-               Catch::StartsWith("material.yield_stress = 0: must be finite and > 0"));
+    CHECK_THAT(violation(p), Catch::StartsWith("material.yield_stress = 0: must be finite and > 0"));
   }
   SECTION("tangent modulus equal to E") {
     MaterialParams p = plastic_steel();
     p.tangent_modulus = p.youngs_modulus;
-    CHECK_THAT(
-        violation(p),
-        Catch::StartsWith("material.tangent_modulus = 210000: must satisfy 0 <= E_T < E = 210000"));
+    CHECK_THAT(violation(p),
+               Catch::StartsWith("material.tangent_modulus = 210000: must satisfy 0 <= E_T < E = 210000"));
   }
   SECTION("negative tangent modulus") {
     MaterialParams p = plastic_steel();
     p.tangent_modulus = -5.0;
-    CHECK_THAT(violation(p),
-               Catch::StartsWith("material.tangent_modulus = -5: must satisfy 0 <= E_T"));
+    CHECK_THAT(violation(p), Catch::StartsWith("material.tangent_modulus = -5: must satisfy 0 <= E_T"));
   }
   SECTION("negative density") {
     MaterialParams p;
     p.density = -7.8e-9;
-    CHECK_THAT(violation(p),
-               Catch::StartsWith("material.density = -7.8e-09: must be finite and >= 0"));
+    CHECK_THAT(violation(p), Catch::StartsWith("material.density = -7.8e-09: must be finite and >= 0"));
   }
   SECTION("no sub-steps") {
     MaterialParams p;

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "../support/strip_spec.hpp"
 #include "roller/core/error.hpp"
 #include "roller/mesh/mesh.hpp"
 #include "roller/mesh/strip_mesher.hpp"
-#include "../support/strip_spec.hpp"
 
 using namespace roller;
 
@@ -64,8 +64,7 @@ bool all_equal(const std::vector<Real>& values, Real value) {
 }
 
 bool strictly_increasing(const std::vector<Real>& values) {
-  return std::adjacent_find(values.begin(), values.end(), std::greater_equal<Real>()) ==
-         values.end();
+  return std::adjacent_find(values.begin(), values.end(), std::greater_equal<Real>()) == values.end();
 }
 
 Real signed_area(const Mesh& mesh, const std::vector<Index>& element) {
@@ -169,10 +168,8 @@ TEST_CASE("The thesis meshes Z1-Z4 have the thesis's node, element and top-node 
     StripMeshSpec spec;
     Index n_nodes, n_elements, n_top;
   };
-  const std::vector<Expected> scenes = {{z1_spec(), 184, 270, 46},
-                                        {z2_spec(), 55, 40, 11},
-                                        {z3_spec(), 186, 150, 31},
-                                        {z4_spec(), 105, 80, 21}};
+  const std::vector<Expected> scenes = {
+      {z1_spec(), 184, 270, 46}, {z2_spec(), 55, 40, 11}, {z3_spec(), 186, 150, 31}, {z4_spec(), 105, 80, 21}};
   for (const auto& scene : scenes) {
     const Mesh mesh = make_strip_mesh(scene.spec);
     CHECK(mesh.n_nodes() == scene.n_nodes);
@@ -226,8 +223,7 @@ TEST_CASE("Edge sets are sorted along their edge and the corner sets hold one no
   CHECK(mesh.node_set("all").back() == 185);
 }
 
-TEST_CASE("Every element is counter-clockwise with positive area and the areas sum to L x H",
-          "[mesh]") {
+TEST_CASE("Every element is counter-clockwise with positive area and the areas sum to L x H", "[mesh]") {
   for (const StripMeshSpec& spec : assorted_specs()) {
     const Mesh mesh = make_strip_mesh(spec);
     Real total = 0.0;
@@ -246,9 +242,8 @@ TEST_CASE("The diagonal option decides how quads are split into triangles", "[me
   StripMeshSpec spec = z2_spec();
   spec.element = ElementType::T3;
   const auto triangles_at = [](const Mesh& mesh, Index node) {
-    return std::count_if(mesh.elements.begin(), mesh.elements.end(), [&](const auto& e) {
-      return std::find(e.begin(), e.end(), node) != e.end();
-    });
+    return std::count_if(mesh.elements.begin(), mesh.elements.end(),
+                         [&](const auto& e) { return std::find(e.begin(), e.end(), node) != e.end(); });
   };
   const Index bottom_left = 4;
   const Index first_interior_node = 8;  // column 1, one row above the bottom
@@ -277,8 +272,7 @@ TEST_CASE("Refinement by 2 gives four times the elements and nests the coarse gr
     const std::vector<Real> fine_xs = node_xs(fine);
     const std::vector<Real> fine_ys = node_ys(fine);
     bool nested = true;
-    for (const Vec2& p : coarse.nodes)
-      nested = nested && contains(fine_xs, p.x()) && contains(fine_ys, p.y());
+    for (const Vec2& p : coarse.nodes) nested = nested && contains(fine_xs, p.x()) && contains(fine_ys, p.y());
     CHECK(nested);
   }
   StripMeshSpec z3 = z3_spec();
@@ -308,29 +302,25 @@ TEST_CASE("Geometric grading from an end is a progression with the requested rat
     std::vector<Real> h = intervals_of(lines);
     if (focus == extent) std::reverse(h.begin(), h.end());  // list from the fine end
     CHECK(h.back() / h.front() == Approx(4.0));
-    for (std::size_t k = 1; k < h.size(); ++k)
-      CHECK(h[k] / h[k - 1] == Approx(std::pow(4.0, 0.25)));
+    for (std::size_t k = 1; k < h.size(); ++k) CHECK(h[k] / h[k - 1] == Approx(std::pow(4.0, 0.25)));
   }
 }
 
-TEST_CASE("Geometric grading around an inside focus is finest and equal on both sides of it",
-          "[mesh]") {
+TEST_CASE("Geometric grading around an inside focus is finest and equal on both sides of it", "[mesh]") {
   struct Case {
     Real extent;
     int n;
     Real ratio, focus;
   };
-  for (const Case c :
-       {Case{427.5, 30, 3.0, 202.19}, Case{100.0, 11, 5.0, 50.0}, Case{200.0, 20, 8.0, 160.0},
-        Case{225.0, 45, 2.0, 30.0}, Case{10.0, 7, 1.5, 3.3}}) {
+  for (const Case c : {Case{427.5, 30, 3.0, 202.19}, Case{100.0, 11, 5.0, 50.0}, Case{200.0, 20, 8.0, 160.0},
+                       Case{225.0, 45, 2.0, 30.0}, Case{10.0, 7, 1.5, 3.3}}) {
     CAPTURE(c.extent, c.n, c.ratio, c.focus);
     const std::vector<Real> lines = grid_lines(c.extent, c.n, geometric(c.ratio, c.focus));
     REQUIRE(lines.size() == static_cast<std::size_t>(c.n) + 1);
     CHECK(lines.front() == 0.0);
     CHECK(lines.back() == c.extent);
-    const auto at_focus = std::find_if(lines.begin(), lines.end(), [&](Real x) {
-      return std::abs(x - c.focus) < 1e-9 * c.extent;
-    });
+    const auto at_focus =
+        std::find_if(lines.begin(), lines.end(), [&](Real x) { return std::abs(x - c.focus) < 1e-9 * c.extent; });
     REQUIRE(at_focus != lines.end());
     const std::size_t f = static_cast<std::size_t>(at_focus - lines.begin());
     REQUIRE(f > 0);
@@ -355,8 +345,7 @@ TEST_CASE("A focus about one finest interval from an end grades from that end", 
     CAPTURE(focus);
     const std::vector<Real> h = intervals_of(grid_lines(100.0, 10, geometric(4.0, focus)));
     CHECK(max_over_min(h) == Approx(4.0));
-    for (std::size_t k = 1; k < h.size(); ++k)
-      CHECK(h[k] / h[k - 1] == Approx(std::pow(4.0, 1.0 / 9)));
+    for (std::size_t k = 1; k < h.size(); ++k) CHECK(h[k] / h[k - 1] == Approx(std::pow(4.0, 1.0 / 9)));
   }
   const std::vector<Real> h = intervals_of(grid_lines(100.0, 10, geometric(4.0, 97.0)));
   CHECK(h.front() / h.back() == Approx(4.0));
@@ -373,8 +362,7 @@ TEST_CASE("The ratio stays exact when one focus side could hold only a single in
 TEST_CASE("When counts forbid a common focus spacing each side grades on its own", "[mesh]") {
   // 59 intervals, centred focus, nearly uniform: 29 on one side, 30 on the other.
   const std::vector<Real> lines = grid_lines(100.0, 59, geometric(1.05, 50.0));
-  const auto at_focus =
-      std::find_if(lines.begin(), lines.end(), [](Real x) { return std::abs(x - 50.0) < 1e-9; });
+  const auto at_focus = std::find_if(lines.begin(), lines.end(), [](Real x) { return std::abs(x - 50.0) < 1e-9; });
   REQUIRE(at_focus != lines.end());
   const std::size_t f = static_cast<std::size_t>(at_focus - lines.begin());
   const std::vector<Real> h = intervals_of(lines);
@@ -432,9 +420,18 @@ TEST_CASE("Bad mesh specs are rejected with the offending key in the message", "
       {[](StripMeshSpec& s) { s.grading_x = geometric(0.5, 0.0); }, "mesh.grading_x.ratio = 0.5"},
       {[](StripMeshSpec& s) { s.grading_y = geometric(2.0, 41.0); }, "mesh.grading_y.focus = 41"},
       {[](StripMeshSpec& s) { s.x_lines = {0.0}; }, "mesh.x_lines"},
-      {[](StripMeshSpec& s) { s.x_lines = {1.0, 100.0}; }, "mesh.x_lines[0] = 1"},
-      {[](StripMeshSpec& s) { s.x_lines = {0.0, 90.0}; }, "mesh.x_lines[1] = 90"},
-      {[](StripMeshSpec& s) { s.y_lines = {0.0, 20.0, 20.0, 40.0}; }, "mesh.y_lines[2] = 20"},
+      {[](StripMeshSpec& s) {
+         s.x_lines = {1.0, 100.0};
+       },
+       "mesh.x_lines[0] = 1"},
+      {[](StripMeshSpec& s) {
+         s.x_lines = {0.0, 90.0};
+       },
+       "mesh.x_lines[1] = 90"},
+      {[](StripMeshSpec& s) {
+         s.y_lines = {0.0, 20.0, 20.0, 40.0};
+       },
+       "mesh.y_lines[2] = 20"},
       {[](StripMeshSpec& s) { s.element = static_cast<ElementType>(7); }, "mesh.element"},
       {[](StripMeshSpec& s) { s.diagonal = static_cast<Diagonal>(9); }, "mesh.diagonal"},
   };
@@ -460,9 +457,8 @@ TEST_CASE("grid_lines rejects bad arguments with InputError", "[mesh]") {
 TEST_CASE("An unknown node set name is an InputError listing the known names", "[mesh]") {
   const Mesh mesh = make_strip_mesh(z2_spec());
   CHECK_THROWS_AS(mesh.node_set("middle"), InputError);
-  CHECK_THROWS_WITH(mesh.node_set("middle"), Catch::Contains("'middle'") &&
-                                                 Catch::Contains("bottom_left") &&
-                                                 Catch::Contains("contact"));
+  CHECK_THROWS_WITH(mesh.node_set("middle"),
+                    Catch::Contains("'middle'") && Catch::Contains("bottom_left") && Catch::Contains("contact"));
   CHECK_THROWS_WITH(mesh.node_set("topp"), Catch::Contains("did you mean 'top'"));
   CHECK_NOTHROW(mesh.node_set("bottom_right"));
 }

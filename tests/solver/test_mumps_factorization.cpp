@@ -107,7 +107,8 @@ TEST_CASE("SparseSolver solves below and above the MUMPS threshold alike", "[sol
 TEST_CASE("MumpsSolver Schur complement and interior solve equal the dense block formulas", "[solver]") {
   // A 2D 5-point Laplacian plus a diagonal shift (SPD), Schur variables scattered through it.
   const int g = 7, n = g * g;
-  const SparseMatrix a = grid_matrix(g, [](int k) { return 4.2 + 0.01 * k; }, -1.0);
+  const SparseMatrix a = grid_matrix(
+      g, [](int k) { return 4.2 + 0.01 * k; }, -1.0);
   const std::vector<Index> schur = {3, 17, 18, 40, 5};
   std::vector<Index> interior;
   for (Index k = 0; k < n; ++k)
@@ -133,27 +134,27 @@ TEST_CASE("MumpsSolver Schur complement and interior solve equal the dense block
   variants[3].out_of_core = true;
   variants[3].directory = ooc.string();
   for (const LinearSolverOptions& options : variants)
-  for (const auto symmetry : {MumpsSolver::Symmetry::Symmetric, MumpsSolver::Symmetry::General}) {
-    INFO("ordering " << options.ordering << ", out of core " << options.out_of_core);
-    MumpsSolver solver(symmetry, options);
-    MatX s;
-    for (Real scale : {1.0, 3.0}) {  // second pass reuses the analysis
-      REQUIRE(solver.factorize_with_schur(scale * a, schur, &s));
-      if (options.out_of_core) CHECK_FALSE(std::filesystem::is_empty(ooc));  // the factors are on disk
-      CHECK((s - scale * s_dense).norm() < 1e-12 * scale * s_dense.norm());
+    for (const auto symmetry : {MumpsSolver::Symmetry::Symmetric, MumpsSolver::Symmetry::General}) {
+      INFO("ordering " << options.ordering << ", out of core " << options.out_of_core);
+      MumpsSolver solver(symmetry, options);
+      MatX s;
+      for (Real scale : {1.0, 3.0}) {  // second pass reuses the analysis
+        REQUIRE(solver.factorize_with_schur(scale * a, schur, &s));
+        if (options.out_of_core) CHECK_FALSE(std::filesystem::is_empty(ooc));  // the factors are on disk
+        CHECK((s - scale * s_dense).norm() < 1e-12 * scale * s_dense.norm());
+      }
+      const VecX b = VecX::LinSpaced(n, -1.0, 2.0);
+      VecX b_i(interior.size());
+      for (std::size_t k = 0; k < interior.size(); ++k) b_i(k) = b(interior[k]);
+      const VecX x_i = (3.0 * a_ii).ldlt().solve(b_i);
+      const VecX x = solver.solve_interior(b);
+      for (std::size_t k = 0; k < interior.size(); ++k) CHECK(std::abs(x(interior[k]) - x_i(k)) < 1e-12);
+      for (const Index k : schur) CHECK(x(k) == 0.0);
+      // A plain factorisation afterwards solves the whole system again.
+      REQUIRE(solver.factorize(a));
+      const VecX x_full = solver.solve(a * b);
+      CHECK((x_full - b).norm() < 1e-10 * b.norm());
     }
-    const VecX b = VecX::LinSpaced(n, -1.0, 2.0);
-    VecX b_i(interior.size());
-    for (std::size_t k = 0; k < interior.size(); ++k) b_i(k) = b(interior[k]);
-    const VecX x_i = (3.0 * a_ii).ldlt().solve(b_i);
-    const VecX x = solver.solve_interior(b);
-    for (std::size_t k = 0; k < interior.size(); ++k) CHECK(std::abs(x(interior[k]) - x_i(k)) < 1e-12);
-    for (const Index k : schur) CHECK(x(k) == 0.0);
-    // A plain factorisation afterwards solves the whole system again.
-    REQUIRE(solver.factorize(a));
-    const VecX x_full = solver.solve(a * b);
-    CHECK((x_full - b).norm() < 1e-10 * b.norm());
-  }
   CHECK(std::filesystem::is_empty(ooc));
   std::filesystem::remove_all(ooc);
 }
@@ -164,7 +165,8 @@ TEST_CASE("MumpsSolver retries a factorisation whose delayed pivots overrun the 
   // the pattern) cannot foresee. With no headroom (ICNTL(14) = 0) the first attempt overruns
   // (INFOG(1) = -9, measured) and the wrapper raises the headroom until it fits.
   const int n = 20 * 20;
-  const SparseMatrix a = grid_matrix(20, [](int k) { return 1e-8 * (k % 3 - 1); }, 1.0);
+  const SparseMatrix a = grid_matrix(
+      20, [](int k) { return 1e-8 * (k % 3 - 1); }, 1.0);
   LinearSolverOptions options;
   options.workspace_percent = 0;
   MumpsSolver ldlt(MumpsSolver::Symmetry::Symmetric, options);

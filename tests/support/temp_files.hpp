@@ -16,8 +16,7 @@ class TempDir {
     std::random_device rd;
     for (int attempt = 0; attempt < 100; ++attempt) {
       const std::filesystem::path candidate =
-          std::filesystem::temp_directory_path() /
-          (prefix + "_" + std::to_string(rd()) + "_" + std::to_string(rd()));
+          std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(rd()) + "_" + std::to_string(rd()));
       if (std::filesystem::create_directory(candidate)) {
         path_ = candidate;
         return;

@@ -10,9 +10,9 @@
 namespace roller {
 
 struct HertzSolution {
-  Real load = 0.0;        // P [N per mm width]
-  Real half_width = 0.0;  // a [mm]
-  Real peak = 0.0;        // p0 [MPa]
+  Real load = 0.0;              // P [N per mm width]
+  Real half_width = 0.0;        // a [mm]
+  Real peak = 0.0;              // p0 [MPa]
   Real pressure(Real x) const;  // p at distance x from the centre (0 outside the contact)
 };
 
@@ -26,9 +26,9 @@ struct PressureSample {
 
 struct HertzComparison {
   HertzSolution analytic;
-  Real half_width = 0.0;  // a fitted to the computed profile: least squares of p^2 = p0^2 - (p0/a)^2 x^2
-                          // over the samples with p > 1e-6 of the largest
-  Real peak = 0.0;        // largest computed pressure
+  Real half_width = 0.0;        // a fitted to the computed profile: least squares of p^2 = p0^2 - (p0/a)^2 x^2
+                                // over the samples with p > 1e-6 of the largest
+  Real peak = 0.0;              // largest computed pressure
   Real half_width_error = 0.0;  // (a_h - a)/a
   Real peak_error = 0.0;        // (p0_h - p0)/p0
   Real l2_error = 0.0;          // ||p_h - p||_L2 / ||p||_L2 over the samples (trapezoidal)
@@ -47,7 +47,7 @@ struct HertzComparison {
 std::vector<Real> hertz_nodal_forces(const HertzSolution& h, const std::vector<Real>& x);
 
 // Samples sorted by x; `load` is the computed total normal load.
-HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load,
-                                   Real radius, Real plane_strain_modulus);
+HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load, Real radius,
+                                   Real plane_strain_modulus);
 
 }  // namespace roller

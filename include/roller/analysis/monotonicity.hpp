@@ -98,8 +98,7 @@ struct OperatorOptions {
 
 // A = C + T (+ mass_scale I) at `stress` [xx, yy, zz, xy] with current yield stress
 // `yield_stress` (ignored for TangentKind::Elastic; must be > 0 for PlasticBranch).
-Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress,
-                const OperatorOptions& options);
+Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress, const OperatorOptions& options);
 
 // A with the algorithmic (consistent) tangent of the backward-Euler return: the material update
 // of `strain_increment` [xx, yy, zz, 2xy] from `committed` gives the tangent and the stress that
@@ -142,8 +141,7 @@ Real restoring_time_step(Real density, Real h, Real lambda_min);
 // quadrature and M its consistent (or row-sum lumped) mass. Square Q4 of side d: d/sqrt(24)
 // (lumped: d/2); right T3 with legs d: d/6 (lumped: d/3). Throws NumericalError for inverted
 // elements.
-Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates,
-                             bool lumped_mass);
+Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordinates, bool lumped_mass);
 
 // ---- The whole strip ----------------------------------------------------------------------
 
@@ -189,8 +187,7 @@ struct StripMonotonicity {
 // are h sqrt(mass_factor rho / -lambda_min). dt = 0 checks the quasistatic operator. Q4 B-bar
 // replaces the volumetric strain by its element average; the pointwise A ignores that (a
 // standard-Q4 view).
-StripMonotonicity check_strip(const StripModel& model, Real dt,
-                              const StripMonotonicityOptions& options = {});
+StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonotonicityOptions& options = {});
 
 // ---- The assembled operator ---------------------------------------------------------------
 

@@ -49,8 +49,7 @@ struct MapPoint {
 
 // A at one point of the study.
 Mat4 map_operator(const MonotonicityMapOptions& options, Real sigma_pl, const ThesisParameters& p);
-MapPoint evaluate_map_point(const MonotonicityMapOptions& options, Real sigma_pl,
-                            const ThesisParameters& p);
+MapPoint evaluate_map_point(const MonotonicityMapOptions& options, Real sigma_pl, const ThesisParameters& p);
 
 // The whole grid; order: sigma slowest, then a, then b, c fastest. Throws InputError for
 // invalid options.
@@ -72,7 +71,7 @@ std::vector<MapSlice> thesis_slices();
 
 // n_first x n_second points over the slice's two axes (ranges from options), at yield stress
 // sigma_pl. First axis: a for AB and CA, b for CB (slowest); second: b for AB, c otherwise.
-std::vector<MapPoint> sweep_slice(const MonotonicityMapOptions& options, const MapSlice& slice,
-                                  Real sigma_pl, int n_first, int n_second);
+std::vector<MapPoint> sweep_slice(const MonotonicityMapOptions& options, const MapSlice& slice, Real sigma_pl,
+                                  int n_first, int n_second);
 
 }  // namespace roller

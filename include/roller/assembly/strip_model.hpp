@@ -84,7 +84,7 @@ class StripModel {
   // evaluate(), and the trial states at u when `trial` is given (only commit needs them, so
   // they are not kept between evaluations).
   StripEvaluation evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
-                       std::vector<MaterialState>* trial);
+                                  std::vector<MaterialState>* trial);
   ElementVector element_values(Index e, const VecX& u) const;
   // Gives `h` the Hessian's sparsity (reusing it when it already has it) with zero values.
   void zero_hessian(SparseMatrix& h) const;

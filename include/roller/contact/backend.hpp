@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "roller/contact/increment_problem.hpp"
 #include "roller/contact/contact_options.hpp"
+#include "roller/contact/increment_problem.hpp"
 #include "roller/solver/newton.hpp"
 
 namespace roller {
@@ -54,12 +54,12 @@ struct BackendStats {
 struct BackendResult {
   ContactTermination status = ContactTermination::Failed;
   std::string message;
-  VecX x;                           // free-dof increment
+  VecX x;  // free-dof increment
   std::vector<NodeContact> contact;
-  int iterations = 0;               // Newton or interior-point iterations (all passes)
+  int iterations = 0;  // Newton or interior-point iterations (all passes)
   int factorizations = 0;
-  Real residual = 0.0;              // relative equilibrium residual at the solution
-  Real max_penetration = 0.0;       // max(0, -min gap) [mm]
+  Real residual = 0.0;         // relative equilibrium residual at the solution
+  Real max_penetration = 0.0;  // max(0, -min gap) [mm]
   double wall_s = 0.0;
   BackendStats stats;
   bool converged() const { return status == ContactTermination::Converged; }
@@ -78,7 +78,6 @@ class ContactBackend {
 
 // Throws InputError naming the option when the options are invalid. `newton` controls the
 // penalty backend's Newton iterations (the scene's [newton] table).
-std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options,
-                                                     const NewtonOptions& newton);
+std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options, const NewtonOptions& newton);
 
 }  // namespace roller

@@ -73,25 +73,25 @@ struct RawIpoptOption {
 
 struct IpoptOptions {
   IpoptFormulation formulation = IpoptFormulation::Condensed;
-  Real tol = 1e-9;               // Ipopt's tol on the scaled NLP
+  Real tol = 1e-9;  // Ipopt's tol on the scaled NLP
   int max_iter = 500;
   MuStrategy mu_strategy = MuStrategy::Adaptive;
   int print_level = 0;
   bool warm_start = false;
   IpoptFriction friction = IpoptFriction::Split;
-  Real regularization = 1e-8;            // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only
+  Real regularization = 1e-8;  // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only
   FixedPointRule fixed_point = FixedPointRule::Converge;
-  Real fixed_point_tol = 1e-6;           // relative change of F_N that ends the fixed point (changes
-                                         // below a pass's multiplier resolution end it too)
+  Real fixed_point_tol = 1e-6;  // relative change of F_N that ends the fixed point (changes
+                                // below a pass's multiplier resolution end it too)
   int fixed_point_max = 30;
-  std::vector<RawIpoptOption> raw;       // applied after roller's own settings (override them)
+  std::vector<RawIpoptOption> raw;  // applied after roller's own settings (override them)
   bool is_valid(std::string* why) const;
 };
 
 struct ContactOptions {
   ContactBackendKind backend = ContactBackendKind::Ipopt;  // ipopt: the main method
-  Real friction = 0.0;              // Coulomb mu
-  std::string candidates = "contact";  // node set of contact candidates
+  Real friction = 0.0;                                     // Coulomb mu
+  std::string candidates = "contact";                      // node set of contact candidates
   IncrementPredictor predictor = IncrementPredictor::Extrapolate;
   PenaltyOptions penalty;
   IpoptOptions ipopt;

@@ -17,10 +17,8 @@ namespace roller {
 // Candidates farther than `reach` [mm] from the roller surface at the start are left out: they
 // cannot touch it within the increment (no wasted contact variables). Use reach = infinity to
 // keep all.
-std::vector<ContactCandidate> make_contact_candidates(const StripModel& model,
-                                                      const std::vector<Index>& nodes,
+std::vector<ContactCandidate> make_contact_candidates(const StripModel& model, const std::vector<Index>& nodes,
                                                       const VecX& prescribed, const VecX& predictor,
-                                                      const Vec2& roller_end_centre, Real radius,
-                                                      Real reach);
+                                                      const Vec2& roller_end_centre, Real radius, Real reach);
 
 }  // namespace roller

@@ -20,15 +20,15 @@ namespace roller {
 
 struct ContactCandidate {
   Index node = 0;
-  Index free_dof[2] = {-1, -1};  // free index of the x and y dof, -1 when prescribed
-  Vec2 position = Vec2::Zero();  // x^n, start of the increment
-  Vec2 prescribed = Vec2::Zero();// increment of prescribed components (0 for free components)
-  Vec2 tangent = Vec2::Zero();   // t_i, fixed within the increment
-  Real tributary_length = 0.0;   // surface length [mm] that node i represents (for pressures)
-  Real element_size = 0.0;       // depth of the surface element under node i [mm] (penalty scale)
-  Real tangential_force = 0.0;   // committed F_T^n of the previous increment (penalty history)
-  Real normal_force_guess = 0.0; // F_N of the previous increment / fixed-point pass (friction
-                                 // threshold mu F_N for Tresca-type inner problems)
+  Index free_dof[2] = {-1, -1};    // free index of the x and y dof, -1 when prescribed
+  Vec2 position = Vec2::Zero();    // x^n, start of the increment
+  Vec2 prescribed = Vec2::Zero();  // increment of prescribed components (0 for free components)
+  Vec2 tangent = Vec2::Zero();     // t_i, fixed within the increment
+  Real tributary_length = 0.0;     // surface length [mm] that node i represents (for pressures)
+  Real element_size = 0.0;         // depth of the surface element under node i [mm] (penalty scale)
+  Real tangential_force = 0.0;     // committed F_T^n of the previous increment (penalty history)
+  Real normal_force_guess = 0.0;   // F_N of the previous increment / fixed-point pass (friction
+                                   // threshold mu F_N for Tresca-type inner problems)
 };
 
 struct RollerMotion {
@@ -47,8 +47,8 @@ inline Vec2 contact_force(Real normal_force, Real tangential_force, const Vec2& 
 
 class IncrementProblem {
  public:
-  IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates,
-                   RollerMotion roller, Real youngs_modulus, Real poisson_ratio);
+  IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates, RollerMotion roller,
+                   Real youngs_modulus, Real poisson_ratio);
 
   // Strip part: Pi(x) over the free dofs and the force scale at x, its gradient and Hessian
   // (full symmetric storage).

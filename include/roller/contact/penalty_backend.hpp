@@ -34,8 +34,8 @@ class PenaltyBackend : public ContactBackend {
  private:
   // Newton at fixed penalties from x (updated in place); with `frozen`, every node keeps the
   // given status (see contact_state in the .cpp).
-  BackendResult newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
-                             Real tolerance, const std::vector<NodeContact>* frozen = nullptr) const;
+  BackendResult newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x, Real tolerance,
+                             const std::vector<NodeContact>* frozen = nullptr) const;
   static constexpr int kMaxActiveSetPasses = 20;
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
   ContactOptions options_;

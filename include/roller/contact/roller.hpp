@@ -26,7 +26,7 @@ struct RollerPose {
 struct PathSegment {
   int first_step = 1;  // the segment acts over steps first_step..last_step (1-based, inclusive)
   int last_step = 1;
-  Real dx = 0.0;       // total centre travel over the segment [mm]
+  Real dx = 0.0;  // total centre travel over the segment [mm]
   Real dy = 0.0;
   Real slip_start = 0.0;  // creep ratio at the start and end of the segment (linear in between)
   Real slip_end = 0.0;
@@ -35,10 +35,10 @@ struct PathSegment {
 };
 
 struct RollerSpec {
-  Real radius = 300.0;                 // R [mm]
-  std::optional<Vec2> start_centre;    // default: above the strip's top at x = length/2, touching
+  Real radius = 300.0;               // R [mm]
+  std::optional<Vec2> start_centre;  // default: above the strip's top at x = length/2, touching
   Real start_angle = 0.0;
-  std::vector<PathSegment> path;       // steps not covered by a segment keep the roller still
+  std::vector<PathSegment> path;             // steps not covered by a segment keep the roller still
   std::optional<SuspensionSpec> suspension;  // absent: the centre follows the path exactly
   bool is_valid(std::string* why) const;
 };

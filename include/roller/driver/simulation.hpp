@@ -132,8 +132,8 @@ class Simulation {
   BackendResult solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
                               RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
-  Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
-                           RollerMotion& motion, VecX& x, Increment& inc);
+  Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
+                           VecX& x, Increment& inc);
   // Accepts a converged increment (transactional: a throw of the strip's commit changes nothing).
   void commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to, Increment& inc);
   void record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result, const VecX& u);

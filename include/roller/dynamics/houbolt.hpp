@@ -57,9 +57,9 @@ class HouboltHistory {
 // z = |z| e^{i omega_bar dt} gives the scheme's period T_bar = 2 pi / omega_bar and its
 // amplitude decay |z| per step (the reference for the integrator's tests and docs).
 struct HouboltSpectrum {
-  Real modulus = 0.0;             // |z| of the principal root: amplitude ratio per step
-  Real period_ratio = 0.0;        // T_bar / T
-  Real damping_ratio = 0.0;       // xi_bar = -ln|z| / (omega_bar dt)
+  Real modulus = 0.0;        // |z| of the principal root: amplitude ratio per step
+  Real period_ratio = 0.0;   // T_bar / T
+  Real damping_ratio = 0.0;  // xi_bar = -ln|z| / (omega_bar dt)
 };
 HouboltSpectrum houbolt_spectrum(Real omega_dt);
 

@@ -12,8 +12,8 @@
 #include <optional>
 #include <string>
 
-#include "roller/dynamics/suspension_spec.hpp"
 #include "roller/dynamics/houbolt.hpp"
+#include "roller/dynamics/suspension_spec.hpp"
 
 namespace roller {
 
@@ -42,7 +42,7 @@ struct CouplingResult {
   bool converged = false;
   int iterations = 0;  // contact solves
   Real deflection = 0.0;
-  Real force = 0.0;    // F_y at the final deflection
+  Real force = 0.0;  // F_y at the final deflection
   std::string message;
 };
 

@@ -29,26 +29,24 @@ struct ElementInput {
   ElementType type = ElementType::Q4;
   const std::vector<PointGeometry>* geometry = nullptr;  // start-of-increment configuration
   const MaterialState* committed = nullptr;              // one state per integration point
-  ElementVector displacement;  // increment u, ordered [u_x0, u_y0, u_x1, u_y1, ...]
+  ElementVector displacement;                            // increment u, ordered [u_x0, u_y0, u_x1, u_y1, ...]
 };
 
 struct ElementOutput {
   Real energy = 0.0;
-  ElementVector residual;      // filled when requested
-  ElementMatrix tangent;       // filled when requested
+  ElementVector residual;              // filled when requested
+  ElementMatrix tangent;               // filled when requested
   std::vector<MaterialUpdate> points;  // material update per integration point
   bool any_yielded = false;
 };
 
 // Throws NumericalError when the material update fails (message names the cause).
-void evaluate_element(const ElementOptions& options, const MaterialParams& material,
-                      const ElementInput& in, bool want_residual, bool want_tangent,
-                      ElementOutput& out);
+void evaluate_element(const ElementOptions& options, const MaterialParams& material, const ElementInput& in,
+                      bool want_residual, bool want_tangent, ElementOutput& out);
 
 // Deformation gradient F = I + du/dX of the increment at each integration point, used to push
 // the converged stress forward (finite kinematics).
-std::vector<Mat2> deformation_gradients(const std::vector<PointGeometry>& geometry,
-                                        const ElementVector& displacement);
+std::vector<Mat2> deformation_gradients(const std::vector<PointGeometry>& geometry, const ElementVector& displacement);
 
 // Push-forward of the converged second Piola-Kirchhoff stress of the increment to the Cauchy
 // stress of the new configuration: sigma = J^-1 F S F^T (in plane), sigma_zz = J^-1 S_zz.
@@ -59,7 +57,6 @@ Vec4 push_forward(const Mat2& f, const Vec4& second_piola);
 
 // Consistent (row sum = total mass) or lumped (diagonal, row-sum lumping) mass matrix
 // rho * int N^T N, for both displacement components.
-ElementMatrix element_mass(ElementType type, const std::vector<PointGeometry>& geometry,
-                           Real density, bool lumped);
+ElementMatrix element_mass(ElementType type, const std::vector<PointGeometry>& geometry, Real density, bool lumped);
 
 }  // namespace roller

@@ -25,8 +25,7 @@ struct PointGeometry {
 
 // Throws NumericalError when an integration point has det(J) <= 0 (inverted element): the
 // message names the element so the caller can report it and cut the step.
-std::vector<PointGeometry> element_geometry(ElementType t, const std::vector<Vec2>& coordinates,
-                                            Index element_id);
+std::vector<PointGeometry> element_geometry(ElementType t, const std::vector<Vec2>& coordinates, Index element_id);
 // The same into `out` (resized), for loops over every element that reuse one buffer.
 void element_geometry(ElementType t, const std::vector<Vec2>& coordinates, Index element_id,
                       std::vector<PointGeometry>& out);

@@ -16,11 +16,11 @@ namespace roller {
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
 struct NodeSelector {
-  std::string set_name;            // used when numbers is empty and near is absent
-  std::vector<Index> numbers;      // thesis node numbers (1-based)
-  std::optional<Vec2> near;        // the node nearest to this point of the initial mesh [mm]
-                                   // (stays valid under refinement, unlike a node number)
-  std::string describe() const;    // for messages: "set 'left'" or "nodes [5, 101]"
+  std::string set_name;          // used when numbers is empty and near is absent
+  std::vector<Index> numbers;    // thesis node numbers (1-based)
+  std::optional<Vec2> near;      // the node nearest to this point of the initial mesh [mm]
+                                 // (stays valid under refinement, unlike a node number)
+  std::string describe() const;  // for messages: "set 'left'" or "nodes [5, 101]"
 };
 
 // A prescribed ramp: the quantity reaches `value` at the end of step `ramp_last`, rising
@@ -48,14 +48,13 @@ struct NodalLoad {
 };
 
 struct StepControl {
-  int n_steps = 1;        // scene steps (output is written at the end of each)
-  Real dt = 1.0;          // time step [s] (the step counter for quasistatic scenes)
-  int max_cuts = 4;       // a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments
+  int n_steps = 1;   // scene steps (output is written at the end of each)
+  Real dt = 1.0;     // time step [s] (the step counter for quasistatic scenes)
+  int max_cuts = 4;  // a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments
 };
 
-
 struct OutputOptions {
-  int every = 1;          // write fields every N steps (and always the last step)
+  int every = 1;  // write fields every N steps (and always the last step)
   bool vtu = true;
   bool monitor = true;           // run-time monotonicity monitor (one extra assembly and
                                  // factorisation of the strip tangent per step)

@@ -32,7 +32,7 @@ struct SceneTable {
   // Writing: the number of blocks of an array, 0 or 1 for a table (absent: always written).
   std::function<std::size_t(const Scene&)> count;
 
-  std::string name() const;  // the last component of path ("ipopt")
+  std::string name() const;    // the last component of path ("ipopt")
   std::string parent() const;  // path without its last component ("contact")
 };
 

@@ -24,8 +24,7 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file_nam
 
 // Resolves a selector to node indices of `mesh`; throws InputError (naming `context`, e.g.
 // "displacement[0].nodes") for unknown sets or numbers outside 1..n_nodes.
-std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh,
-                                 const std::string& context);
+std::vector<Index> resolve_nodes(const NodeSelector& selector, const Mesh& mesh, const std::string& context);
 
 // The scene with every default filled in, as TOML: written beside the results so a run can be
 // reproduced exactly (MFEM examples print their options).

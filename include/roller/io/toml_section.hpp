@@ -21,8 +21,8 @@ class TomlSection {
   TomlSection(const toml::table& table, std::string path, std::filesystem::path file);
 
   bool has(const std::string& key) const;
-  std::vector<std::string> keys() const;  // sorted by name
-  std::optional<Real> real(const std::string& key);   // accepts integers too
+  std::vector<std::string> keys() const;             // sorted by name
+  std::optional<Real> real(const std::string& key);  // accepts integers too
   std::optional<Index> integer(const std::string& key);
   std::optional<bool> boolean(const std::string& key);
   std::optional<std::string> string(const std::string& key);

@@ -25,9 +25,8 @@ struct VtuField {
 // mesh.nodes) and the given point and cell data. Throws std::runtime_error naming the path if
 // the file cannot be written, and std::invalid_argument naming the field when a field's size
 // does not match n_nodes * n_components (point) or n_elements * n_components (cell).
-void write_vtu(const std::filesystem::path& path, const Mesh& mesh,
-               const std::vector<Vec2>& coordinates, const std::vector<VtuField>& point_data,
-               const std::vector<VtuField>& cell_data);
+void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
+               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data);
 
 // A .pvd collection. Each add() appends a dataset entry and rewrites the .pvd file at once, so
 // a run that stops early leaves a valid series of the steps already written.

@@ -21,13 +21,13 @@
 namespace roller {
 
 struct MaterialUpdate {
-  Vec4 stress = Vec4::Zero();    // S = stress_old + dS  [xx, yy, zz, xy]
-  Mat4 tangent = Mat4::Zero();   // dS/d(strain increment): consistent tangent (ReturnMapping) or
-                                 // continuum C^EP at the end state (Substep); maps the engineering
-                                 // strain vector [xx, yy, zz, 2xy] to the stress vector
-  Real energy = 0.0;             // energy density of the increment, dW/d(strain) = stress
-  MaterialState trial;           // state to commit if the increment converges
-  bool yielded = false;          // plastic flow occurred in this increment
+  Vec4 stress = Vec4::Zero();   // S = stress_old + dS  [xx, yy, zz, xy]
+  Mat4 tangent = Mat4::Zero();  // dS/d(strain increment): consistent tangent (ReturnMapping) or
+                                // continuum C^EP at the end state (Substep); maps the engineering
+                                // strain vector [xx, yy, zz, 2xy] to the stress vector
+  Real energy = 0.0;            // energy density of the increment, dW/d(strain) = stress
+  MaterialState trial;          // state to commit if the increment converges
+  bool yielded = false;         // plastic flow occurred in this increment
 };
 
 // Plane-strain elasticity matrix in the [xx, yy, zz, 2xy] -> [xx, yy, zz, xy] convention.
@@ -60,8 +60,7 @@ MaterialState initial_state(const MaterialParams& p);
 // drift correction: eps_p moves with the stress), so its end state lies on the yield surface.
 // Throws NumericalError when the strain increment or committed state is not finite, or when
 // the result is (inadmissible parameters).
-MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment,
-                               const MaterialState& committed);
+MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed);
 
 // sqrt(I2) of the thesis: square root of the second invariant of the stress deviator,
 // sqrt(1/2 s:s) (the von Mises stress divided by sqrt(3)).

@@ -28,12 +28,12 @@ struct MaterialParams {
   Real tangent_modulus = 0.0;   // E_T [MPa], 0 <= E_T < E (E_T = 0: perfect plasticity)
   Real density = 0.0;           // rho [t/mm^3], needed only when strip inertia is on
   StressIntegration integration = StressIntegration::ReturnMapping;
-  int n_substeps = 10;          // sub-steps of the Substep integration, >= 1
+  int n_substeps = 10;  // sub-steps of the Substep integration, >= 1
 
   // Derived quantities.
-  Real shear_modulus() const;      // G = E / (2(1+nu))
-  Real bulk_modulus() const;       // K = E / (3(1-2nu))
-  Real lame_lambda() const;        // lambda = E nu / ((1+nu)(1-2nu))
+  Real shear_modulus() const;  // G = E / (2(1+nu))
+  Real bulk_modulus() const;   // K = E / (3(1-2nu))
+  Real lame_lambda() const;    // lambda = E nu / ((1+nu)(1-2nu))
   // Plastic modulus of the uniaxial curve, H' = E E_T / (E - E_T): the slope of yield stress
   // versus equivalent plastic strain.
   Real plastic_modulus() const;

@@ -26,7 +26,7 @@ inline int nodes_per_element(ElementType t) { return t == ElementType::T3 ? 3 : 
 
 struct Mesh {
   ElementType element_type = ElementType::Q4;
-  std::vector<Vec2> nodes;                 // initial coordinates [mm]
+  std::vector<Vec2> nodes;                   // initial coordinates [mm]
   std::vector<std::vector<Index>> elements;  // node indices, counter-clockwise
   // Named node sets, each sorted by increasing x then y where that matters:
   //  "top", "bottom", "left", "right"     edges (top and bottom sorted by x; left/right by y)

@@ -15,9 +15,9 @@ struct Grading {
     Geometric,  // intervals grow geometrically away from `focus` (finest at focus)
   };
   Kind kind = Kind::Uniform;
-  Real ratio = 1.0;   // Geometric: ratio of the largest to the smallest interval (>= 1)
-  Real focus = 0.0;   // Geometric: coordinate [mm] where the mesh is finest (may be inside the
-                      // strip, then both sides grade away from it, or at either end)
+  Real ratio = 1.0;  // Geometric: ratio of the largest to the smallest interval (>= 1)
+  Real focus = 0.0;  // Geometric: coordinate [mm] where the mesh is finest (may be inside the
+                     // strip, then both sides grade away from it, or at either end)
 };
 
 // Diagonal used to split each quad into two T3 triangles.
@@ -30,10 +30,10 @@ struct EnumNames<Diagonal> {
 
 struct StripMeshSpec {
   ElementType element = ElementType::Q4;
-  Real length = 100.0;   // L_s [mm]
-  Real height = 20.0;    // H: half-thickness of the strip [mm]
-  int nx = 10;           // elements along x (before refinement)
-  int ny = 4;            // elements along y (before refinement)
+  Real length = 100.0;  // L_s [mm]
+  Real height = 20.0;   // H: half-thickness of the strip [mm]
+  int nx = 10;          // elements along x (before refinement)
+  int ny = 4;           // elements along y (before refinement)
   Grading grading_x;
   Grading grading_y;
   // Explicit grid lines (strictly increasing, from 0 to length/height). When given they
@@ -41,7 +41,7 @@ struct StripMeshSpec {
   std::vector<Real> x_lines;
   std::vector<Real> y_lines;
   Diagonal diagonal = Diagonal::Rising;
-  int refine = 1;        // every interval is split into `refine` equal parts (>= 1)
+  int refine = 1;  // every interval is split into `refine` equal parts (>= 1)
 
   bool is_valid(std::string* why) const;
 };

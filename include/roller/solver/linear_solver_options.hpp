@@ -13,8 +13,8 @@ struct LinearSolverOptions {
   // active fronts, at the cost of reading them back in each solve (docs/benchmarks.md,
   // "Out-of-core factors").
   bool out_of_core = false;
-  std::string directory;            // where the out-of-core files go ("" = MUMPS's default, /tmp)
-  std::string ordering = "auto";    // fill-reducing ordering: "auto" (MUMPS chooses) | "amd" | "metis"
+  std::string directory;          // where the out-of-core files go ("" = MUMPS's default, /tmp)
+  std::string ordering = "auto";  // fill-reducing ordering: "auto" (MUMPS chooses) | "amd" | "metis"
   // ICNTL(14) of the first factorisation: percent of workspace added to MUMPS's estimate for
   // delayed pivots; doubled on each overrun (not a scene key: the retry makes it self-tuning).
   int workspace_percent = 50;

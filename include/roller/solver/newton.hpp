@@ -31,7 +31,7 @@ enum class NewtonStatus { Converged, NotConverged, Failure };
 struct NewtonReport {
   NewtonStatus status = NewtonStatus::Failure;
   int iterations = 0;
-  Real residual = 0.0;        // final ||gradient|| / force scale
+  Real residual = 0.0;                 // final ||gradient|| / force scale
   std::vector<Real> residual_history;  // ||gradient|| at each iterate (absolute)
   int line_search_cuts = 0;
   int factorizations = 0;
@@ -49,8 +49,7 @@ class NewtonMinimiser {
 
  private:
   // Solves H d = -g; false when no shift of H gives a descent direction.
-  bool direction(const SparseMatrix& h, const VecX& g, const LinearSolverOptions& linear, VecX& d,
-                 int& factorizations);
+  bool direction(const SparseMatrix& h, const VecX& g, const LinearSolverOptions& linear, VecX& d, int& factorizations);
   std::unique_ptr<SparseSolver> solver_;  // held by pointer: Eigen's solvers cannot move
 };
 
