@@ -33,8 +33,24 @@ bool NormalForceFixedPoint::update(const std::vector<Real>& normal) {
     last_change_ = std::max(last_change_, std::abs(normal[i] - fbar_[i]));
     last_max_ = std::max(last_max_, normal[i]);
   }
-  if (previous_change_ < 1e300 && last_change_ > 0.5 * previous_change_) relaxation_ = 0.5;
+  std::vector<Real> residual(fbar_.size());
+  for (std::size_t i = 0; i < fbar_.size(); ++i) residual[i] = normal[i] - fbar_[i];
+  if (previous_change_ < 1e300 && last_change_ > 0.5 * previous_change_) relaxed_ = true;
+  if (relaxed_) {
+    // Aitken: w_k = -w_{k-1} r_{k-1}.(r_k - r_{k-1}) / |r_k - r_{k-1}|^2, the secant step of the
+    // residual along the last update; for a linear map of slope s it gives w = 1/(1 - s). Kept in
+    // [1/64, 1]: the projection on Fbar >= 0 and the stick/slip switches make the map only
+    // piecewise linear.
+    Real num = 0.0, den = 0.0;
+    for (std::size_t i = 0; i < residual.size(); ++i) {
+      const Real dr = residual[i] - previous_residual_[i];
+      num += previous_residual_[i] * dr;
+      den += dr * dr;
+    }
+    relaxation_ = den > 0.0 ? std::clamp(-relaxation_ * num / den, 1.0 / 64.0, 1.0) : 0.5;
+  }
   previous_change_ = last_change_;
+  previous_residual_ = residual;
   for (std::size_t i = 0; i < fbar_.size(); ++i)
     fbar_[i] = std::max((1.0 - relaxation_) * fbar_[i] + relaxation_ * normal[i], 0.0);
   return last_change_ <= std::max(o_.fixed_point_tol * last_max_, tol) || last_max_ <= 1e-6 * force_scale_;

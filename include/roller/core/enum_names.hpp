@@ -40,16 +40,4 @@ std::vector<std::string> enum_names() {
   return out;
 }
 
-// "\"a\", \"b\" or \"c\"" for error messages.
-template <class E>
-std::string enum_choices() {
-  std::string list;
-  const auto& names = EnumNames<E>::names;
-  for (std::size_t k = 0; k < names.size(); ++k) {
-    if (k > 0) list += k + 1 == names.size() ? " or " : ", ";
-    list += std::string("\"") + names[k].second + "\"";
-  }
-  return list;
-}
-
 }  // namespace roller

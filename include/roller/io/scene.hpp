@@ -64,7 +64,7 @@ struct OutputOptions {
                                  // (state_final.cbor is always written at the end)
 };
 
-// Strip inertia (SPEC §2.6). The roller's suspension is switched on by [roller.suspension].
+// Strip inertia (docs/model.md, Strip inertia). The roller's suspension is switched on by [roller.suspension].
 struct DynamicsOptions {
   bool strip_inertia = false;  // Houbolt inertia of the strip (needs material.density > 0)
   bool lumped_mass = false;    // row-sum lumped instead of consistent mass
