@@ -293,7 +293,7 @@ Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
   r.ramp_first = 1;
   r.ramp_last = 1;
   if (n->is_number()) {  // a constant: reached at once and held
-    r.value = n->value<double>().value();
+    r.value = *s.real(key);
     return r;
   }
   auto t = s.table(key);
@@ -391,7 +391,7 @@ void read_ipopt_options(TomlSection& s, Scene& scene, std::size_t) {
       r.text = std::to_string(v->value<int64_t>().value());
     } else if (v->is_floating_point()) {
       r.kind = RawIpoptOption::Kind::Number;
-      r.text = fmt::format("{:.17g}", v->value<double>().value());
+      r.text = fmt::format("{:.17g}", *raw->real(key));  // finite (TomlSection::real)
     } else if (v->is_boolean()) {
       r.text = v->value<bool>().value() ? "yes" : "no";
     } else if (v->is_string()) {
@@ -686,7 +686,7 @@ std::vector<SceneKey> make_keys() {
             PathSegment& p = scene.roller->path[i];
             if (const toml::node* slip = s.node("slip")) {
               if (slip->is_number()) {
-                p.slip_start = p.slip_end = slip->value<double>().value();
+                p.slip_start = p.slip_end = *s.real("slip");
               } else if (auto pair = s.real_array("slip"); pair && pair->size() == 2) {
                 p.slip_start = (*pair)[0];
                 p.slip_end = (*pair)[1];

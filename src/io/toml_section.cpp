@@ -1,5 +1,7 @@
 #include "roller/io/toml_section.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <sstream>
 
@@ -65,7 +67,12 @@ const toml::node* TomlSection::node(const std::string& key) {
 std::optional<Real> TomlSection::real(const std::string& key) {
   const toml::node* n = node(key);
   if (!n) return std::nullopt;
-  if (auto v = n->value_exact<double>()) return *v;
+  if (auto v = n->value_exact<double>()) {
+    // TOML allows nan and inf; no quantity of a scene may be either (they would pass range
+    // checks written as comparisons and poison the run).
+    if (!std::isfinite(*v)) fail(key, "expected a finite number (nan and inf are not allowed)");
+    return *v;
+  }
   if (auto i = n->value_exact<int64_t>()) return static_cast<Real>(*i);
   fail(key, "expected a number");
 }
@@ -98,9 +105,10 @@ std::optional<std::vector<Real>> TomlSection::real_array(const std::string& key)
   if (!arr) fail(key, "expected an array of numbers, e.g. [0.0, 1.5, 3.0]");
   std::vector<Real> out;
   for (const auto& item : *arr) {
-    if (auto v = item.value_exact<double>())
+    if (auto v = item.value_exact<double>()) {
+      if (!std::isfinite(*v)) fail(key, "expected finite numbers (nan and inf are not allowed)");
       out.push_back(*v);
-    else if (auto i = item.value_exact<int64_t>())
+    } else if (auto i = item.value_exact<int64_t>())
       out.push_back(static_cast<Real>(*i));
     else
       fail(key, "expected an array of numbers, e.g. [0.0, 1.5, 3.0]");

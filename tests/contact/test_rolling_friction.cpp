@@ -20,7 +20,8 @@ Real traction_ratio(const Simulation& sim) {
 TEST_CASE("rolling with creep at refine 2 converges with both backends' defaults and they agree",
           "[contact][friction][scenes][slow]") {
   const Simulation ipopt = test::run_scene("rolling_friction", {{"mesh.refine", "2"}});
-  const Simulation penalty = test::run_scene("rolling_friction", {{"mesh.refine", "2"}, {"contact.backend", "\"penalty\""}});
+  const Simulation penalty =
+      test::run_scene("rolling_friction", {{"mesh.refine", "2"}, {"contact.backend", "\"penalty\""}});
   const Real q_ipopt = traction_ratio(ipopt), q_penalty = traction_ratio(penalty);
   INFO("Q/(mu P): ipopt " << q_ipopt << ", penalty " << q_penalty);
   // Partial slip: a traction well below full sliding, the same from both backends (measured

@@ -116,6 +116,19 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
   CHECK_THAT(error_of(replace(kGood, "nodes = [1, 2]", "nodes = 7")), Contains("displacement[1].nodes"));
   CHECK_THAT(error_of(replace(kGood, "kappa = 0.07", "kappa = 0.07\ntangent_modulus = 100.0")),
              Contains("either tangent_modulus or kappa"));
+  // Non-finite numbers are rejected wherever a number is read (TOML allows nan and inf): plain
+  // keys, ramps, arrays, selectors.
+  CHECK_THAT(error_of(replace(kGood, "E = 2.1e5", "E = inf")),
+             Contains("bad.toml:10: material.E = inf") && Contains("finite"));
+  CHECK_THAT(error_of(replace(kGood, "y = 0.0", "y = nan")), Contains("displacement[0].y = nan") && Contains("finite"));
+  CHECK_THAT(error_of(replace(kGood, "value = 0.5", "value = -inf")),
+             Contains("displacement[1].x.value") && Contains("finite"));
+  CHECK_THAT(error_of(replace(kGood, "nodes = [1, 2]", "nodes = { near = [nan, 0.0] }")),
+             Contains("displacement[1].nodes.near") && Contains("finite"));
+  CHECK_THAT(error_of(kGood + "[[load]]\nnodes = \"top\"\nfy = inf\n"),
+             Contains("load[0].fy = inf") && Contains("finite"));
+  // An integer beyond 2^53 is a number like any other (it used to end in "bad optional access").
+  CHECK(error_of(replace(kGood, "y = 0.0", "y = 9007199254740993")).empty());
   // Syntax errors give line and column.
   CHECK_THAT(error_of(replace(kGood, "nx = 4", "nx = = 4")), Contains("bad.toml:7") && Contains("syntax"));
   // Missing file.
