@@ -8,13 +8,36 @@
 #include "roller/core/error.hpp"
 #include "roller/core/json_vectors.hpp"
 #include "roller/driver/simulation.hpp"
+#include "roller/io/scene_loader.hpp"
 
 namespace roller {
 
 namespace {
 
 constexpr const char* kFormat = "roller-state";
-constexpr int kVersion = 1;
+// 2: a checksum of the document and the fingerprint of the scene that wrote it.
+constexpr int kVersion = 2;
+
+// FNV-1a, 64 bits: a checksum against damaged files (not against tampering).
+std::string fnv1a_hex(const std::uint8_t* data, std::size_t n) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t k = 0; k < n; ++k) h = (h ^ data[k]) * 1099511628211ull;
+  return fmt::format("{:016x}", h);
+}
+
+std::string checksum(const nlohmann::json& j) {
+  const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
+  return fnv1a_hex(bytes.data(), bytes.size());
+}
+
+// The resolved scene without what a resumed run may change (the number of steps: a shortened
+// run is continued with more), so that a checkpoint continues only the run that wrote it.
+std::string scene_fingerprint(const Scene& scene) {
+  Scene s = scene;
+  s.steps.n_steps = 1;
+  const std::string text = scene_to_toml(s);
+  return fnv1a_hex(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+}
 
 }  // namespace
 
@@ -41,6 +64,8 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
   j["friction_history"] = friction_.save();
   dynamics_.save(j);
+  j["scene_fingerprint"] = scene_fingerprint(scene_);
+  j["checksum"] = checksum(j);  // of everything above
   // Written beside and renamed: a kill while writing leaves the previous file intact.
   const std::filesystem::path tmp = file.string() + ".tmp";
   {
@@ -53,6 +78,13 @@ void Simulation::save_state(const std::filesystem::path& file) const {
 }
 
 void Simulation::load_state(const std::filesystem::path& file, bool strip_only) {
+  // Only a regular file: a directory gives a raw stream error, a device or a FIFO reads forever.
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw InputError(
+        fmt::format("{}: not a regular file (a state file is the state_final.cbor or checkpoint.cbor "
+                    "a run writes into its output folder)",
+                    file.string()));
   std::ifstream in(file, std::ios::binary);
   if (!in)
     throw InputError(
@@ -67,7 +99,20 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
     throw InputError(fmt::format("{}: not a roller state file ({})", file.string(), e.what()));
   }
   if (j.value("format", "") != kFormat || j.value("version", 0) != kVersion)
-    throw InputError(fmt::format("{}: not a roller state file of version {}", file.string(), kVersion));
+    throw InputError(
+        fmt::format("{}: not a roller state file of version {} (a file of an older roller: run "
+                    "the scene again to write a new one)",
+                    file.string(), kVersion));
+  {
+    nlohmann::json body = j;
+    const std::string stored = body.value("checksum", "");
+    body.erase("checksum");
+    if (stored != checksum(body))
+      throw InputError(
+          fmt::format("{}: the state file is damaged (its checksum does not match); use another "
+                      "state file or run the scene again",
+                      file.string()));
+  }
   try {
     const auto ref = j.at("reference").get<std::vector<Real>>();
     std::vector<Vec2> reference;
@@ -87,6 +132,18 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
       throw InputError(fmt::format("{}: {}", file.string(), e.what()));
     }
     if (strip_only) return;
+    // Continuing a run: only the run that wrote the checkpoint, and only forward.
+    if (j.at("scene_fingerprint").get<std::string>() != scene_fingerprint(scene_))
+      throw InputError(
+          fmt::format("{}: written by a run of another scene or with other values (the resolved "
+                      "scenes differ); resume with the same scene file and --set values, or start "
+                      "afresh without --resume",
+                      file.string()));
+    if (j.at("step").get<int>() > scene_.steps.n_steps)
+      throw InputError(
+          fmt::format("{}: the checkpoint is after step {} but the run has {} steps (steps.count or "
+                      "--steps); give at least {} steps",
+                      file.string(), j.at("step").get<int>(), scene_.steps.n_steps, j.at("step").get<int>()));
     steps_done_ = j.at("step").get<int>();
     last_increment_ = to_vec(j.at("last_increment"));
     last_length_ = j.at("last_length").get<Real>();

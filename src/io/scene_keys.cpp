@@ -790,7 +790,12 @@ std::vector<SceneTable> make_tables() {
     tables.back().array = array;
     return tables.back();
   };
-  add("");
+  add("").check = [](TomlSection& s, Scene& scene, Ref) {
+    // The name becomes a folder under out/: one path component that stays inside it.
+    const std::string& n = scene.name;
+    if (n.empty() || n == "." || n == ".." || n.find_first_of("/\\") != std::string::npos)
+      s.fail("name", "expected a non-empty name without '/' or '\\' (it names the output folder out/<name>)");
+  };
 
   SceneTable& material = add("material");
   material.required = "a [material] table is required (at least E and nu)";

@@ -98,6 +98,10 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file_nam
 }
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<SceneOverride>& overrides) {
+  // Only a regular file: a device or a FIFO would be read forever or block.
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw InputError(fmt::format("{}: not a regular file (a scene is a TOML text file)", file.string()));
   std::ifstream in(file);
   if (!in) throw InputError(fmt::format("{}: cannot open the scene file (check the path)", file.string()));
   std::stringstream buffer;

@@ -129,6 +129,31 @@ TEST_CASE("roller run --resume continues a shortened run to the same results as 
   for (const auto& d : {whole, split, empty}) fs::remove_all(d);
 }
 
+TEST_CASE("roller run --resume continues only the run that wrote the checkpoint, from an intact file",
+          "[app][restart]") {
+  const fs::path out = fs::temp_directory_path() / ("roller_cli_ckpt_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  REQUIRE(run_roller("run problems/block_compression.toml --steps 3 --out " + out.string()).exit_code == 0);
+  // Another value of the scene: refused (it would mix two runs).
+  const Run other =
+      run_roller("run problems/block_compression.toml --set material.E=1e5 --out " + out.string() + " --resume");
+  CHECK(other.exit_code == 2);
+  CHECK_THAT(other.output, Catch::Contains("checkpoint.cbor: written by a run of another scene or with other values"));
+  // Fewer steps than the checkpoint has done: refused (it reported the checkpoint's steps as done).
+  const Run fewer = run_roller("run problems/block_compression.toml --steps 2 --out " + out.string() + " --resume");
+  CHECK(fewer.exit_code == 2);
+  CHECK_THAT(fewer.output, Catch::Contains("after step 3 but the run has 2 steps"));
+  // A damaged file: one flipped byte in the middle fails the checksum.
+  std::string bytes = roller::test::read_text(out / "checkpoint.cbor");
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);
+  { std::ofstream(out / "checkpoint.cbor", std::ios::binary) << bytes; }
+  const Run damaged = run_roller("run problems/block_compression.toml --steps 5 --out " + out.string() + " --resume");
+  CHECK(damaged.exit_code == 2);
+  CHECK_THAT(damaged.output, Catch::Contains("checkpoint.cbor") &&
+                                 (Catch::Contains("damaged") || Catch::Contains("not a roller state file")));
+  fs::remove_all(out);
+}
+
 TEST_CASE("roller scene-keys lists every scene key, one line each", "[app]") {
   const Run r = run_roller("scene-keys");
   INFO(r.output);

@@ -85,7 +85,7 @@ TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of 
   REQUIRE(contact.ok);
   REQUIRE(w0 > 0.0);
   const Real a = contact.half_width;
-  const Real d_abs = w1 / w0;                                  // centre of the stick zone
+  const Real d_abs = w1 / w0;                                              // centre of the stick zone
   const Real c = 2.0 * std::sqrt(std::max(w2 / w0 - d_abs * d_abs, 0.0));  // its half-width
   const Real c_carter = a * std::sqrt(1.0 - q_ratio);
   const Real xc = sim.pose().centre.x();

@@ -129,10 +129,16 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
              Contains("load[0].fy = inf") && Contains("finite"));
   // An integer beyond 2^53 is a number like any other (it used to end in "bad optional access").
   CHECK(error_of(replace(kGood, "y = 0.0", "y = 9007199254740993")).empty());
+  // The name is one folder under out/.
+  CHECK_THAT(error_of("name = \"../../x\"\n" + kGood), Contains("bad.toml:1: name") && Contains("without '/'"));
+  CHECK_THAT(error_of("name = \"\"\n" + kGood), Contains("name") && Contains("non-empty"));
   // Syntax errors give line and column.
   CHECK_THAT(error_of(replace(kGood, "nx = 4", "nx = = 4")), Contains("bad.toml:7") && Contains("syntax"));
   // Missing file.
   CHECK_THROWS_WITH(load_scene("/nonexistent/scene.toml"), Contains("cannot open"));
+  // A device or a folder is not read (/dev/zero would be read forever).
+  CHECK_THROWS_WITH(load_scene("/dev/zero"), Contains("/dev/zero: not a regular file"));
+  CHECK_THROWS_WITH(load_scene("/tmp"), Contains("not a regular file"));
 }
 
 TEST_CASE("node selectors are checked against the mesh", "[io][scene][errors]") {
@@ -209,4 +215,12 @@ TEST_CASE("[linear_solver] selects MUMPS's ordering and out-of-core mode, checke
   CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_core", "3"}}), Contains("linear_solver.out_of_core"));
   CHECK_THAT(error_of(kGood, {{"linear_solver.out_of_cor", "true"}}),
              Contains("did you mean 'linear_solver.out_of_core'"));
+}
+
+TEST_CASE("a state file must be a regular file", "[io][state][errors]") {
+  Scene s = parse_scene(kGood, "good.toml");
+  s.initial_state = "/tmp";  // a folder gave a raw stream error
+  CHECK_THROWS_WITH(Simulation(s), Catch::Contains("/tmp: not a regular file"));
+  s.initial_state = "/dev/zero";  // was read forever
+  CHECK_THROWS_WITH(Simulation(s), Catch::Contains("/dev/zero: not a regular file"));
 }
