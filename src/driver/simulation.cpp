@@ -25,9 +25,34 @@ Simulation::Simulation(Scene scene)
     pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
   }
   if (!scene_.initial_state.empty()) load_state(scene_.initial_state, /*strip_only=*/true);
+  if (scene_.roller) check_roller_starts_outside();
   // After the initial state: a restarted strip starts at rest in its new configuration.
   dynamics_ = DynamicsState(*model_, scene_.dynamics.strip_inertia, scene_.dynamics.lumped_mass,
                             scene_.roller ? scene_.roller->suspension : std::nullopt, scene_.steps.dt);
+}
+
+void Simulation::check_roller_starts_outside() const {
+  // A roller that starts inside the strip has no admissible first increment; the solvers would
+  // blame the supports or the step size instead.
+  const std::vector<Vec2> x = model_->current_coordinates();
+  const Real radius = scene_.roller->radius;
+  Real depth = 0.0;
+  Index deepest = -1;
+  for (Index a : candidate_nodes_) {
+    const Real d = radius - (x[a] - pose_.centre).norm();
+    if (d > depth) {
+      depth = d;
+      deepest = a;
+    }
+  }
+  // Below 1e-6 R an overlap is the rounding of a touching start (the thesis's Z4 corner: 3e-8 R).
+  if (depth > 1e-6 * radius)
+    throw InputError(fmt::format(
+        "{}: roller.centre = [{}, {}]: the roller starts inside the strip (node {} at ({:.6g}, {:.6g}) mm lies "
+        "{:.4g} mm inside it); expected a start on or above the surface: raise the centre by at least {:.4g} mm, "
+        "or press in with a [[roller.path]] segment (dy < 0)",
+        scene_.file.string(), pose_.centre.x(), pose_.centre.y(), deepest + 1, x[deepest].x(), x[deepest].y(), depth,
+        depth));
 }
 
 Vec2 Simulation::start_centre() const {

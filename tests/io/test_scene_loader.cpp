@@ -224,3 +224,14 @@ TEST_CASE("a state file must be a regular file", "[io][state][errors]") {
   s.initial_state = "/dev/zero";  // was read forever
   CHECK_THROWS_WITH(Simulation(s), Catch::Contains("/dev/zero: not a regular file"));
 }
+
+TEST_CASE("a roller that starts inside the strip is reported as such, before computing", "[io][scene][errors]") {
+  // kGood's strip is 10 x 5 mm; a roller of radius 2 centred 1 mm above its top is 1 mm deep.
+  Scene s = parse_scene(kGood + "[roller]\nradius = 2.0\ncentre = [5.0, 6.0]\n", "inside.toml");
+  CHECK_THROWS_WITH(Simulation(s),
+                    Catch::Contains("inside.toml: roller.centre = [5, 6]: the roller starts inside the strip") &&
+                        Catch::Contains("1 mm inside"));
+  // Touching the surface is a valid start.
+  Scene touching = parse_scene(kGood + "[roller]\nradius = 2.0\ncentre = [5.0, 7.0]\n", "touching.toml");
+  CHECK_NOTHROW(Simulation(touching));
+}

@@ -116,6 +116,7 @@ class Simulation {
 
  private:
   Vec2 start_centre() const;
+  void check_roller_starts_outside() const;  // InputError naming roller.centre
   // Where an increment starts: the previous converged increment scaled to this one's length
   // (and, as an option, the thesis's arc predictor for nodes that would enter the roller).
   VecX predictor(Real s_from, Real s_to, const RollerMotion* motion) const;
