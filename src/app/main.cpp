@@ -21,6 +21,7 @@ struct RunArgs {
   std::string contact;
   std::string initial_state;
   bool resume = false;
+  bool overwrite = false;
   std::vector<std::string> sets;
 };
 
@@ -42,6 +43,7 @@ int run_scene(const RunArgs& args) {
   options.out_dir = out;
   options.progress = &std::cout;
   options.resume = args.resume;
+  options.overwrite = args.overwrite;
   const roller::RunSummary summary = sim.run(options);
   std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations, peak memory {:.0f} MiB); results in {}\n",
                            summary.message, summary.wall_s, summary.iterations_total, summary.peak_memory_mb, out);
@@ -71,6 +73,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"penalty", "ipopt"}));
   run->add_flag("--resume", run_args.resume,
                 "continue the run in the output folder from its checkpoint.cbor (a killed or shortened run)");
+  run->add_flag("--overwrite", run_args.overwrite,
+                "run into an output folder that holds other files or another scene's output, removing the run files "
+                "in it");
   run->add_option("--initial-state", run_args.initial_state,
                   "start from the strip state saved by another run (overrides restart.from)")
       ->check(CLI::ExistingFile);

@@ -11,6 +11,7 @@
 
 #include <sys/resource.h>
 
+#include "output_folder.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -119,9 +120,9 @@ RunSummary Simulation::run(const RunOptions& options) {
 }
 
 void Simulation::start_or_resume(const RunOptions& options) {
-  std::filesystem::create_directories(options.out_dir);
   const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
   if (!options.resume) {
+    prepare_output_folder(options.out_dir, scene_.name, options.overwrite);
     std::ofstream(options.out_dir / "scene.resolved.toml") << scene_to_toml(scene_);
     return;
   }

@@ -168,3 +168,36 @@ TEST_CASE("roller scene-keys lists every scene key, one line each", "[app]") {
   CHECK_THAT(r.output,
              Catch::Contains("contact.ipopt.tol") && Catch::Contains("1e-09") && Catch::Contains("0 < tol < 1"));
 }
+
+TEST_CASE("roller run writes into a new folder or its own earlier output, another only with --overwrite",
+          "[app][output]") {
+  const fs::path out = fs::temp_directory_path() / ("roller_cli_folder_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const std::string block = "run problems/block_compression.toml --out " + out.string();
+  REQUIRE(run_roller(block + " --steps 3").exit_code == 0);
+  REQUIRE(fs::exists(out / "step_0003.vtu"));
+  { std::ofstream(out / "notes.txt") << "mine\n"; }
+  // The same scene again, shorter: its old outputs go (no step file of the longer run stays),
+  // other files stay.
+  REQUIRE(run_roller(block + " --steps 2").exit_code == 0);
+  CHECK_FALSE(fs::exists(out / "step_0003.vtu"));
+  CHECK(fs::exists(out / "step_0002.vtu"));
+  CHECK(fs::exists(out / "notes.txt"));
+  // Another scene: refused, the folder untouched; with --overwrite it runs.
+  const std::string hertz = "run problems/hertz.toml --steps 1 --out " + out.string();
+  const Run refused = run_roller(hertz);
+  CHECK(refused.exit_code == 2);
+  CHECK_THAT(refused.output, Catch::Contains("holds no output of scene 'hertz'") &&
+                                 Catch::Contains("holds scene 'block_compression'") && Catch::Contains("--overwrite"));
+  CHECK(fs::exists(out / "step_0002.vtu"));
+  REQUIRE(run_roller(hertz + " --overwrite").exit_code == 0);
+  CHECK_FALSE(fs::exists(out / "step_0002.vtu"));
+  CHECK(fs::exists(out / "notes.txt"));
+  // A folder with other files only: refused too.
+  const fs::path foreign = fs::temp_directory_path() / ("roller_cli_foreign_" + std::to_string(::getpid()));
+  fs::create_directories(foreign);
+  { std::ofstream(foreign / "thesis.pdf") << "x"; }
+  CHECK(run_roller("run problems/block_compression.toml --steps 1 --out " + foreign.string()).exit_code == 2);
+  fs::remove_all(out);
+  fs::remove_all(foreign);
+}

@@ -24,6 +24,9 @@ struct RunOptions {
   // Continue a run in out_dir from its checkpoint.cbor: the output of the steps after the
   // checkpoint is dropped and recomputed, the rest is kept.
   bool resume = false;
+  // A fresh run into a folder that is not empty and holds another scene's output (or other
+  // files): refused unless overwrite (driver/output_folder.hpp).
+  bool overwrite = false;
 };
 
 struct RunSummary {

@@ -1,0 +1,55 @@
+#include "output_folder.hpp"
+
+#include <regex>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "roller/core/error.hpp"
+
+namespace roller {
+
+namespace {
+
+// The scene name recorded in the folder's scene.resolved.toml ("" when there is none).
+std::string recorded_scene(const std::filesystem::path& dir) {
+  const std::filesystem::path resolved = dir / "scene.resolved.toml";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(resolved, ec)) return "";
+  try {
+    return toml::parse_file(resolved.string())["name"].value_or(std::string());
+  } catch (const toml::parse_error&) {
+    return "";
+  }
+}
+
+}  // namespace
+
+bool is_run_output(const std::string& name) {
+  static const std::regex pattern(
+      R"((fields\.pvd|solver\.csv|contact\.csv|roller\.csv|summary\.json|scene\.resolved\.toml|)"
+      R"(checkpoint\.cbor|state_final\.cbor|state_\d{4}\.cbor|step_\d{4}\.vtu)(\.tmp)?)");
+  return std::regex_match(name, pattern);
+}
+
+void prepare_output_folder(const std::filesystem::path& dir, const std::string& scene_name, bool overwrite) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw InputError(fmt::format("--out {}: not a folder", dir.string()));
+  if (!std::filesystem::exists(dir, ec)) {
+    std::filesystem::create_directories(dir);
+    return;
+  }
+  const bool empty = std::filesystem::is_empty(dir, ec);
+  const std::string recorded = recorded_scene(dir);
+  if (!empty && recorded != scene_name && !overwrite)
+    throw InputError(fmt::format(
+        "--out {}: the folder is not empty and holds no output of scene '{}'{}; expected a new or empty folder, "
+        "this scene's earlier output, or --overwrite (which removes the run files in it)",
+        dir.string(), scene_name, recorded.empty() ? "" : fmt::format(" (it holds scene '{}')", recorded)));
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.is_regular_file() && is_run_output(entry.path().filename().string()))
+      std::filesystem::remove(entry.path());
+}
+
+}  // namespace roller
