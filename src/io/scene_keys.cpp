@@ -48,6 +48,19 @@ Range above(Real v) { return {v, std::nullopt, true, false}; }
 Range closed(Real lo, Real hi) { return {lo, hi, false, false}; }
 Range open(Real lo, Real hi) { return {lo, hi, true, true}; }
 Range right_open(Real lo, Real hi) { return {lo, hi, false, true}; }
+Range left_open(Real lo, Real hi) { return {lo, hi, true, false}; }
+
+// Plausibility bounds in scene units (mm, N, MPa, s, t) for quantities that have no natural
+// upper limit: far beyond any strip, roller or material (E 1e9 MPa is 800 times diamond's), yet
+// small enough that the solvers' products of them (E* l^2, c/dt, k R) stay finite; values
+// outside them were found by fuzzing to overflow into NaN or into Ipopt options of 0.
+constexpr Real kMaxLength = 1e9;       // mm
+constexpr Real kMinLength = 1e-6;      // mm
+constexpr Real kMaxModulus = 1e9;      // MPa
+constexpr Real kMaxDensity = 1e-3;     // t/mm^3 (osmium: 2.3e-8)
+constexpr Real kMaxTime = 1e9;         // s
+constexpr Real kMaxSuspension = 1e12;  // t, N s/mm, N/mm per mm
+constexpr Real kMaxForce = 1e15;       // N per mm
 
 // What a value must satisfy: a range (numbers) or a list of choices (strings).
 struct Rule {
@@ -287,13 +300,16 @@ void write_grading(toml::table& t, const std::string& key, const Grading& g) {
   if (g.kind == Grading::Kind::Geometric) t.insert(key, toml::table{{"ratio", g.ratio}, {"focus", g.focus}});
 }
 
-Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
+// `bound`: the plausibility bound of |value| (a displacement or a force).
+Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps, Real bound) {
   const toml::node* n = s.node(key);
   Ramp r;
   r.ramp_first = 1;
   r.ramp_last = 1;
+  const std::string expected = fmt::format("expected |value| <= {:g} (a plausibility bound)", bound);
   if (n->is_number()) {  // a constant: reached at once and held
     r.value = *s.real(key);
+    if (!(std::abs(r.value) <= bound)) s.fail(key, expected);
     return r;
   }
   auto t = s.table(key);
@@ -302,6 +318,7 @@ Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
   t->finish();
   const auto v = t->real("value");
   if (!v) t->fail("value", "the value reached at the end of the ramp is required");
+  if (!(std::abs(*v) <= bound)) t->fail("value", expected);
   r.value = *v;
   if (auto steps = t->real_array("ramp")) {
     if (steps->size() != 2 || !is_step((*steps)[0]) || !is_step((*steps)[1]) || (*steps)[1] < (*steps)[0])
@@ -317,12 +334,12 @@ Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps) {
 // A ramp key of a [[displacement]] or [[load]] block (`ramp` selects the member).
 template <class Block>
 Decl ramp_key(const std::string& dotted, std::vector<Block> Scene::*blocks, std::optional<Ramp> Block::*ramp,
-              const std::string& doc) {
+              Real bound, const std::string& doc) {
   const std::string name = split_dotted(dotted).second;
   return custom(
-      dotted, "number or ramp table", "absent (free)", "", doc,
+      dotted, "number or ramp table", "absent (free)", fmt::format("|value| <= {:g}", bound), doc,
       [=](TomlSection& s, Scene& scene, std::size_t i) {
-        if (s.has(name)) ((scene.*blocks)[i].*ramp) = read_ramp(s, name, scene.steps.n_steps);
+        if (s.has(name)) ((scene.*blocks)[i].*ramp) = read_ramp(s, name, scene.steps.n_steps, bound);
       },
       [=](toml::table& t, const Scene& scene, std::size_t i) {
         if (const auto& r = (scene.*blocks)[i].*ramp)
@@ -438,14 +455,15 @@ std::vector<SceneKey> make_keys() {
 
       // [material], read before [mesh]: the Q4 default depends on plasticity.
       key(
-          "material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]", above(0.0))
+          "material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]",
+          left_open(0.0, kMaxModulus))
           .required("Young's modulus E [MPa] is required"),
       key(
           "material.nu", [](auto& s) -> auto& { return s.material.poisson_ratio; }, "Poisson's ratio",
           right_open(0.0, 0.5)),
       key(
           "material.density", [](auto& s) -> auto& { return s.material.density; },
-          "density [t/mm^3] (steel 7.8e-9), needed by strip inertia", at_least(0.0)),
+          "density [t/mm^3] (steel 7.8e-9), needed by strip inertia", closed(0.0, kMaxDensity)),
       custom(
           "material.yield_stress", "number", "absent = elastic", "> 0",
           "initial yield stress sigma_y0 [MPa]; its presence makes the material J2-plastic",
@@ -496,9 +514,11 @@ std::vector<SceneKey> make_keys() {
           "mesh.element", [](auto& s) -> auto& { return s.mesh.element; },
           "bilinear quads (2x2 Gauss) or linear triangles (each quad split in two)"),
       key(
-          "mesh.length", [](auto& s) -> auto& { return s.mesh.length; }, "strip length L_s [mm]", above(0.0)),
+          "mesh.length", [](auto& s) -> auto& { return s.mesh.length; }, "strip length L_s [mm]",
+          closed(kMinLength, kMaxLength)),
       key(
-          "mesh.height", [](auto& s) -> auto& { return s.mesh.height; }, "half-thickness H [mm]", above(0.0)),
+          "mesh.height", [](auto& s) -> auto& { return s.mesh.height; }, "half-thickness H [mm]",
+          closed(kMinLength, kMaxLength)),
       key(
           "mesh.nx", [](auto& s) -> auto& { return s.mesh.nx; }, "elements along x before refinement", at_least(1)),
       key(
@@ -541,7 +561,7 @@ std::vector<SceneKey> make_keys() {
           "steps.count", [](auto& s) -> auto& { return s.steps.n_steps; },
           "number of steps; fields are written at the end of steps (--steps)", at_least(1)),
       key(
-          "steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", above(0.0)),
+          "steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", left_open(0.0, kMaxTime)),
       key(
           "steps.max_cuts", [](auto& s) -> auto& { return s.steps.max_cuts; },
           "a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments", closed(0, 20)),
@@ -625,17 +645,18 @@ std::vector<SceneKey> make_keys() {
 
       // [[displacement]] and [[load]]
       nodes_key("displacement.nodes", &Scene::displacements),
-      ramp_key("displacement.x", &Scene::displacements, &DisplacementBC::x,
+      ramp_key("displacement.x", &Scene::displacements, &DisplacementBC::x, kMaxLength,
                "total displacement in x [mm]: a number (from step 1) or { value, ramp = [first, last] }"),
-      ramp_key("displacement.y", &Scene::displacements, &DisplacementBC::y, "total displacement in y [mm], as x"),
+      ramp_key("displacement.y", &Scene::displacements, &DisplacementBC::y, kMaxLength,
+               "total displacement in y [mm], as x"),
       nodes_key("load.nodes", &Scene::loads),
-      ramp_key("load.fx", &Scene::loads, &NodalLoad::fx,
+      ramp_key("load.fx", &Scene::loads, &NodalLoad::fx, kMaxForce,
                "force on each selected node [N per mm width]: a number or a ramp table"),
-      ramp_key("load.fy", &Scene::loads, &NodalLoad::fy, "force on each selected node in y, as fx"),
+      ramp_key("load.fy", &Scene::loads, &NodalLoad::fy, kMaxForce, "force on each selected node in y, as fx"),
 
       // [roller]
       key(
-          "roller.radius", [](auto& s) -> auto& { return s.roller->radius; }, "R [mm]", above(0.0)),
+          "roller.radius", [](auto& s) -> auto& { return s.roller->radius; }, "R [mm]", closed(kMinLength, kMaxLength)),
       custom(
           "roller.centre", "[x, y]", "[length/2, height + radius] (touching)", "", "centre at the start [mm]",
           [](TomlSection& s, Scene& scene, Ref) {
@@ -652,13 +673,13 @@ std::vector<SceneKey> make_keys() {
           "rotation angle at the start [rad], counter-clockwise positive"),
       key(
           "roller.suspension.mass", [](auto& s) -> auto& { return s.roller->suspension->mass; },
-          "m [t per mm of roller length]", at_least(0.0)),
+          "m [t per mm of roller length]", closed(0.0, kMaxSuspension)),
       key(
           "roller.suspension.damping", [](auto& s) -> auto& { return s.roller->suspension->damping; },
-          "c [N s/mm per mm]", at_least(0.0)),
+          "c [N s/mm per mm]", closed(0.0, kMaxSuspension)),
       key(
           "roller.suspension.stiffness", [](auto& s) -> auto& { return s.roller->suspension->stiffness; },
-          "k [N/mm per mm]; k or m must be > 0", at_least(0.0)),
+          "k [N/mm per mm]; k or m must be > 0", closed(0.0, kMaxSuspension)),
       custom(
           "roller.path.steps", "[first, last]", "required", "1 <= first <= last",
           "the steps the segment acts over (1-based, inclusive)",
@@ -675,10 +696,10 @@ std::vector<SceneKey> make_keys() {
           }),
       key(
           "roller.path.dx", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dx; },
-          "travel of the centre in x over the segment [mm]"),
+          "travel of the centre in x over the segment [mm]", closed(-kMaxLength, kMaxLength)),
       key(
           "roller.path.dy", [](auto& s, Ref i) -> auto& { return s.roller->path[i].dy; },
-          "travel of the centre in y over the segment [mm] (negative = press in)"),
+          "travel of the centre in y over the segment [mm] (negative = press in)", closed(-kMaxLength, kMaxLength)),
       custom(
           "roller.path.slip", "number or [start, end]", "0", "-1 <= slip <= 1",
           "creep ratio s = (v - omega R)/v, linear from start to end over the segment",

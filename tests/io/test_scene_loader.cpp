@@ -127,8 +127,17 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
              Contains("displacement[1].nodes.near") && Contains("finite"));
   CHECK_THAT(error_of(kGood + "[[load]]\nnodes = \"top\"\nfy = inf\n"),
              Contains("load[0].fy = inf") && Contains("finite"));
-  // An integer beyond 2^53 is a number like any other (it used to end in "bad optional access").
-  CHECK(error_of(replace(kGood, "y = 0.0", "y = 9007199254740993")).empty());
+  // Plausibility bounds: values found by fuzzing to overflow the solvers into NaN.
+  CHECK_THAT(error_of(replace(kGood, "E = 2.1e5", "E = 1e300")),
+             Contains("material.E = 1e+300") && Contains("<= 1000000000"));
+  CHECK_THAT(error_of(replace(kGood, "length = 10.0", "length = 1e300")), Contains("mesh.length = 1e+300"));
+  CHECK_THAT(error_of(replace(kGood, "height = 5.0", "height = 1e-308")), Contains("mesh.height"));
+  CHECK_THAT(error_of(replace(kGood, "y = 0.0", "y = -1e308")),
+             Contains("displacement[0].y") && Contains("plausibility"));
+  // An integer beyond 2^53 is read like any other number and checked (it used to end in "bad
+  // optional access", with no key and no line).
+  CHECK_THAT(error_of(replace(kGood, "y = 0.0", "y = 9007199254740993")),
+             Contains("bad.toml:18: displacement[0].y = 9007199254740993") && Contains("plausibility"));
   // The name is one folder under out/.
   CHECK_THAT(error_of("name = \"../../x\"\n" + kGood), Contains("bad.toml:1: name") && Contains("without '/'"));
   CHECK_THAT(error_of("name = \"\"\n" + kGood), Contains("name") && Contains("non-empty"));
