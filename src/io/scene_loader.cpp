@@ -84,8 +84,46 @@ SceneOverride parse_override(const std::string& text) {
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
+namespace {
+
+// toml++ parses nested keys and brackets recursively: 50,000 levels overflow its stack (SIGSEGV).
+// A scene needs a handful; anything deeper than kMaxNesting is refused before parsing. Counted
+// outside quoted strings: the dots of a line's key (before its '=') and open brackets and braces.
+constexpr int kMaxNesting = 100;
+
+void check_nesting(const std::string& text, const std::filesystem::path& file_name) {
+  int line = 1, dots = 0, depth = 0;
+  bool in_value = false;  // after the line's '=': dots are decimal points there
+  char quote = 0;
+  for (const char ch : text) {
+    if (ch == '\n') {
+      ++line;
+      dots = 0;
+      in_value = false;
+      continue;
+    }
+    if (quote) {
+      if (ch == quote) quote = 0;
+      continue;
+    }
+    if (ch == '"' || ch == '\'') quote = ch;
+    if (ch == '=') in_value = true;
+    if (ch == '.' && !in_value) ++dots;
+    if (ch == '[' || ch == '{') ++depth;
+    if (ch == ']' || ch == '}') --depth;
+    if (dots > kMaxNesting || depth > kMaxNesting)
+      throw InputError(
+          fmt::format("{}:{}: keys or brackets nested deeper than {} levels; expected a scene file "
+                      "(docs/scenes.md)",
+                      file_name.string(), line, kMaxNesting));
+  }
+}
+
+}  // namespace
+
 Scene parse_scene(const std::string& text, const std::filesystem::path& file_name,
                   const std::vector<SceneOverride>& overrides) {
+  check_nesting(text, file_name);
   toml::table table;
   try {
     table = toml::parse(text, file_name.string());

@@ -141,6 +141,11 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
   // The name is one folder under out/.
   CHECK_THAT(error_of("name = \"../../x\"\n" + kGood), Contains("bad.toml:1: name") && Contains("without '/'"));
   CHECK_THAT(error_of("name = \"\"\n" + kGood), Contains("name") && Contains("non-empty"));
+  // Deep nesting is refused before the TOML parser, whose recursion 50,000 levels overflow.
+  std::string deep;
+  for (int k = 0; k < 50000; ++k) deep += "a.";
+  CHECK_THAT(error_of(deep + "b = 1\n" + kGood), Contains("bad.toml:1: keys or brackets nested deeper than 100"));
+  CHECK_THAT(error_of(std::string(200, '[') + "\n" + kGood), Contains("nested deeper"));
   // Syntax errors give line and column.
   CHECK_THAT(error_of(replace(kGood, "nx = 4", "nx = = 4")), Contains("bad.toml:7") && Contains("syntax"));
   // Missing file.
