@@ -9,8 +9,9 @@ value replaced by nan/inf/huge/tiny/negative/wrong-typed ones, the file truncate
 inserted, deeply nested dotted keys, or a --set override of a random key with such a value) and
 runs `roller run` on it for a few steps under a timeout. A case passes when roller ends with a
 documented exit code (0 converged, 1 a step failed with an "error:" line, 2 input error with
-"input error") and no output file holds nan or inf. It fails on a crash (signal), a timeout
-(hang), an unexpected exception ("roller: error:"), an undocumented exit code, or nan/inf in an
+"input error", 3 a system error such as a full disk) and no output file holds nan or inf. It
+fails on a crash (signal), a timeout (hang), an internal error (exit 4, "roller: internal
+error:"), an undocumented exit code, or nan/inf in an
 output. Every failing case leaves its reproducer in OUT/failures/<n>/ (scene.toml, command.txt,
 output.txt). Exit code 0 when every case passed, 1 otherwise. The CTest "fuzz" label runs a short
 fixed-seed variant; a long run for a night: --cases 10000 --seed $RANDOM.
@@ -118,13 +119,16 @@ def verdict(rc, output, timed_out, out_dir):
         return "hang (timeout)"
     if rc is None or rc < 0 or rc >= 128:
         return "crash (signal %s)" % (-rc if rc is not None and rc < 0 else rc)
-    if "roller: error:" in output:
-        return "unexpected exception: " + output.split("roller: error:")[-1].strip().splitlines()[0][:120]
+    if "roller: internal error:" in output or "roller: error:" in output:
+        tail = output.split("error:", 1)[-1].strip().splitlines()
+        return "unexpected exception: " + (tail[0][:120] if tail else "")
     if rc == 2 and "input error" not in output and "Run with --help" not in output:
         return "exit 2 without an input-error message"
     if rc == 1 and "error:" not in output:
         return "exit 1 without an error line"
-    if rc not in (0, 1, 2):
+    if rc == 3 and "system error" not in output:
+        return "exit 3 without a system-error message"
+    if rc not in (0, 1, 2, 3):
         return "undocumented exit code %d" % rc
     bad = nonfinite_outputs(out_dir)
     if bad:

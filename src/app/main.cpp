@@ -1,5 +1,6 @@
 // roller command line: parse, load, run, report. Exit codes: 0 success, 1 a step failed
-// (results of completed steps are on disk), 2 bad input.
+// (results of completed steps are on disk), 2 bad input, 3 the machine refused (disk full, out
+// of memory), 4 an internal error (a bug: please report it).
 #include <iostream>
 
 #include <fmt/format.h>
@@ -97,9 +98,16 @@ int main(int argc, char** argv) {
   } catch (const roller::InputError& e) {
     std::cerr << "roller: input error: " << e.what() << "\n";
     return 2;
+  } catch (const roller::SystemError& e) {
+    std::cerr << "roller: system error: " << e.what() << "\n";
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "roller: system error: out of memory; use a coarser mesh (smaller refine) or "
+                 "[linear_solver] out_of_core = true\n";
+    return 3;
   } catch (const std::exception& e) {
-    std::cerr << "roller: error: " << e.what() << "\n";
-    return 1;
+    std::cerr << "roller: internal error: " << e.what() << " (please report it with the scene file)\n";
+    return 4;
   }
   return 0;
 }

@@ -91,6 +91,28 @@ RunSummary Simulation::run(const RunOptions& options) {
   RunSummary summary;
   summary.converged = true;
   summary.steps_done = steps_done_;
+  try {
+    run_steps(options, first_step, outputs, monitor, summary);
+  } catch (const std::exception& e) {
+    // Whatever stops the run (a full disk, a bug), the steps done so far are on disk and
+    // summary.json says how far the run came and why it stopped.
+    summary.converged = false;
+    summary.message = e.what();
+    summary.wall_s = seconds_since(t_start);
+    summary.peak_memory_mb = peak_memory_mb();
+    write_summary(options.out_dir / "summary.json", *this, summary, first_step, options.resume);
+    throw;
+  }
+  if (summary.converged) save_state(options.out_dir / "state_final.cbor");
+  summary.wall_s = seconds_since(t_start);
+  summary.peak_memory_mb = peak_memory_mb();
+  if (summary.converged) summary.message = fmt::format("{} steps converged", summary.steps_done);
+  write_summary(options.out_dir / "summary.json", *this, summary, first_step, options.resume);
+  return summary;
+}
+
+void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
+                           RunSummary& summary) {
   for (int step = first_step; step <= scene_.steps.n_steps; ++step) {
     const auto t_step = Clock::now();
     const StepResult res = advance_step(step);
@@ -111,12 +133,6 @@ RunSummary Simulation::run(const RunOptions& options) {
     save_states(step, options.out_dir);  // after the step's output, so a resumed run never misses rows
     if (options.progress) print_progress(*options.progress, *this, step, res, n_contact, wall);
   }
-  if (summary.converged) save_state(options.out_dir / "state_final.cbor");
-  summary.wall_s = seconds_since(t_start);
-  summary.peak_memory_mb = peak_memory_mb();
-  if (summary.converged) summary.message = fmt::format("{} steps converged", summary.steps_done);
-  write_summary(options.out_dir / "summary.json", *this, summary, first_step, options.resume);
-  return summary;
 }
 
 void Simulation::start_or_resume(const RunOptions& options) {

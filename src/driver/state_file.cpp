@@ -68,11 +68,19 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["checksum"] = checksum(j);  // of everything above
   // Written beside and renamed: a kill while writing leaves the previous file intact.
   const std::filesystem::path tmp = file.string() + ".tmp";
+  bool written = false;
   {
     std::ofstream out(tmp, std::ios::binary);
     const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw InputError(fmt::format("{}: cannot write the state file", tmp.string()));
+    out.close();
+    written = static_cast<bool>(out);
+  }
+  if (!written) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);  // no half-written file left behind
+    throw SystemError(
+        fmt::format("{}: cannot write the state file (disk full or folder not writable?)", file.string()));
   }
   std::filesystem::rename(tmp, file);
 }

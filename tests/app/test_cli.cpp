@@ -201,3 +201,20 @@ TEST_CASE("roller run writes into a new folder or its own earlier output, anothe
   fs::remove_all(out);
   fs::remove_all(foreign);
 }
+
+TEST_CASE("a state file that cannot be written ends the run with exit code 3, its summary written", "[app][output]") {
+  const fs::path out = fs::temp_directory_path() / ("roller_cli_nowrite_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  // A folder where the checkpoint's temporary file would go: writing it fails like a full disk.
+  fs::create_directories(out / "checkpoint.cbor.tmp");
+  const Run r = run_roller("run problems/block_compression.toml --steps 3 --overwrite --out " + out.string());
+  INFO(r.output);
+  CHECK(r.exit_code == 3);
+  CHECK_THAT(r.output, Catch::Contains("roller: system error:") && Catch::Contains("cannot write the state file"));
+  REQUIRE(fs::exists(out / "summary.json"));
+  const auto summary = nlohmann::json::parse(roller::test::read_text(out / "summary.json"));
+  CHECK(summary["converged"] == false);
+  CHECK_THAT(summary["message"].get<std::string>(), Catch::Contains("cannot write the state file"));
+  CHECK(fs::exists(out / "step_0001.vtu"));  // the step done before is on disk
+  fs::remove_all(out);
+}

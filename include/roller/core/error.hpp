@@ -23,6 +23,13 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The machine refused (a full disk, an unwritable folder): not the user's input, not the
+// physics. The command line exits with 3.
+class SystemError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 inline void require(bool condition, const std::string& message) {
   if (!condition) throw std::logic_error(message);
 }

@@ -18,6 +18,9 @@
 
 namespace roller {
 
+class RunOutputs;   // driver/run_outputs.hpp
+class StepMonitor;  // driver/step_monitor.hpp
+
 struct RunOptions {
   std::filesystem::path out_dir = "out";
   std::ostream* progress = nullptr;  // one line per step; nullptr = silent
@@ -143,6 +146,8 @@ class Simulation {
   void record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result, const VecX& u);
   // The step loop's pieces (run.cpp).
   void start_or_resume(const RunOptions& options);
+  void run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
+                 RunSummary& summary);
   void save_states(int step, const std::filesystem::path& out_dir) const;
 
   Scene scene_;
