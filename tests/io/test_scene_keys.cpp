@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/scene_errors.hpp"
+#include "../support/temp_files.hpp"
 #include "roller/core/error.hpp"
 #include "roller/io/scene_keys.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -18,21 +20,11 @@ using namespace roller;
 namespace {
 
 std::string read_file(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  REQUIRE(in);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  REQUIRE(std::filesystem::is_regular_file(p));
+  return test::read_text(p);
 }
 
-std::string error_of(const std::string& text, const std::vector<SceneOverride>& overrides = {}) {
-  try {
-    parse_scene(text, "bad.toml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 // Every key set away from its default (kappa aside: it is written as tangent_modulus).
 std::string all_keys_scene() {

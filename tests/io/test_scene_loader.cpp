@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "../support/scene_errors.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -36,15 +37,7 @@ nodes = [1, 2]
 x = { value = 0.5, ramp = [2, 3] }
 )";
 
-// Loads kGood with one line replaced or appended, and returns the error message ("" if none).
-std::string error_of(const std::string& text, const std::vector<SceneOverride>& overrides = {}) {
-  try {
-    parse_scene(text, "bad.toml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   const auto pos = text.find(from);
