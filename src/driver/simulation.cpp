@@ -12,6 +12,21 @@
 
 namespace roller {
 
+namespace {
+
+// One solve of an increment (Newton or contact) into its counters: the outcome of the last
+// solve, the work of all of them (a suspended roller solves the contact several times).
+template <class Report>
+void add_solve(Simulation::Increment& inc, const Report& r) {
+  inc.converged = r.converged();
+  inc.iterations += r.iterations;
+  inc.factorizations += r.factorizations;
+  inc.residual = r.residual;
+  inc.message = r.message;
+}
+
+}  // namespace
+
 Simulation::Simulation(Scene scene)
     : scene_(std::move(scene)),
       model_(std::make_unique<StripModel>(make_strip_mesh(scene_.mesh), scene_.material, scene_.element)),
@@ -155,12 +170,7 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
   VecX x = model_->dof_map().restrict_to_free(predictor);
   Solution solution;
   if (!scene_.roller) {
-    const NewtonReport r = newton_.minimise(energy, x, scene_.newton);
-    inc.converged = r.converged();
-    inc.iterations = r.iterations;
-    inc.factorizations = r.factorizations;
-    inc.residual = r.residual;
-    inc.message = r.message;
+    add_solve(inc, newton_.minimise(energy, x, scene_.newton));
     solution.u = energy.full_increment(x);
     return solution;
   }
@@ -168,12 +178,7 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
     solution = solve_suspended(energy, prescribed, predictor, motion, x, inc);
   } else {
     solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
-    const BackendResult& r = solution.contact;
-    inc.converged = r.converged();
-    inc.iterations = r.iterations;
-    inc.factorizations = r.factorizations;
-    inc.residual = r.residual;
-    inc.message = r.message;
+    add_solve(inc, solution.contact);
   }
   inc.max_penetration = solution.contact.max_penetration;
   inc.stats = solution.contact.stats;
@@ -190,11 +195,7 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
     motion.end.centre = anchor + Vec2(0.0, w);
     solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
     const BackendResult& r = solution.contact;
-    inc.converged = r.converged();
-    inc.iterations += r.iterations;
-    inc.factorizations += r.factorizations;
-    inc.residual = r.residual;
-    inc.message = r.message;
+    add_solve(inc, r);
     if (!r.converged()) return std::nullopt;
     const VecX uw = energy.full_increment(r.x);
     Real fy = 0.0;

@@ -112,10 +112,10 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
                     "the scene again to write a new one)",
                     file.string(), kVersion));
   {
-    nlohmann::json body = j;
-    const std::string stored = body.value("checksum", "");
-    body.erase("checksum");
-    if (stored != checksum(body))
+    // The checksum covers the document without itself (save_state adds it last).
+    const std::string stored = j.value("checksum", "");
+    j.erase("checksum");
+    if (stored != checksum(j))
       throw InputError(
           fmt::format("{}: the state file is damaged (its checksum does not match); use another "
                       "state file or run the scene again",
