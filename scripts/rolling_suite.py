@@ -6,7 +6,7 @@ usage: /usr/bin/python3 scripts/rolling_suite.py [--out out/rolling_suite] [--re
                                                  [--creep 0,1e-3,3e-3,1e-2,sliding]
                                                  [--materials elastic,plastic]
                                                  [--backends ipopt,penalty] [--timeout 900]
-                                                 [--roller ./build/roller] [--no-run]
+                                                 [--roller ./build/roller] [--no-run] [--resume]
 
 Steady rolling after a press-in (problems/rolling_friction.toml: the roller pressed 0.1 mm into
 a graded elastic strip over steps 1-4, then rolled 4 mm over steps 5-28) over every combination
@@ -17,7 +17,8 @@ One roller process at a time, each under a timeout (killed with its process grou
 converged / failed / timeout, steps done, step cuts, friction passes per increment (ipopt: NLP
 solves of the increment), Q/(mu P) of the last step, wall time, and any nan/inf in the outputs.
 Writes OUT/suite.csv (one row per run, written as it goes: an interrupted suite keeps its rows)
-and OUT/table.md; --no-run re-measures existing outputs.
+and OUT/table.md; --no-run re-measures existing outputs; --resume keeps the rows of OUT/suite.csv
+whose run finished (converged or failed) and runs only the others, so a suite can span sessions.
 """
 import argparse
 import csv
@@ -101,17 +102,31 @@ def main():
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--no-run", action="store_true")
+    ap.add_argument("--resume", action="store_true")
     args = ap.parse_args()
     os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     os.makedirs(args.out, exist_ok=True)
     grid = itertools.product(args.materials.split(","), args.mu.split(","), args.creep.split(","),
                              args.refine.split(","), args.backends.split(","))
     rows = []
-    with open(os.path.join(args.out, "suite.csv"), "w", newline="") as f:
+    table = os.path.join(args.out, "suite.csv")
+    finished = {}
+    if args.resume and os.path.exists(table):
+        for r in read_rows(table):
+            if r.get("status") in ("converged", "failed"):
+                finished[(r["material"], r["mu"], r["creep"], r["refine"], r["backend"])] = r
+    with open(table, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=COLUMNS)
         writer.writeheader()
+        # Finished rows first, so that an interrupted resume loses none of them.
+        writer.writerows(finished.values())
+        f.flush()
         for material, mu, creep, refine, backend in grid:
-            name = "%s_mu%s_creep%s_r%s_%s" % (material, mu, creep, refine, backend)
+            key = (material, mu, creep, refine, backend)
+            if key in finished:
+                rows.append(finished[key])
+                continue
+            name = "%s_mu%s_creep%s_r%s_%s" % key
             out = os.path.join(args.out, name)
             log = out + ".log"
             extra = ["--refine", refine, "--set", "contact.friction=%s" % mu] + path_override(creep)
@@ -131,6 +146,10 @@ def main():
             print("%-40s %-9s steps %3s cuts %3s passes %5s Q/muP %6s %7s s %s" % (
                 name, row["status"], row["steps"], row["cuts"], row["passes_per_increment"] or "-",
                 row["q_over_mu_p"] or "-", row["wall_s"], row["message"]), flush=True)
+    with open(table, "w", newline="") as f:  # again, in the grid's order
+        writer = csv.DictWriter(f, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
     with open(os.path.join(args.out, "table.md"), "w") as f:
         f.write(markdown(rows))
         f.write("\n" + provenance(args.roller, "") + "\n")

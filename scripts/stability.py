@@ -97,7 +97,7 @@ NONFINITE_TOKEN = re.compile(r"(?<![A-Za-z_])[-+]?(nan|inf|infinity)(?![A-Za-z_]
 def run_one(roller, scene, extra, backend, out, log, timeout):
     if os.path.isdir(out):
         shutil.rmtree(out)
-    cmd = [roller, "run", scene, "--out", out, "--contact", backend] + extra
+    cmd = [roller, "run", scene, "--out", out] + (["--contact", backend] if backend else []) + extra
     t0 = time.monotonic()
     with open(log, "w") as f:
         proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True)

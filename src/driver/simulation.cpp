@@ -8,6 +8,7 @@
 #include "roller/contact/arc_predictor.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/core/error.hpp"
+#include "roller/driver/memory_estimate.hpp"
 #include "roller/io/scene_loader.hpp"
 
 namespace roller {
@@ -25,11 +26,17 @@ void add_solve(Simulation::Increment& inc, const Report& r) {
   inc.message = r.message;
 }
 
+// The mesh, once the machine is known to hold the run it starts (else a SystemError with advice).
+Mesh make_mesh_that_fits(const Scene& scene) {
+  if (const auto available = available_memory_bytes()) check_run_memory(scene.mesh, scene.newton.linear, *available);
+  return make_strip_mesh(scene.mesh);
+}
+
 }  // namespace
 
 Simulation::Simulation(Scene scene)
     : scene_(std::move(scene)),
-      model_(std::make_unique<StripModel>(make_strip_mesh(scene_.mesh), scene_.material, scene_.element)),
+      model_(std::make_unique<StripModel>(make_mesh_that_fits(scene_), scene_.material, scene_.element)),
       loads_(scene_, model_->mesh()) {
   model_->set_dof_map(loads_.dof_map());
   if (scene_.roller) {

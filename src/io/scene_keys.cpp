@@ -5,6 +5,7 @@
 // below, declared in the same list. docs/scenes.md documents them for users.
 #include "roller/io/scene_keys.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <optional>
@@ -61,6 +62,45 @@ constexpr Real kMaxDensity = 1e-3;     // t/mm^3 (osmium: 2.3e-8)
 constexpr Real kMaxTime = 1e9;         // s
 constexpr Real kMaxSuspension = 1e12;  // t, N s/mm, N/mm per mm
 constexpr Real kMaxForce = 1e15;       // N per mm
+
+// Lengths of the roller and of the motions, measured against the strip's size S = max(length,
+// height): the absolute bounds above let a 1e9 mm roller onto a 10 mm strip, where the gap
+// |x - c| - R loses every digit the element size needs. A displacement, a travel or the roller's
+// distance from the strip may be kMaxReach S; the radius lies within kRadiusRatio^(+-1) S (the
+// bar-impact striker is a 1e7 mm roller, 5e4 S, standing in for a flat face).
+constexpr Real kMaxReach = 1e3;
+constexpr Real kRadiusRatio = 1e6;
+
+Real strip_size(const Scene& scene) { return std::max(scene.mesh.length, scene.mesh.height); }
+
+// Fails at `key` unless |value| <= ratio S.
+void check_reach(TomlSection& s, const Scene& scene, const std::string& key, Real value, Real ratio = kMaxReach) {
+  const Real size = strip_size(scene);
+  if (!(std::abs(value) <= ratio * size))
+    s.fail(key, fmt::format("must be within +-{:g} times the strip's size max(mesh.length, mesh.height) = {:g} mm, "
+                            "i.e. |value| <= {:g} mm",
+                            ratio, size, ratio * size));
+}
+
+void check_roller_scale(TomlSection& s, const Scene& scene) {
+  const RollerSpec& r = *scene.roller;
+  const Real size = strip_size(scene);
+  if (!(r.radius >= size / kRadiusRatio && r.radius <= size * kRadiusRatio))
+    s.fail("radius", fmt::format("must lie within {:g} and {:g} times the strip's size max(mesh.length, "
+                                 "mesh.height) = {:g} mm, i.e. {:g} <= radius <= {:g} mm",
+                                 1.0 / kRadiusRatio, kRadiusRatio, size, size / kRadiusRatio, size * kRadiusRatio));
+  if (r.start_centre) {
+    // Distance from the roller's surface to the strip's rectangle [0, L] x [0, H].
+    const Vec2 c = *r.start_centre;
+    const Real dx = std::max({0.0, -c.x(), c.x() - scene.mesh.length});
+    const Real dy = std::max({0.0, -c.y(), c.y() - scene.mesh.height});
+    const Real gap = std::hypot(dx, dy) - r.radius;
+    if (!(gap <= kMaxReach * size))
+      s.fail("centre", fmt::format("the roller starts {:g} mm away from the strip: at most {:g} times the strip's "
+                                   "size max(mesh.length, mesh.height) = {:g} mm",
+                                   gap, kMaxReach, size));
+  }
+}
 
 // What a value must satisfy: a range (numbers) or a list of choices (strings).
 struct Rule {
@@ -856,8 +896,10 @@ std::vector<SceneTable> make_tables() {
   SceneTable& displacement = add("displacement", true);
   displacement.enter = [](TomlSection&, Scene& scene) { scene.displacements.emplace_back(); };
   displacement.check = [](TomlSection& s, Scene& scene, Ref i) {
-    if (!scene.displacements[i].x && !scene.displacements[i].y)
-      s.fail("x", "a [[displacement]] block needs x and/or y");
+    const DisplacementBC& d = scene.displacements[i];
+    if (!d.x && !d.y) s.fail("x", "a [[displacement]] block needs x and/or y");
+    if (d.x) check_reach(s, scene, "x", d.x->value);
+    if (d.y) check_reach(s, scene, "y", d.y->value);
   };
   displacement.count = [](const Scene& s) { return s.displacements.size(); };
 
@@ -873,6 +915,7 @@ std::vector<SceneTable> make_tables() {
   roller.check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
     if (!scene.roller->is_valid(&why)) s.fail_invalid(why, {});
+    check_roller_scale(s, scene);
   };
   roller.count = [](const Scene& s) -> std::size_t { return s.roller.has_value(); };
 
@@ -883,6 +926,15 @@ std::vector<SceneTable> make_tables() {
   SceneTable& path = add("roller.path", true);
   path.enter = [](TomlSection&, Scene& scene) { scene.roller->path.emplace_back(); };
   path.count = [](const Scene& s) -> std::size_t { return s.roller ? s.roller->path.size() : 0; };
+  path.check = [](TomlSection& s, Scene& scene, Ref i) {
+    const PathSegment& p = scene.roller->path[i];
+    check_reach(s, scene, "dx", p.dx);
+    check_reach(s, scene, "dy", p.dy);
+    if (p.harmonic_wavelength > 0.0) {
+      check_reach(s, scene, "harmonic", p.harmonic_amplitude);
+      check_reach(s, scene, "harmonic", p.harmonic_wavelength);
+    }
+  };
 
   SceneTable& contact = add("contact");
   contact.enter = [](TomlSection& s, Scene& scene) {

@@ -280,9 +280,7 @@ int intervals_along(const std::vector<Real>& lines, int n) {
 }
 
 std::string check_size(const StripMeshSpec& spec) {
-  const Real columns = static_cast<Real>(intervals_along(spec.x_lines, spec.nx)) * spec.refine;
-  const Real rows = static_cast<Real>(intervals_along(spec.y_lines, spec.ny)) * spec.refine;
-  const Real n_nodes = (columns + 1.0) * (rows + 1.0);
+  const Real n_nodes = strip_node_count(spec);
   if (n_nodes <= kMaxNodes) return {};
   return "mesh.refine = " + std::to_string(spec.refine) + ": the mesh would have " + to_text(n_nodes) +
          " nodes, more than the limit " + to_text(kMaxNodes) + " (lower refine, nx or ny)";
@@ -392,6 +390,12 @@ std::map<std::string, std::vector<Index>> strip_node_sets(const Grid& grid) {
 }
 
 }  // namespace
+
+Real strip_node_count(const StripMeshSpec& spec) {
+  const Real columns = static_cast<Real>(intervals_along(spec.x_lines, spec.nx)) * spec.refine;
+  const Real rows = static_cast<Real>(intervals_along(spec.y_lines, spec.ny)) * spec.refine;
+  return (columns + 1.0) * (rows + 1.0);
+}
 
 bool StripMeshSpec::is_valid(std::string* why) const {
   const std::string problem = first_problem(*this);

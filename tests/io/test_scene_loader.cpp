@@ -242,3 +242,29 @@ TEST_CASE("a roller that starts inside the strip is reported as such, before com
   Scene touching = parse_scene(kGood + "[roller]\nradius = 2.0\ncentre = [5.0, 7.0]\n", "touching.toml");
   CHECK_NOTHROW(Simulation(touching));
 }
+
+TEST_CASE("the roller's size and the motions are checked against the strip's size", "[io][scene][errors]") {
+  using Catch::Contains;
+  // kGood's strip is 10 x 5 mm: S = 10 mm.
+  const std::string roller = kGood + "[roller]\nradius = 2.0\ncentre = [5.0, 7.0]\n";
+  CHECK(error_of(roller).empty());
+  // A 1e9 mm roller on a 10 mm strip passed the absolute bounds; the gap lost every digit.
+  CHECK_THAT(error_of(replace(roller, "radius = 2.0", "radius = 1e9")),
+             Contains("bad.toml:23: roller.radius = 1000000000") && Contains("<= radius <= 1e+07 mm"));
+  CHECK_THAT(error_of(replace(roller, "radius = 2.0", "radius = 1e-6")), Contains("roller.radius = 1e-06"));
+  // Within the bounds at either end: 1e-5 and 1e7 mm.
+  CHECK(error_of(replace(replace(roller, "radius = 2.0", "radius = 1e7"), "7.0]", "10000005.0]")).empty());
+  CHECK(error_of(replace(replace(roller, "radius = 2.0", "radius = 1e-5"), "7.0]", "5.00001]")).empty());
+  // A roller starting far away never reaches the strip.
+  CHECK_THAT(error_of(replace(roller, "centre = [5.0, 7.0]", "centre = [5.0, 1e5]")),
+             Contains("bad.toml:24: roller.centre") && Contains("starts 99993 mm away from the strip"));
+  // Travels, harmonic and displacements: at most 1000 S.
+  CHECK_THAT(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\ndx = -2e4\n"),
+             Contains("roller.path[0].dx = -20000") && Contains("|value| <= 10000 mm"));
+  CHECK_THAT(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\ndx = -1.0\nharmonic = { amplitude = 1e5, "
+                               "wavelength = 1.0 }\n"),
+             Contains("roller.path[0].harmonic") && Contains("strip's size"));
+  CHECK(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\ndx = -1e4\n").empty());
+  CHECK_THAT(error_of(replace(kGood, "y = 0.0", "y = 2e4")),
+             Contains("bad.toml:18: displacement[0].y = 20000") && Contains("strip's size"));
+}

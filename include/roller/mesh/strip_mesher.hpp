@@ -46,6 +46,10 @@ struct StripMeshSpec {
   bool is_valid(std::string* why) const;
 };
 
+// Number of nodes the mesh will have, computed without building it (a Real: nx * refine of a
+// hostile scene overflows an int).
+Real strip_node_count(const StripMeshSpec& spec);
+
 // Builds the mesh with the numbering documented in mesh.hpp and the named node sets.
 Mesh make_strip_mesh(const StripMeshSpec& spec);
 

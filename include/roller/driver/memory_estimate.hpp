@@ -1,0 +1,30 @@
+#pragma once
+// Memory a run will need, estimated from the mesh before it is built, so that a mesh too large
+// for the machine stops with advice instead of std::bad_alloc half-way through the set-up.
+// The rates are the peak resident memory per dof measured on the Hertz and Z1 increments from
+// 3e5 to 1.3e6 dofs (docs/benchmarks.md, Scaling and Out-of-core factors).
+#include <optional>
+
+#include "roller/core/types.hpp"
+#include "roller/mesh/strip_mesher.hpp"
+#include "roller/solver/linear_solver_options.hpp"
+
+namespace roller {
+
+struct MemoryEstimate {
+  Real dofs = 0.0;   // 2 per node
+  Real bytes = 0.0;  // peak resident memory of the run
+};
+
+// In core: 2.6 kB per dof (the penalty backend's 3175 MiB at 1.3e6 dofs; ipopt 2.0 kB); out of
+// core: 1.2 kB per dof (1421 MiB). Plus the program itself.
+MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear);
+
+// MemAvailable of /proc/meminfo [bytes]; none where it cannot be read.
+std::optional<Real> available_memory_bytes();
+
+// Throws SystemError when the estimate exceeds `available`, naming the size and the remedies
+// (a smaller refine, out-of-core factors).
+void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, Real available);
+
+}  // namespace roller
