@@ -215,7 +215,10 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
     return fy;
   };
   const Suspension& suspension = *dynamics_.suspension();
-  const CouplingResult cr = couple_suspension(suspension, suspension.deflection(), force_at, 1e-10 * motion.radius, 40);
+  // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
+  const Real max_deflection = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
+  const CouplingResult cr =
+      couple_suspension(suspension, suspension.deflection(), force_at, 1e-10 * motion.radius, max_deflection, 40);
   inc.suspension_passes = cr.iterations;
   if (!cr.converged) {
     inc.converged = false;

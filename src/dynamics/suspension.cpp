@@ -21,7 +21,7 @@ Real Suspension::acceleration(Real w) const { return history_.acceleration(VecX:
 
 CouplingResult couple_suspension(const Suspension& suspension, Real w0,
                                  const std::function<std::optional<Real>(Real)>& contact_force, Real w_tolerance,
-                                 int max_iterations) {
+                                 Real max_deflection, int max_iterations) {
   CouplingResult out;
   const Real k_eff = suspension.effective_stiffness();
   Real w = w0;
@@ -45,6 +45,14 @@ CouplingResult couple_suspension(const Suspension& suspension, Real w0,
     const Real w_next = w - r / slope;
     out.deflection = w;
     out.force = *f;
+    if (!(std::abs(w_next) <= max_deflection)) {
+      out.message = fmt::format(
+          "the suspension deflection would exceed {:.3g} mm under F_y = {:.6g} N/mm (effective stiffness {:.3g} N/mm "
+          "per mm): the suspension is too soft for the contact force; raise roller.suspension.stiffness or mass, or "
+          "take smaller steps",
+          max_deflection, *f, k_eff);
+      return out;
+    }
     if (std::abs(w_next - w) <= w_tolerance) {
       out.converged = true;
       return out;

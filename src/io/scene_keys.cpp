@@ -58,6 +58,7 @@ Range left_open(Real lo, Real hi) { return {lo, hi, true, false}; }
 constexpr Real kMaxLength = 1e9;       // mm
 constexpr Real kMinLength = 1e-6;      // mm
 constexpr Real kMaxModulus = 1e9;      // MPa
+constexpr Real kMinModulus = 1e-6;     // MPa (1 Pa: below foams; 1e-308 underflowed the stresses)
 constexpr Real kMaxDensity = 1e-3;     // t/mm^3 (osmium: 2.3e-8)
 constexpr Real kMaxTime = 1e9;         // s
 constexpr Real kMaxSuspension = 1e12;  // t, N s/mm, N/mm per mm
@@ -496,7 +497,7 @@ std::vector<SceneKey> make_keys() {
       // [material], read before [mesh]: the Q4 default depends on plasticity.
       key(
           "material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]",
-          left_open(0.0, kMaxModulus))
+          closed(kMinModulus, kMaxModulus))
           .required("Young's modulus E [MPa] is required"),
       key(
           "material.nu", [](auto& s) -> auto& { return s.material.poisson_ratio; }, "Poisson's ratio",

@@ -50,9 +50,10 @@ struct CouplingResult {
 // at anchor + w and returns F_y, or nullopt when that solve fails. The first update is the fixed
 // point w1 = (F_y(w0) - h)/k_eff; later ones take the secant slope of r (k_eff plus the contact
 // stiffness), which converges superlinearly. Converged when the change of w is below
-// `w_tolerance` [mm].
+// `w_tolerance` [mm]; fails (with a message, never a non-finite w) when an update would take
+// |w| beyond `max_deflection` [mm]: a suspension too soft for the force.
 CouplingResult couple_suspension(const Suspension& suspension, Real w0,
                                  const std::function<std::optional<Real>(Real)>& contact_force, Real w_tolerance,
-                                 int max_iterations);
+                                 Real max_deflection, int max_iterations);
 
 }  // namespace roller
