@@ -146,7 +146,11 @@ def main():
             print("%-40s %-9s steps %3s cuts %3s passes %5s Q/muP %6s %7s s %s" % (
                 name, row["status"], row["steps"], row["cuts"], row["passes_per_increment"] or "-",
                 row["q_over_mu_p"] or "-", row["wall_s"], row["message"]), flush=True)
-    with open(table, "w", newline="") as f:  # again, in the grid's order
+    # Again, in the grid's order, after the rows of earlier runs outside this grid (kept).
+    grid_keys = set(itertools.product(args.materials.split(","), args.mu.split(","), args.creep.split(","),
+                                      args.refine.split(","), args.backends.split(",")))
+    rows = [r for k, r in finished.items() if k not in grid_keys] + rows
+    with open(table, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=COLUMNS)
         writer.writeheader()
         writer.writerows(rows)

@@ -1,0 +1,106 @@
+#include "roller/driver/force_control.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace roller {
+
+namespace {
+
+struct Sample {
+  Real w = 0.0;
+  Real r = 0.0;       // F(w) - target: positive when the roller is too deep
+  bool touching = false;  // F(w) > 0
+};
+
+}  // namespace
+
+ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSettings& settings,
+                                   const std::function<std::optional<Real>(Real)>& force_at) {
+  ForceControlResult out;
+  // The bracket: r > 0 below the root (deep), r < 0 above it (shallow). `weight` is the residual
+  // false position uses: Illinois halves the one kept at an end that survives twice in a row.
+  struct End {
+    Sample s;
+    Real weight = 0.0;
+  };
+  std::optional<End> deep, shallow;
+  enum class Side { None, Deep, Shallow } last_replaced = Side::None;
+  std::optional<Sample> last_touching;  // for the secant slope: only samples in contact (the
+                                        // force law has a kink where contact is lost)
+  Real slope = settings.stiffness_guess;
+  Real search_step = 0.0;  // above the strip: the last step down, doubled each time
+  Real w = w0;
+  for (int it = 1; it <= settings.max_iterations; ++it) {
+    const std::optional<Real> f = force_at(w);
+    out.iterations = it;
+    out.offset = w;
+    if (!f) {
+      out.message = fmt::format("the contact solve failed with the roller centre {:.6g} mm off its path", w);
+      return out;
+    }
+    out.force = *f;
+    const Sample now{w, *f - target, *f > 0.0};
+    if (std::abs(now.r) <= settings.force_tolerance) {
+      out.converged = true;
+      out.stiffness = slope;
+      return out;
+    }
+    if (now.touching) {
+      if (last_touching && last_touching->w != now.w) {
+        const Real secant = -(now.r - last_touching->r) / (now.w - last_touching->w);
+        if (secant > 0.0 && std::isfinite(secant)) slope = secant;
+      }
+      last_touching = now;
+    }
+    const bool bracketed = deep && shallow;
+    if (now.r > 0.0) {
+      if (bracketed && last_replaced == Side::Deep) shallow->weight *= 0.5;
+      deep = End{now, now.r};
+      last_replaced = Side::Deep;
+    } else {
+      if (bracketed && last_replaced == Side::Shallow) deep->weight *= 0.5;
+      shallow = End{now, now.r};
+      last_replaced = Side::Shallow;
+    }
+    // Newton with the contact's slope from the last sample in contact; above the strip (no sample
+    // in contact yet), a search downwards whose step doubles.
+    Real w_next;
+    if (now.touching || last_touching) {
+      const Sample& from = now.touching ? now : *last_touching;
+      w_next = from.w + from.r / slope;
+    } else {
+      search_step = search_step == 0.0 ? now.r / slope : 2.0 * search_step;
+      w_next = now.w + search_step;
+    }
+    if (deep && shallow) {
+      const Real lo = std::min(deep->s.w, shallow->s.w), hi = std::max(deep->s.w, shallow->s.w);
+      if (hi - lo <= 1e-14 * std::max(1.0, std::abs(w))) {
+        out.message = fmt::format(
+            "the force on the roller jumps across the prescribed {:.6g} N/mm within {:.3g} mm of centre height (last "
+            "{:.6g} N/mm): take smaller steps",
+            target, hi - lo, out.force);
+        return out;
+      }
+      if (!(w_next > lo && w_next < hi))  // Newton left the bracket: Illinois false position
+        w_next = deep->s.w - deep->weight * (shallow->s.w - deep->s.w) / (shallow->weight - deep->weight);
+    }
+    if (!(std::abs(w_next - w0) <= settings.max_offset_change)) {
+      out.message = fmt::format(
+          "the roller would have to move more than {:.3g} mm to bring the force from {:.6g} to the prescribed {:.6g} "
+          "N/mm: nothing carries the load (the roller has left the strip, or the strip gives way under it); check the "
+          "load and the roller's start, or prescribe the motion (dy) instead",
+          settings.max_offset_change, *f, target);
+      return out;
+    }
+    w = w_next;
+  }
+  out.message = fmt::format(
+      "the roller's height under the prescribed force {:.6g} N/mm did not converge in {} contact solves (force {:.6g} "
+      "N/mm): take smaller steps",
+      target, settings.max_iterations, out.force);
+  return out;
+}
+
+}  // namespace roller
