@@ -1,5 +1,6 @@
 #include "roller/contact/roller.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -37,6 +38,25 @@ bool RollerSpec::is_valid(std::string* why) const {
                         at, slip));
     if (s.harmonic_wavelength < 0.0)
       return bad(fmt::format("{}.harmonic.wavelength = {}: must be > 0", at, s.harmonic_wavelength));
+    if (s.fy) {
+      if (!(*s.fy >= 0.0 && std::isfinite(*s.fy)))
+        return bad(fmt::format("{}.fy = {}: must be a finite force >= 0 [N per mm] (the contact only pushes)", at,
+                               *s.fy));
+      if (s.dy != 0.0)
+        return bad(fmt::format("{}.fy = {}: give either dy (motion) or fy (force) for the vertical direction, not "
+                               "both (dy = {})",
+                               at, *s.fy, s.dy));
+      if (s.harmonic_wavelength > 0.0)
+        return bad(fmt::format("{}.fy = {}: a harmonic moves the centre's height, which fy leaves free: remove "
+                               "one of them",
+                               at, *s.fy));
+      if (suspension)
+        return bad(fmt::format("{}.fy = {}: a suspended roller's height is already an unknown; prescribe the "
+                               "force without roller.suspension",
+                               at, *s.fy));
+    }
+    if (s.friction && !(*s.friction >= 0.0 && *s.friction <= 10.0))
+      return bad(fmt::format("{}.friction = {}: must satisfy 0 <= friction <= 10", at, *s.friction));
   }
   return true;
 }
@@ -69,6 +89,37 @@ RollerPose pose_at_step(const RollerSpec& spec, const Vec2& start_centre, int n)
 }
 
 }  // namespace
+
+namespace {
+
+const PathSegment* segment_of_step(const RollerSpec& spec, int step) {
+  for (const PathSegment& seg : spec.path)
+    if (step >= seg.first_step && step <= seg.last_step) return &seg;
+  return nullptr;
+}
+
+}  // namespace
+
+std::optional<Real> prescribed_vertical_force(const RollerSpec& spec, Real s) {
+  const int step = static_cast<int>(std::ceil(s - 1e-12));
+  Real start = 0.0;  // the force reached by the last earlier force segment
+  for (const PathSegment& seg : spec.path) {
+    if (step < seg.first_step) break;
+    if (step <= seg.last_step) {
+      if (!seg.fy) return std::nullopt;
+      const Real begin = seg.first_step - 1;
+      const Real f = std::clamp((s - begin) / (seg.last_step - begin), 0.0, 1.0);
+      return start + f * (*seg.fy - start);
+    }
+    if (seg.fy) start = *seg.fy;
+  }
+  return std::nullopt;
+}
+
+Real friction_in_step(const RollerSpec& spec, int step, Real fallback) {
+  const PathSegment* seg = segment_of_step(spec, step);
+  return seg && seg->friction ? *seg->friction : fallback;
+}
 
 RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s) {
   // The path is defined at step ends (the thesis moves the roller once per step); within a

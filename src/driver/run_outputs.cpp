@@ -55,6 +55,7 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
                             "dt_restore",
                             "kinetic_energy",
                             "suspension_passes",
+                            "load_passes",
                             "linearisations",
                             "nlp_solves",
                             "condensed_dofs",
@@ -66,12 +67,12 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
                               {"step", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"}, resume, done);
     roller_csv_ = open_table(out_dir / "roller.csv",
                              {"step", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
-                              "deflection_velocity", "deflection_acceleration"},
+                              "deflection_velocity", "deflection_acceleration", "fy_prescribed", "load_offset"},
                              resume, done);
     if (!resume) {
       const RollerPose& pose = sim.pose();
       roller_csv_->add_row({Index{0}, 0.0, pose.centre.x(), pose.centre.y(), pose.angle, 0.0, 0.0, 0.0, 0.0,
-                            pose.centre.y(), 0.0, 0.0, 0.0});
+                            pose.centre.y(), 0.0, 0.0, 0.0, std::string(), 0.0});
     }
   }
   if (resume) {
@@ -122,6 +123,7 @@ void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, c
        std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0,
        sim_.kinetic_energy(),
        static_cast<Real>(res.last.suspension_passes),
+       static_cast<Real>(res.last.load_passes),
        static_cast<Real>(stats.linearisations),
        static_cast<Real>(stats.nlp_solves),
        static_cast<Real>(stats.condensed_dofs),
@@ -142,9 +144,12 @@ void RunOutputs::write_step(int step) {
     const Vec2 v = sim_.roller_velocity();
     const Real anchor_y = sim_.prescribed_pose(step).centre.y();
     const Suspension* suspension = sim_.suspension();
+    // The prescribed force, or an empty cell in a step whose motion is prescribed.
+    const std::optional<Real> force = sim_.prescribed_force(step);
     roller_csv_->add_row({static_cast<Index>(step), step * scene.steps.dt, pose.centre.x(), pose.centre.y(), pose.angle,
                           f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
-                          sim_.suspension_velocity(), sim_.suspension_acceleration()});
+                          sim_.suspension_velocity(), sim_.suspension_acceleration(),
+                          force ? CsvTable::Cell(*force) : CsvTable::Cell(std::string()), sim_.load_offset()});
   }
   if (step % scene.output.every == 0 || step == scene.steps.n_steps) write_fields(step);
 }

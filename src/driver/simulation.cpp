@@ -8,6 +8,7 @@
 #include "roller/contact/arc_predictor.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/core/error.hpp"
+#include "roller/driver/force_control.hpp"
 #include "roller/driver/memory_estimate.hpp"
 #include "roller/io/scene_loader.hpp"
 
@@ -91,6 +92,10 @@ Vec2 Simulation::roller_force() const {
 
 RollerPose Simulation::prescribed_pose(Real s) const { return roller_pose(*scene_.roller, start_centre(), s); }
 
+std::optional<Real> Simulation::prescribed_force(Real s) const {
+  return scene_.roller ? prescribed_vertical_force(*scene_.roller, s) : std::nullopt;
+}
+
 std::vector<PressureSample> Simulation::pressure_profile() const {
   std::vector<PressureSample> out;
   for (const auto& c : contact_) {
@@ -151,10 +156,12 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     motion.radius = scene_.roller->radius;
     motion.start = pose_;
     motion.end = prescribed_pose(s_to);
-    motion.friction = scene_.contact.friction;
+    motion.end.centre.y() += load_offset_;
+    motion.friction =
+        friction_in_step(*scene_.roller, static_cast<int>(std::ceil(s_to - 1e-12)), scene_.contact.friction);
   }
-  const Solution solution =
-      solve_increment(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &motion : nullptr), motion, inc);
+  const Solution solution = solve_increment(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &motion : nullptr),
+                                            motion, prescribed_force(s_to), inc);
   if (inc.converged) commit(solution, motion, s_from, s_to, inc);
   return inc;
 }
@@ -173,9 +180,10 @@ VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) c
 }
 
 Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor,
-                                                 RollerMotion& motion, Increment& inc) {
+                                                 RollerMotion& motion, std::optional<Real> force, Increment& inc) {
   VecX x = model_->dof_map().restrict_to_free(predictor);
   Solution solution;
+  solution.load_offset = load_offset_;
   if (!scene_.roller) {
     add_solve(inc, newton_.minimise(energy, x, scene_.newton));
     solution.u = energy.full_increment(x);
@@ -183,6 +191,8 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
   }
   if (dynamics_.suspension()) {
     solution = solve_suspended(energy, prescribed, predictor, motion, x, inc);
+  } else if (force) {
+    solution = solve_loaded(*force, energy, prescribed, predictor, motion, x, inc);
   } else {
     solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
     add_solve(inc, solution.contact);
@@ -201,18 +211,9 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   auto force_at = [&](Real w) -> std::optional<Real> {
     motion.end.centre = anchor + Vec2(0.0, w);
     solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
-    const BackendResult& r = solution.contact;
-    add_solve(inc, r);
-    if (!r.converged()) return std::nullopt;
-    const VecX uw = energy.full_increment(r.x);
-    Real fy = 0.0;
-    for (std::size_t i = 0; i < solution.candidates.size(); ++i) {
-      const ContactCandidate& c = solution.candidates[i];
-      const Vec2 xi = c.position + Vec2(uw(2 * c.node), uw(2 * c.node + 1));
-      const Vec2 n = (xi - motion.end.centre).normalized();
-      fy -= contact_force(r.contact[i].normal_force, r.contact[i].tangential_force, n, c.tangent).y();
-    }
-    return fy;
+    add_solve(inc, solution.contact);
+    if (!solution.contact.converged()) return std::nullopt;
+    return vertical_force(solution, motion, energy);
   };
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
@@ -228,6 +229,55 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   return solution;
 }
 
+Real Simulation::vertical_force(const Solution& solution, const RollerMotion& motion, IncrementEnergy& energy) const {
+  const BackendResult& r = solution.contact;
+  const VecX u = energy.full_increment(r.x);
+  Real fy = 0.0;
+  for (std::size_t i = 0; i < solution.candidates.size(); ++i) {
+    const ContactCandidate& c = solution.candidates[i];
+    const Vec2 xi = c.position + Vec2(u(2 * c.node), u(2 * c.node + 1));
+    const Vec2 n = (xi - motion.end.centre).normalized();
+    fy -= contact_force(r.contact[i].normal_force, r.contact[i].tangential_force, n, c.tangent).y();
+  }
+  return fy;
+}
+
+Simulation::Solution Simulation::solve_loaded(Real force, IncrementEnergy& energy, const VecX& prescribed,
+                                              const VecX& predictor, RollerMotion& motion, VecX& x, Increment& inc) {
+  // The centre sits at the path's height plus w; w carries the force (force_control.hpp).
+  Solution solution;
+  const Real path_y = motion.end.centre.y() - load_offset_;
+  auto force_at = [&](Real w) -> std::optional<Real> {
+    motion.end.centre.y() = path_y + w;
+    solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+    add_solve(inc, solution.contact);
+    if (!solution.contact.converged()) return std::nullopt;
+    return vertical_force(solution, motion, energy);
+  };
+  ForceControlSettings settings;
+  // 1e-6 of the largest force of the path: far below what a user reads, far above the contact
+  // solves' own accuracy.
+  Real largest = force;
+  for (const PathSegment& seg : scene_.roller->path)
+    if (seg.fy) largest = std::max(largest, *seg.fy);
+  settings.force_tolerance = 1e-6 * largest;
+  // Line contact is about as stiff as E* per unit length; later increments use the last slope.
+  settings.stiffness_guess =
+      load_stiffness_ > 0.0 ? load_stiffness_
+                            : scene_.material.youngs_modulus / (1.0 - std::pow(scene_.material.poisson_ratio, 2));
+  settings.max_offset_change = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
+  const ForceControlResult fc = solve_for_force(force, load_offset_, settings, force_at);
+  inc.load_passes = fc.iterations;
+  if (!fc.converged) {
+    inc.converged = false;
+    inc.message = fc.message;
+    return solution;
+  }
+  solution.load_offset = fc.offset;
+  solution.load_stiffness = fc.stiffness;
+  return solution;
+}
+
 void Simulation::commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to, Increment& inc) {
   try {
     inc.n_yielded = model_->commit(solution.u);
@@ -240,6 +290,8 @@ void Simulation::commit(const Solution& solution, const RollerMotion& motion, Re
   }
   last_increment_ = solution.u;
   last_length_ = s_to - s_from;
+  load_offset_ = solution.load_offset;
+  if (solution.load_stiffness > 0.0) load_stiffness_ = solution.load_stiffness;
   dynamics_.commit_increment(model_->total_displacement(), solution.deflection);
   if (scene_.roller) {
     pose_ = motion.end;

@@ -62,6 +62,8 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["last_increment"] = to_list(last_increment_);
   j["last_length"] = last_length_;
   j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
+  j["load_offset"] = load_offset_;
+  j["load_stiffness"] = load_stiffness_;
   j["friction_history"] = friction_.save();
   dynamics_.save(j);
   j["scene_fingerprint"] = scene_fingerprint(scene_);
@@ -158,6 +160,8 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
     const auto pose = j.at("pose").get<std::vector<Real>>();
     pose_.centre = Vec2(pose.at(0), pose.at(1));
     pose_.angle = pose.at(2);
+    load_offset_ = j.value("load_offset", 0.0);  // absent in files of runs without force control
+    load_stiffness_ = j.value("load_stiffness", 0.0);
     friction_.load(j.at("friction_history"));
     dynamics_.load(j, file.string());
   } catch (const nlohmann::json::exception& e) {

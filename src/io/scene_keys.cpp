@@ -782,6 +782,33 @@ std::vector<SceneKey> make_keys() {
                        toml::table{{"amplitude", p.harmonic_amplitude}, {"wavelength", p.harmonic_wavelength}});
           }),
 
+      custom(
+          "roller.path.fy", "number", "absent (dy: motion)", "0 <= fy <= 1e15",
+          "vertical force of the strip on the roller at the segment's end [N per mm], linear from the last earlier "
+          "segment's fy (0 if none); the centre's height becomes an unknown (replaces dy)",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            if (const auto fy = s.real("fy")) {
+              if (!(*fy >= 0.0 && *fy <= kMaxForce))
+                s.fail("fy", fmt::format("must satisfy 0 <= fy <= {:g} (the contact only pushes)", kMaxForce));
+              scene.roller->path[i].fy = *fy;
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            if (const auto& fy = scene.roller->path[i].fy) t.insert("fy", *fy);
+          }),
+      custom(
+          "roller.path.friction", "number", "contact.friction", "0 <= friction <= 10",
+          "Coulomb coefficient over the segment's steps (e.g. 0 while pressing, mu once the roller rolls)",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            if (const auto mu = s.real("friction")) {
+              if (!(*mu >= 0.0 && *mu <= 10.0)) s.fail("friction", "must satisfy 0 <= friction <= 10");
+              scene.roller->path[i].friction = *mu;
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            if (const auto& mu = scene.roller->path[i].friction) t.insert("friction", *mu);
+          }),
+
       // [contact]
       key(
           "contact.backend", [](auto& s) -> auto& { return s.contact.backend; },

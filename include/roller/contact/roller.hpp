@@ -9,6 +9,12 @@
 // with creep,
 //   slip ratio s = (v_x - |omega| R) / v_x   =>   d(phi) = -dx (1 - s) / R,
 // so s = 0 is rolling without slip to +x (clockwise rotation), s > 0 a roller that lags.
+//
+// A segment may prescribe the vertical force on the roller instead of its vertical motion (fy):
+// over the segment's steps the centre's height is an unknown that carries the force
+// (driver/force_control.hpp), and the offset it reaches from the path is kept afterwards. A
+// segment may also set the friction coefficient for its steps (the Cattaneo-Mindlin protocol:
+// mu = 0 while pressing, mu once the tangential load starts).
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +38,10 @@ struct PathSegment {
   Real slip_end = 0.0;
   Real harmonic_amplitude = 0.0;   // A [mm]
   Real harmonic_wavelength = 0.0;  // L_p [mm]; 0 = no harmonic
+  // Vertical force of the strip on the roller at the segment's end [N per mm], reached linearly
+  // from the fy of the last earlier segment that has one (0 if none); replaces dy.
+  std::optional<Real> fy;
+  std::optional<Real> friction;  // Coulomb coefficient over the segment's steps (else contact.friction)
 };
 
 struct RollerSpec {
@@ -46,5 +56,12 @@ struct RollerSpec {
 // Pose at (fractional) step s: s = 0 is the start, s = 2.5 halfway through step 3. The path is
 // sampled at step ends and interpolated linearly within a step.
 RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s);
+
+// The vertical force prescribed at (fractional) step s, s in (n - 1, n] belonging to step n:
+// none when step n's segment prescribes the motion (or no segment covers it).
+std::optional<Real> prescribed_vertical_force(const RollerSpec& spec, Real s);
+
+// The friction coefficient of step n's segment, else `fallback` (contact.friction).
+Real friction_in_step(const RollerSpec& spec, int step, Real fallback);
 
 }  // namespace roller

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "roller/analysis/hertz.hpp"
@@ -77,8 +78,13 @@ class Simulation {
   const Suspension* suspension() const { return dynamics_.suspension(); }
   Real suspension_velocity() const { return dynamics_.suspension_velocity(); }
   Real suspension_acceleration() const { return dynamics_.suspension_acceleration(); }
-  // The roller's prescribed pose at (fractional) scene step s: for a suspended roller, its anchor.
+  // The roller's prescribed pose at (fractional) scene step s: for a suspended roller, its anchor;
+  // under force control (roller.path fy) the path without the load offset.
   RollerPose prescribed_pose(Real s) const;
+  // Force control: the centre's height offset from the path that carries the prescribed force
+  // (kept after the force-controlled segments), and that force at step s (none: motion).
+  Real load_offset() const { return load_offset_; }
+  std::optional<Real> prescribed_force(Real s) const;
   // Roller centre velocity over the last step (backward difference) [mm/s].
   Vec2 roller_velocity() const { return roller_velocity_; }
 
@@ -102,6 +108,7 @@ class Simulation {
     Index n_yielded = 0;        // integration points that yielded in the committed increment
     BackendStats stats;         // of the last contact solve
     int suspension_passes = 0;  // passes coupling the suspension with the contact
+    int load_passes = 0;        // contact solves finding the height that carries the prescribed force
     std::string message;
   };
   Increment advance(Real s_from, Real s_to);
@@ -133,14 +140,22 @@ class Simulation {
     std::vector<ContactCandidate> candidates;
     BackendResult contact;
     Real deflection = 0.0;
+    Real load_offset = 0.0;     // force control: the centre's offset that carries the force
+    Real load_stiffness = 0.0;  // and the slope dF/d(-w) there (0: not force-controlled)
   };
+  // `force`: the prescribed vertical force on the roller (none: its motion is prescribed).
   Solution solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor, RollerMotion& motion,
-                           Increment& inc);
+                           std::optional<Real> force, Increment& inc);
   BackendResult solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
                               RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
   Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
                            VecX& x, Increment& inc);
+  // The prescribed vertical force, iterated on the centre's height (driver/force_control.hpp).
+  Solution solve_loaded(Real force, IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
+                        RollerMotion& motion, VecX& x, Increment& inc);
+  // The vertical force of the strip on the roller in a contact solution (up positive).
+  Real vertical_force(const Solution& solution, const RollerMotion& motion, IncrementEnergy& energy) const;
   // Accepts a converged increment (transactional: a throw of the strip's commit changes nothing).
   void commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to, Increment& inc);
   void record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result, const VecX& u);
@@ -164,6 +179,8 @@ class Simulation {
   DynamicsState dynamics_;
   NewtonMinimiser newton_;  // increments without contact
   Vec2 roller_velocity_ = Vec2::Zero();
+  Real load_offset_ = 0.0;     // force control: the centre's height above the path [mm]
+  Real load_stiffness_ = 0.0;  // dF/d(-w) of the last force-controlled increment (0: none yet)
 };
 
 }  // namespace roller
