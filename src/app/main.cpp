@@ -39,7 +39,7 @@ int run_scene(const RunArgs& args) {
   std::cout << fmt::format("roller: scene '{}' ({}), {} elements {}, {} dofs ({} free), {} steps -> {}\n",
                            sim.scene().name, sim.scene().title, sim.model().mesh().n_elements(),
                            roller::enum_name(sim.model().mesh().element_type), sim.model().n_dofs(),
-                           sim.model().dof_map().n_free(), sim.scene().steps.n_steps, out);
+                           sim.model().dof_map().n_free(), sim.scene().total_steps(), out);
   roller::RunOptions options;
   options.out_dir = out;
   options.progress = &std::cout;

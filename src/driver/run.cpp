@@ -48,9 +48,11 @@ void print_progress(std::ostream& out, const Simulation& sim, int step, const Si
     contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", n_contact, res.max_penetration,
                                sim.roller_force().y());
   if (sim.suspension()) contact_text += fmt::format("  w {:9.3e}", sim.suspension()->deflection());
-  out << fmt::format("step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
-                     step, scene.steps.n_steps, step * scene.steps.dt, res.iterations, res.last.residual, res.cuts,
-                     res.n_yielded, contact_text, wall_s)
+  const std::string pass_text =
+      scene.passes.count > 1 ? fmt::format("pass {:>2}/{:<2} ", sim.pass_of_step(step), scene.passes.count) : "";
+  out << fmt::format("{}step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
+                     pass_text, step, scene.total_steps(), step * scene.steps.dt, res.iterations, res.last.residual,
+                     res.cuts, res.n_yielded, contact_text, wall_s)
       << std::flush;
 }
 
@@ -63,7 +65,7 @@ void write_summary(const std::filesystem::path& file, const Simulation& sim, con
   j["ndof"] = sim.model().n_dofs();
   j["n_free_dofs"] = sim.model().dof_map().n_free();
   j["n_elements"] = sim.model().mesh().n_elements();
-  j["steps"] = scene.steps.n_steps;
+  j["steps"] = scene.total_steps();
   j["steps_done"] = summary.steps_done;
   j["first_step"] = first_step;
   j["resumed"] = resumed;
@@ -113,7 +115,7 @@ RunSummary Simulation::run(const RunOptions& options) {
 
 void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
                            RunSummary& summary) {
-  for (int step = first_step; step <= scene_.steps.n_steps; ++step) {
+  for (int step = first_step; step <= scene_.total_steps(); ++step) {
     const auto t_step = Clock::now();
     const StepResult res = advance_step(step);
     const double wall = seconds_since(t_step);

@@ -36,6 +36,7 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
   const int done = sim.steps_done();
   solver_csv_ = open_table(out_dir / "solver.csv",
                            {"step",
+                            "pass",
                             "time",
                             "iterations",
                             "residual",
@@ -64,14 +65,14 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
                            resume, done);
   if (sim.scene().roller) {
     contact_csv_ = open_table(out_dir / "contact.csv",
-                              {"step", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"}, resume, done);
+                              {"step", "pass", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"}, resume, done);
     roller_csv_ = open_table(out_dir / "roller.csv",
-                             {"step", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
+                             {"step", "pass", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
                               "deflection_velocity", "deflection_acceleration", "fy_prescribed", "load_offset"},
                              resume, done);
     if (!resume) {
       const RollerPose& pose = sim.pose();
-      roller_csv_->add_row({Index{0}, 0.0, pose.centre.x(), pose.centre.y(), pose.angle, 0.0, 0.0, 0.0, 0.0,
+      roller_csv_->add_row({Index{0}, Index{1}, 0.0, pose.centre.x(), pose.centre.y(), pose.angle, 0.0, 0.0, 0.0, 0.0,
                             pose.centre.y(), 0.0, 0.0, 0.0, std::string(), 0.0});
     }
   }
@@ -104,6 +105,7 @@ void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, c
   const Index not_checked = -1;
   solver_csv_->add_row(
       {static_cast<Index>(step),
+       static_cast<Index>(sim_.pass_of_step(step)),
        step * sim_.scene().steps.dt,
        static_cast<Index>(res.iterations),
        res.last.residual,
@@ -134,8 +136,9 @@ void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, c
 void RunOutputs::write_step(int step) {
   const Scene& scene = sim_.scene();
   if (scene.roller) {
+    const Index pass = sim_.pass_of_step(step);
     for (const auto& c : sim_.contact())
-      contact_csv_->add_row({static_cast<Index>(step), c.node + 1, c.position.x(), c.position.y(), c.contact.gap,
+      contact_csv_->add_row({static_cast<Index>(step), pass, c.node + 1, c.position.x(), c.position.y(), c.contact.gap,
                              c.contact.normal_force / c.tributary_length,
                              c.contact.tangential_force / c.tributary_length, std::string(to_string(c.contact.status)),
                              c.contact.slip});
@@ -146,12 +149,12 @@ void RunOutputs::write_step(int step) {
     const Suspension* suspension = sim_.suspension();
     // The prescribed force, or an empty cell in a step whose motion is prescribed.
     const std::optional<Real> force = sim_.prescribed_force(step);
-    roller_csv_->add_row({static_cast<Index>(step), step * scene.steps.dt, pose.centre.x(), pose.centre.y(), pose.angle,
+    roller_csv_->add_row({static_cast<Index>(step), pass, step * scene.steps.dt, pose.centre.x(), pose.centre.y(), pose.angle,
                           f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
                           sim_.suspension_velocity(), sim_.suspension_acceleration(),
                           force ? CsvTable::Cell(*force) : CsvTable::Cell(std::string()), sim_.load_offset()});
   }
-  if (step % scene.output.every == 0 || step == scene.steps.n_steps) write_fields(step);
+  if (step % scene.output.every == 0 || step == scene.total_steps()) write_fields(step);
 }
 
 }  // namespace roller

@@ -90,10 +90,17 @@ Vec2 Simulation::roller_force() const {
   return f;
 }
 
-RollerPose Simulation::prescribed_pose(Real s) const { return roller_pose(*scene_.roller, start_centre(), s); }
+RollerPose Simulation::prescribed_pose(Real s) const {
+  const PassPosition at = locate_pass(s, scene_.steps.n_steps);
+  Vec2 start;
+  const RollerSpec spec =
+      roller_of_pass(*scene_.roller, scene_.passes, at.pass, start_centre(), scene_.steps.n_steps, &start);
+  return roller_pose(spec, start, at.local);
+}
 
 std::optional<Real> Simulation::prescribed_force(Real s) const {
-  return scene_.roller ? prescribed_vertical_force(*scene_.roller, s) : std::nullopt;
+  if (!scene_.roller) return std::nullopt;
+  return prescribed_vertical_force(*scene_.roller, locate_pass(s, scene_.steps.n_steps).local);
 }
 
 std::vector<PressureSample> Simulation::pressure_profile() const {
@@ -157,8 +164,9 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     motion.start = pose_;
     motion.end = prescribed_pose(s_to);
     motion.end.centre.y() += load_offset_;
+    const Real local = locate_pass(s_to, scene_.steps.n_steps).local;
     motion.friction =
-        friction_in_step(*scene_.roller, static_cast<int>(std::ceil(s_to - 1e-12)), scene_.contact.friction);
+        friction_in_step(*scene_.roller, static_cast<int>(std::ceil(local - 1e-12)), scene_.contact.friction);
   }
   const Solution solution = solve_increment(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &motion : nullptr),
                                             motion, prescribed_force(s_to), inc);
@@ -299,8 +307,48 @@ void Simulation::commit(const Solution& solution, const RollerMotion& motion, Re
   }
 }
 
+std::string Simulation::return_for_pass(int pass) {
+  // The roller must have left the strip: no node carries a contact force, and none lies within
+  // the roller at the pass's start.
+  Index touching = 0;
+  for (const auto& c : contact_) touching += c.contact.status != ContactStatus::Open ? 1 : 0;
+  if (touching > 0)
+    return fmt::format(
+        "pass {} ends with the roller on the strip ({} nodes in contact): end each pass with a lift (a "
+        "[[roller.path]] segment with dy > 0) so that the roller can return for pass {}",
+        pass - 1, touching, pass);
+  const RollerPose start = prescribed_pose((pass - 1) * scene_.steps.n_steps);
+  const std::vector<Vec2> x = model_->current_coordinates();
+  for (Index a : candidate_nodes_)
+    if ((x[a] - start.centre).norm() < scene_.roller->radius)
+      return fmt::format("pass {} would start with node {} inside the roller at ({:.6g}, {:.6g}): start the pass "
+                         "clear of the strip (roller.centre) or press in from above",
+                         pass, a + 1, start.centre.x(), start.centre.y());
+  pose_ = start;
+  load_offset_ = 0.0;       // each pass meets the strip as the first did
+  last_increment_.setZero();  // the lift is no predictor of the press
+  contact_.clear();
+  return "";
+}
+
+int Simulation::pass_of_step(int step) const { return locate_pass(step, scene_.steps.n_steps).pass; }
+
 Simulation::StepResult Simulation::advance_step(int step) {
   StepResult res;
+  // The first step of a pass after the first: the roller returns to the pass's start (undone
+  // below if the step fails, so that a failed step changes nothing).
+  struct BeforeReturn {
+    RollerPose pose;
+    Real load_offset;
+    VecX last_increment;
+    std::vector<NodeContactRecord> contact;
+  };
+  std::optional<BeforeReturn> before_return;
+  if (scene_.roller && step > 1 && (step - 1) % scene_.steps.n_steps == 0) {
+    before_return = BeforeReturn{pose_, load_offset_, last_increment_, contact_};
+    res.message = return_for_pass(pass_of_step(step));
+    if (!res.message.empty()) return res;
+  }
   const Vec2 centre_start = pose_.centre;
   // Sub-increments of 1/2^cuts of the step; a failed sub-increment is halved again.
   Real s = step - 1;
@@ -319,6 +367,12 @@ Simulation::StepResult Simulation::advance_step(int step) {
     if (res.cuts >= scene_.steps.max_cuts) {
       res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}", step, res.cuts,
                                 ds, inc.message);
+      if (before_return && s == step - 1) {  // nothing of the step committed: undo the return too
+        pose_ = before_return->pose;
+        load_offset_ = before_return->load_offset;
+        last_increment_ = before_return->last_increment;
+        contact_ = before_return->contact;
+      }
       return res;
     }
     ++res.cuts;

@@ -30,11 +30,15 @@ std::string checksum(const nlohmann::json& j) {
   return fnv1a_hex(bytes.data(), bytes.size());
 }
 
-// The resolved scene without what a resumed run may change (the number of steps: a shortened
-// run is continued with more), so that a checkpoint continues only the run that wrote it.
+// The resolved scene without what a resumed run may change (the number of steps, or of passes
+// when the run repeats a pass of steps.count steps: a shortened run is continued with more), so
+// that a checkpoint continues only the run that wrote it.
 std::string scene_fingerprint(const Scene& scene) {
   Scene s = scene;
-  s.steps.n_steps = 1;
+  if (s.passes.count > 1)
+    s.passes.count = 2;  // still a multi-pass run: the pass's steps.count must stay
+  else
+    s.steps.n_steps = 1;
   const std::string text = scene_to_toml(s);
   return fnv1a_hex(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
 }
@@ -149,11 +153,11 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
                       "scenes differ); resume with the same scene file and --set values, or start "
                       "afresh without --resume",
                       file.string()));
-    if (j.at("step").get<int>() > scene_.steps.n_steps)
+    if (j.at("step").get<int>() > scene_.total_steps())
       throw InputError(
           fmt::format("{}: the checkpoint is after step {} but the run has {} steps (steps.count or "
-                      "--steps); give at least {} steps",
-                      file.string(), j.at("step").get<int>(), scene_.steps.n_steps, j.at("step").get<int>()));
+                      "--steps, times passes.count); give at least {} steps",
+                      file.string(), j.at("step").get<int>(), scene_.total_steps(), j.at("step").get<int>()));
     steps_done_ = j.at("step").get<int>();
     last_increment_ = to_vec(j.at("last_increment"));
     last_length_ = j.at("last_length").get<Real>();

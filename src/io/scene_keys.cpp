@@ -380,7 +380,7 @@ Decl ramp_key(const std::string& dotted, std::vector<Block> Scene::*blocks, std:
   return custom(
       dotted, "number or ramp table", "absent (free)", fmt::format("|value| <= {:g}", bound), doc,
       [=](TomlSection& s, Scene& scene, std::size_t i) {
-        if (s.has(name)) ((scene.*blocks)[i].*ramp) = read_ramp(s, name, scene.steps.n_steps, bound);
+        if (s.has(name)) ((scene.*blocks)[i].*ramp) = read_ramp(s, name, scene.total_steps(), bound);
       },
       [=](toml::table& t, const Scene& scene, std::size_t i) {
         if (const auto& r = (scene.*blocks)[i].*ramp)
@@ -600,12 +600,21 @@ std::vector<SceneKey> make_keys() {
       // [steps]
       key(
           "steps.count", [](auto& s) -> auto& { return s.steps.n_steps; },
-          "number of steps; fields are written at the end of steps (--steps)", at_least(1)),
+          "number of steps (of one pass with [passes]); fields are written at the end of steps (--steps)",
+          closed(1, 1e7)),
       key(
           "steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", left_open(0.0, kMaxTime)),
       key(
           "steps.max_cuts", [](auto& s) -> auto& { return s.steps.max_cuts; },
           "a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments", closed(0, 20)),
+
+      // [passes]
+      key(
+          "passes.count", [](auto& s) -> auto& { return s.passes.count; },
+          "passes of the roller: steps 1..steps.count and the path are one pass, repeated", closed(1, 1e4)),
+      key(
+          "passes.direction", [](auto& s) -> auto& { return s.passes.direction; },
+          "same: every pass from the same start; alternate: every second pass back, the path mirrored in x"),
 
       // [newton]
       key(
@@ -647,9 +656,10 @@ std::vector<SceneKey> make_keys() {
           [](TomlSection& s, Scene& scene, Ref) {
             if (auto steps = s.real_array("save_states")) {
               for (Real v : *steps) {
-                if (v != std::floor(v) || v < 1 || v > scene.steps.n_steps)
+                if (v != std::floor(v) || v < 1 || v > scene.total_steps())
                   s.fail("save_states",
-                         fmt::format("expected step numbers in 1..{} (steps.count)", scene.steps.n_steps));
+                         fmt::format("expected step numbers in 1..{} (steps.count x passes.count)",
+                                     scene.total_steps()));
                 scene.output.save_states.push_back(static_cast<int>(v));
               }
             }
@@ -884,6 +894,8 @@ std::vector<SceneTable> make_tables() {
     const std::string& n = scene.name;
     if (n.empty() || n == "." || n == ".." || n.find_first_of("/\\") != std::string::npos)
       s.fail("name", "expected a non-empty name without '/' or '\\' (it names the output folder out/<name>)");
+    if (scene.passes.count > 1 && !scene.roller)
+      s.fail("passes", "repeated passes need a [roller] whose [[roller.path]] describes one pass");
   };
 
   SceneTable& material = add("material");
@@ -905,6 +917,12 @@ std::vector<SceneTable> make_tables() {
   };
 
   add("steps");
+  SceneTable& passes = add("passes");
+  passes.check = [](TomlSection& s, Scene& scene, Ref) {
+    if (scene.total_steps() > 1e7)
+      s.fail("count", fmt::format("count x steps.count = {} steps: at most 1e7", scene.total_steps()));
+  };
+  passes.count = [](const Scene& s) -> std::size_t { return s.passes.count > 1; };
   add("newton").check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
     if (!scene.newton.is_valid(&why)) s.fail_invalid(why, {});

@@ -52,7 +52,7 @@ TEST_CASE("roller run: the default scene runs end to end and writes its results"
        {"fields.pvd", "step_0000.vtu", "step_0003.vtu", "solver.csv", "summary.json", "scene.resolved.toml"})
     CHECK(fs::exists(out / f));
   const std::string csv = roller::test::read_text(out / "solver.csv");
-  CHECK_THAT(csv, Catch::StartsWith("step,time,iterations,residual,max_penetration,wall_s"));
+  CHECK_THAT(csv, Catch::StartsWith("step,pass,time,iterations,residual,max_penetration,wall_s"));
   CHECK_THAT(csv, Catch::Contains("k_eff_positive_definite"));
   const auto summary = nlohmann::json::parse(roller::test::read_text(out / "summary.json"));
   CHECK(summary["converged"] == true);

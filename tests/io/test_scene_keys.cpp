@@ -53,6 +53,9 @@ x_lines = [0.0, 20.0, 50.0]
 y_lines = [0.0, 4.0, 7.0, 10.0]
 diagonal = "alternating"
 q4_formulation = "standard"
+[passes]
+count = 2
+direction = "alternate"
 [steps]
 count = 5
 dt = 1e-4

@@ -66,6 +66,7 @@ class Simulation {
   const StripModel& model() const { return *model_; }
   // Roller pose at the end of the last committed increment, and the contact of that increment.
   const RollerPose& pose() const { return pose_; }
+  int pass_of_step(int step) const;  // 1-based ([passes]; 1 without)
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
   Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
   int steps_done() const { return steps_done_; }
@@ -129,6 +130,9 @@ class Simulation {
 
  private:
   Vec2 start_centre() const;
+  // Before the first step of pass `pass` > 1: the roller, clear of the strip, returns to the
+  // pass's start; a message (and nothing changed) when it is not clear.
+  std::string return_for_pass(int pass);
   void check_roller_starts_outside() const;  // InputError naming roller.centre
   // Where an increment starts: the previous converged increment scaled to this one's length
   // (and, as an option, the thesis's arc predictor for nodes that would enter the roller).

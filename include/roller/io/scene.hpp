@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "roller/contact/contact_options.hpp"
+#include "roller/contact/passes.hpp"
 #include "roller/contact/roller.hpp"
 #include "roller/fem/kinematics.hpp"
 #include "roller/material/material_params.hpp"
@@ -91,10 +92,13 @@ struct Scene {
   std::vector<NodalLoad> loads;
   DynamicsOptions dynamics;
   std::optional<RollerSpec> roller;  // absent: no contact
+  PassSpec passes;                   // the roller's path repeated (steps.count steps per pass)
   ContactOptions contact;
   // Start from the strip state saved by another run (state file; roller and friction history
   // start afresh): [restart] from = "...", resolved against the scene file's folder.
   std::filesystem::path initial_state;
+
+  int total_steps() const { return steps.n_steps * passes.count; }  // steps of the whole run
 };
 
 }  // namespace roller
