@@ -56,6 +56,20 @@ void print_progress(std::ostream& out, const Simulation& sim, int step, const Si
       << std::flush;
 }
 
+// The Hertz peak pressure of the largest prescribed force over the shear yield stress
+// k = sigma_y / sqrt(3): Johnson's load measure for shakedown (docs/validation.md, Shakedown);
+// none without a yield stress or a prescribed force.
+std::optional<Real> p0_over_k(const Scene& scene) {
+  if (!scene.roller || !scene.material.plastic) return std::nullopt;
+  Real load = 0.0;
+  for (const PathSegment& seg : scene.roller->path)
+    if (seg.fy) load = std::max(load, *seg.fy);
+  if (!(load > 0.0)) return std::nullopt;
+  const Real e_star = scene.material.youngs_modulus / (1.0 - std::pow(scene.material.poisson_ratio, 2));
+  const Real p0 = hertz_line_contact(load, scene.roller->radius, e_star).peak;
+  return p0 / (scene.material.yield_stress / std::sqrt(3.0));
+}
+
 void write_summary(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary, int first_step,
                    bool resumed) {
   const Scene& scene = sim.scene();
@@ -78,6 +92,13 @@ void write_summary(const std::filesystem::path& file, const Simulation& sim, con
   j["cuts_total"] = summary.cuts_total;
   j["max_penetration"] = summary.max_penetration;
   j["message"] = summary.message;
+  if (scene.passes.count > 1) {
+    const ShakedownClassification c = classify_passes(sim.pass_records());
+    j["passes"] = {{"count", sim.pass_records().size()},
+                   {"verdict", enum_name(c.verdict)},
+                   {"criterion", c.criterion}};
+    if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
+  }
   std::ofstream(file) << j.dump(2) << "\n";
 }
 
@@ -131,7 +152,7 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
       break;
     }
     summary.steps_done = step;
-    outputs.write_step(step);
+    outputs.write_step(step, res.pass_end);
     save_states(step, options.out_dir);  // after the step's output, so a resumed run never misses rows
     if (options.progress) print_progress(*options.progress, *this, step, res, n_contact, wall);
   }

@@ -76,6 +76,17 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
                             pose.centre.y(), 0.0, 0.0, 0.0, std::string(), 0.0});
     }
   }
+  if (sim.scene().passes.count > 1) {
+    passes_csv_ = open_table(out_dir / "passes.csv",
+                             {"step", "pass", "max_plastic_increment", "mean_plastic_increment", "band_plastic_increment", "surface_ux", "surface_uy",
+                              "surface_dux", "surface_duy", "shear_depth", "residual_shear_strain",
+                              "residual_shear_increment", "peak_pressure", "contact_half_width", "track_start",
+                              "track_end"},
+                             resume, done);
+    depth_csv_ = open_table(out_dir / "residual_depth.csv",
+                            {"step", "pass", "x", "depth", "sxx", "syy", "szz", "sxy", "eq_plastic_strain"}, resume,
+                            done);
+  }
   if (resume) {
     for (int step = 0; step <= done; ++step)
       if (std::filesystem::exists(vtu_path(step))) series_.add(step * sim.scene().steps.dt, vtu_path(step));
@@ -133,7 +144,18 @@ void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, c
        std::string(res.converged ? "converged" : "failed")});
 }
 
-void RunOutputs::write_step(int step) {
+void RunOutputs::write_step(int step, const std::optional<Simulation::StepResult::PassEnd>& pass_end) {
+  if (pass_end && passes_csv_) {
+    const PassRecord& r = pass_end->record;
+    const Index s = step, pass = r.pass;
+    passes_csv_->add_row({s, pass, r.max_plastic_increment, r.mean_plastic_increment, r.band_plastic_increment,
+                          r.surface_ux, r.surface_uy, r.surface_dux, r.surface_duy, r.shear_depth,
+                          r.residual_shear_strain, r.residual_shear_increment, r.peak_pressure, r.contact_half_width,
+                          r.track_start, r.track_end});
+    for (const DepthSample& d : pass_end->profile)
+      depth_csv_->add_row({s, pass, pass_end->profile_x, d.depth, d.stress(0), d.stress(1), d.stress(2), d.stress(3),
+                           d.plastic_strain});
+  }
   const Scene& scene = sim_.scene();
   if (scene.roller) {
     const Index pass = sim_.pass_of_step(step);

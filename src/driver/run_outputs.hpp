@@ -5,6 +5,7 @@
 // files in the series.
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "roller/driver/simulation.hpp"
 #include "roller/io/csv_table.hpp"
@@ -23,8 +24,8 @@ class RunOutputs {
   void write_solver_row(int step, const Simulation::StepResult& res, const MonitorReport& monitor, double wall_s,
                         Index n_contact);
   // The results of a converged step: contact and roller rows, fields every output.every steps
-  // and at the last one.
-  void write_step(int step);
+  // and at the last one; at the end of a pass its row of passes.csv and its residual profile.
+  void write_step(int step, const std::optional<Simulation::StepResult::PassEnd>& pass_end);
 
  private:
   void write_fields(int step);
@@ -32,7 +33,7 @@ class RunOutputs {
 
   const Simulation& sim_;
   std::filesystem::path out_dir_;
-  std::unique_ptr<CsvTable> solver_csv_, contact_csv_, roller_csv_;
+  std::unique_ptr<CsvTable> solver_csv_, contact_csv_, roller_csv_, passes_csv_, depth_csv_;
   PvdSeries series_;
 };
 

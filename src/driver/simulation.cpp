@@ -52,6 +52,7 @@ Simulation::Simulation(Scene scene)
   // After the initial state: a restarted strip starts at rest in its new configuration.
   dynamics_ = DynamicsState(*model_, scene_.dynamics.strip_inertia, scene_.dynamics.lumped_mass,
                             scene_.roller ? scene_.roller->suspension : std::nullopt, scene_.steps.dt);
+  if (scene_.passes.count > 1) pass_baseline_ = PassBaseline::of(*model_);
 }
 
 void Simulation::check_roller_starts_outside() const {
@@ -331,6 +332,26 @@ std::string Simulation::return_for_pass(int pass) {
   return "";
 }
 
+std::optional<Simulation::StepResult::PassEnd> Simulation::observe_pass(int step) {
+  if (scene_.passes.count < 2) return std::nullopt;
+  std::vector<Real> x, p;
+  for (const auto& c : contact_) {
+    if (c.contact.status == ContactStatus::Open) continue;
+    x.push_back(c.position.x());
+    p.push_back(c.contact.normal_force / c.tributary_length);
+  }
+  pass_track_.observe(pose_.centre.x(), x, p);
+  if (step % scene_.steps.n_steps != 0) return std::nullopt;
+  StepResult::PassEnd end;
+  end.record = measure_pass(pass_of_step(step), *model_, scene_.mesh.height, pass_track_, pass_baseline_);
+  end.profile_x = 0.5 * (end.record.track_start + end.record.track_end);
+  end.profile = depth_profile(*model_, scene_.mesh.height, end.profile_x);
+  pass_records_.push_back(end.record);
+  pass_track_ = PassTrack{};
+  pass_baseline_ = PassBaseline::of(*model_);
+  return end;
+}
+
 int Simulation::pass_of_step(int step) const { return locate_pass(step, scene_.steps.n_steps).pass; }
 
 Simulation::StepResult Simulation::advance_step(int step) {
@@ -382,6 +403,7 @@ Simulation::StepResult Simulation::advance_step(int step) {
   roller_velocity_ = (pose_.centre - centre_start) / scene_.steps.dt;
   ++steps_done_;
   dynamics_.finish_step(model_->total_displacement());
+  res.pass_end = observe_pass(step);
   return res;
 }
 

@@ -12,6 +12,11 @@
 
 namespace roller {
 
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(PassRecord, pass, max_plastic_increment, mean_plastic_increment,
+                                   band_plastic_increment, surface_ux, surface_uy, surface_dux, surface_duy,
+                                   shear_depth, residual_shear_strain, residual_shear_increment, peak_pressure,
+                                   contact_half_width, track_start, track_end)
+
 namespace {
 
 constexpr const char* kFormat = "roller-state";
@@ -68,6 +73,11 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
   j["load_offset"] = load_offset_;
   j["load_stiffness"] = load_stiffness_;
+  if (scene_.passes.count > 1) {
+    j["pass_track"] = pass_track_.save();
+    j["pass_baseline"] = pass_baseline_.save();
+    j["pass_records"] = pass_records_;
+  }
   j["friction_history"] = friction_.save();
   dynamics_.save(j);
   j["scene_fingerprint"] = scene_fingerprint(scene_);
@@ -166,6 +176,11 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
     pose_.angle = pose.at(2);
     load_offset_ = j.value("load_offset", 0.0);  // absent in files of runs without force control
     load_stiffness_ = j.value("load_stiffness", 0.0);
+    if (scene_.passes.count > 1 && j.contains("pass_track")) {
+      pass_track_ = PassTrack::load(j.at("pass_track"));
+      pass_baseline_ = PassBaseline::load(j.at("pass_baseline"));
+      pass_records_ = j.at("pass_records").get<std::vector<PassRecord>>();
+    }
     friction_.load(j.at("friction_history"));
     dynamics_.load(j, file.string());
   } catch (const nlohmann::json::exception& e) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "roller/analysis/hertz.hpp"
+#include "roller/analysis/pass_metrics.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/friction_history.hpp"
@@ -67,6 +68,8 @@ class Simulation {
   // Roller pose at the end of the last committed increment, and the contact of that increment.
   const RollerPose& pose() const { return pose_; }
   int pass_of_step(int step) const;  // 1-based ([passes]; 1 without)
+  // The records of the passes completed so far (multi-pass runs) and what they show.
+  const std::vector<PassRecord>& pass_records() const { return pass_records_; }
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
   Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
   int steps_done() const { return steps_done_; }
@@ -125,6 +128,14 @@ class Simulation {
     Index n_yielded = 0;  // integration points that yielded in the step's last converged increment
     Increment last;       // the last increment tried
     std::string message;  // why the step failed
+    // The step ended a pass of a multi-pass run: what the pass left (analysis/pass_metrics.hpp),
+    // with the residual state by depth under the middle of its track (at x = profile_x).
+    struct PassEnd {
+      PassRecord record;
+      Real profile_x = 0.0;
+      std::vector<DepthSample> profile;
+    };
+    std::optional<PassEnd> pass_end;
   };
   StepResult advance_step(int step);
 
@@ -183,6 +194,13 @@ class Simulation {
   DynamicsState dynamics_;
   NewtonMinimiser newton_;  // increments without contact
   Vec2 roller_velocity_ = Vec2::Zero();
+  // Multi-pass runs: the contact seen in the current pass, the strip at its start, and the
+  // records of the passes done.
+  PassTrack pass_track_;
+  PassBaseline pass_baseline_;
+  std::vector<PassRecord> pass_records_;
+  // After a converged step: observes the contact; at a pass's last step, measures the pass.
+  std::optional<StepResult::PassEnd> observe_pass(int step);
   Real load_offset_ = 0.0;     // force control: the centre's height above the path [mm]
   Real load_stiffness_ = 0.0;  // dF/d(-w) of the last force-controlled increment (0: none yet)
 };

@@ -1,0 +1,53 @@
+#pragma once
+// Measuring one pass of the roller (analysis/shakedown.hpp says what and why): the contact seen
+// during the pass (PassTrack, fed step by step), the strip at the pass's start (PassBaseline), and
+// at its end the PassRecord and the residual stresses versus depth under the middle of the track.
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "roller/analysis/shakedown.hpp"
+#include "roller/assembly/strip_model.hpp"
+
+namespace roller {
+
+// The contact during a pass: where the roller rolled while touching, how wide and hard it pressed.
+struct PassTrack {
+  bool touched = false;
+  Real x_min = 0.0, x_max = 0.0;  // roller centre x at the steps with contact [mm]
+  Real half_width = 0.0;          // largest contact half-width [mm]
+  Real peak_pressure = 0.0;       // largest nodal contact pressure [MPa]
+
+  // One step: the centre's x, and the x of the nodes in contact with their pressures.
+  void observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure);
+  nlohmann::json save() const;
+  static PassTrack load(const nlohmann::json& j);
+};
+
+// Per element, at the start of a pass: mean equivalent plastic strain and mean total shear strain
+// 2 eps_xy over its points; and the total displacement of every node.
+struct PassBaseline {
+  std::vector<Real> plastic_strain;
+  std::vector<Real> shear_strain;
+  VecX displacement;
+
+  static PassBaseline of(const StripModel& strip);
+  nlohmann::json save() const;
+  static PassBaseline load(const nlohmann::json& j);
+};
+
+// The record of pass `pass` that ended with `strip`; the window is the middle half of the track
+// (all of it when the track is shorter than 4 a) down to 4 a. Passes without contact leave the
+// window empty and the increments zero.
+PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, const PassTrack& track,
+                        const PassBaseline& start);
+
+// Residual state under x (the column of elements whose initial x-range holds it), by depth.
+struct DepthSample {
+  Real depth = 0.0;  // of the element's centroid in the initial mesh [mm]
+  Vec4 stress = Vec4::Zero();  // mean Cauchy stress [xx, yy, zz, xy] [MPa]
+  Real plastic_strain = 0.0;   // mean eps_p
+};
+std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_height, Real x);
+
+}  // namespace roller

@@ -1,0 +1,183 @@
+#include "roller/analysis/pass_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "roller/core/json_vectors.hpp"
+
+namespace roller {
+
+namespace {
+
+// Depth of maximum shear under a Hertz line contact, in contact half-widths (Johnson, Contact
+// Mechanics, 4.2: tau_1 max at z = 0.78 a).
+constexpr Real kMaxShearDepth = 0.78;
+constexpr Real kWindowDepth = 4.0;  // window depth in a
+
+Vec2 centroid(const Mesh& mesh, Index e) {
+  Vec2 c = Vec2::Zero();
+  for (Index a : mesh.elements[e]) c += mesh.nodes[a];
+  return c / static_cast<Real>(mesh.elements[e].size());
+}
+
+Real area(const Mesh& mesh, Index e) {
+  const auto& n = mesh.elements[e];
+  Real twice = 0.0;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const Vec2& p = mesh.nodes[n[i]];
+    const Vec2& q = mesh.nodes[n[(i + 1) % n.size()]];
+    twice += p.x() * q.y() - q.x() * p.y();
+  }
+  return 0.5 * std::abs(twice);
+}
+
+Real mean_plastic_strain(const StripModel& strip, Index e) {
+  Real sum = 0.0;
+  for (int q = 0; q < strip.points_per_element(); ++q) sum += strip.state(e, q).eq_plastic_strain;
+  return sum / strip.points_per_element();
+}
+
+Real mean_shear_strain(const StripModel& strip, Index e) {
+  Real sum = 0.0;
+  const std::vector<Vec4> strain = strip.total_strain(e);
+  for (const Vec4& s : strain) sum += s(3);
+  return sum / static_cast<Real>(strain.size());
+}
+
+// Area-weighted mean over the elements where `inside` holds.
+template <class Inside, class Value>
+Real weighted_mean(const Mesh& mesh, Inside inside, Value value) {
+  Real sum = 0.0, weight = 0.0;
+  for (Index e = 0; e < mesh.n_elements(); ++e) {
+    if (!inside(e)) continue;
+    const Real w = area(mesh, e);
+    sum += w * value(e);
+    weight += w;
+  }
+  return weight > 0.0 ? sum / weight : 0.0;
+}
+
+}  // namespace
+
+void PassTrack::observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure) {
+  if (contact_x.empty()) return;
+  x_min = touched ? std::min(x_min, centre_x) : centre_x;
+  x_max = touched ? std::max(x_max, centre_x) : centre_x;
+  touched = true;
+  const auto [lo, hi] = std::minmax_element(contact_x.begin(), contact_x.end());
+  half_width = std::max(half_width, 0.5 * (*hi - *lo));
+  for (Real p : contact_pressure) peak_pressure = std::max(peak_pressure, p);
+}
+
+nlohmann::json PassTrack::save() const {
+  return {{"touched", touched}, {"x_min", x_min}, {"x_max", x_max}, {"half_width", half_width},
+          {"peak_pressure", peak_pressure}};
+}
+
+PassTrack PassTrack::load(const nlohmann::json& j) {
+  PassTrack t;
+  t.touched = j.at("touched").get<bool>();
+  t.x_min = j.at("x_min").get<Real>();
+  t.x_max = j.at("x_max").get<Real>();
+  t.half_width = j.at("half_width").get<Real>();
+  t.peak_pressure = j.at("peak_pressure").get<Real>();
+  return t;
+}
+
+PassBaseline PassBaseline::of(const StripModel& strip) {
+  PassBaseline b;
+  const Index n = strip.mesh().n_elements();
+  b.plastic_strain.resize(n);
+  b.shear_strain.resize(n);
+  for (Index e = 0; e < n; ++e) {
+    b.plastic_strain[e] = mean_plastic_strain(strip, e);
+    b.shear_strain[e] = mean_shear_strain(strip, e);
+  }
+  b.displacement = strip.total_displacement();
+  return b;
+}
+
+nlohmann::json PassBaseline::save() const {
+  return {{"plastic_strain", plastic_strain}, {"shear_strain", shear_strain}, {"displacement", to_list(displacement)}};
+}
+
+PassBaseline PassBaseline::load(const nlohmann::json& j) {
+  PassBaseline b;
+  b.plastic_strain = j.at("plastic_strain").get<std::vector<Real>>();
+  b.shear_strain = j.at("shear_strain").get<std::vector<Real>>();
+  b.displacement = to_vec(j.at("displacement"));
+  return b;
+}
+
+PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, const PassTrack& track,
+                        const PassBaseline& start) {
+  PassRecord r;
+  r.pass = pass;
+  r.peak_pressure = track.peak_pressure;
+  r.contact_half_width = track.half_width;
+  const Mesh& mesh = strip.mesh();
+  const Real a = track.half_width;
+  // The window: the middle half of the rolled stretch, or all of it when that is short.
+  const Real length = track.x_max - track.x_min;
+  const Real inset = length > 4.0 * a ? 0.25 * length : 0.0;
+  r.track_start = track.x_min + inset;
+  r.track_end = track.x_max - inset;
+  const Real x_mid = 0.5 * (track.x_min + track.x_max);
+  // The mid-track surface node: the top node nearest x_mid in the initial mesh.
+  const std::vector<Index>& top = mesh.node_set("top");
+  const Index surface = *std::min_element(top.begin(), top.end(), [&](Index p, Index q) {
+    return std::abs(mesh.nodes[p].x() - x_mid) < std::abs(mesh.nodes[q].x() - x_mid);
+  });
+  const VecX& u = strip.total_displacement();
+  r.surface_ux = u(2 * surface);
+  r.surface_uy = u(2 * surface + 1);
+  r.surface_dux = r.surface_ux - start.displacement(2 * surface);
+  r.surface_duy = r.surface_uy - start.displacement(2 * surface + 1);
+  r.shear_depth = kMaxShearDepth * a;
+  if (!track.touched || a <= 0.0) return r;
+
+  std::vector<Real> plastic_increment(mesh.n_elements()), depth(mesh.n_elements());
+  std::vector<bool> in_window(mesh.n_elements());
+  for (Index e = 0; e < mesh.n_elements(); ++e) {
+    const Vec2 c = centroid(mesh, e);
+    depth[e] = strip_height - c.y();
+    in_window[e] = c.x() >= r.track_start && c.x() <= r.track_end && depth[e] <= kWindowDepth * a;
+    plastic_increment[e] = mean_plastic_strain(strip, e) - start.plastic_strain[e];
+    if (in_window[e]) r.max_plastic_increment = std::max(r.max_plastic_increment, plastic_increment[e]);
+  }
+  r.mean_plastic_increment =
+      weighted_mean(mesh, [&](Index e) { return in_window[e]; }, [&](Index e) { return plastic_increment[e]; });
+  // The band at the depth of maximum shear: the window's elements whose centroid lies within a/4
+  // of it.
+  auto in_band = [&](Index e) { return in_window[e] && std::abs(depth[e] - r.shear_depth) <= 0.25 * a; };
+  r.band_plastic_increment = weighted_mean(mesh, in_band, [&](Index e) { return plastic_increment[e]; });
+  r.residual_shear_strain = weighted_mean(mesh, in_band, [&](Index e) { return mean_shear_strain(strip, e); });
+  r.residual_shear_increment =
+      r.residual_shear_strain - weighted_mean(mesh, in_band, [&](Index e) { return start.shear_strain[e]; });
+  return r;
+}
+
+std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_height, Real x) {
+  const Mesh& mesh = strip.mesh();
+  std::vector<DepthSample> out;
+  for (Index e = 0; e < mesh.n_elements(); ++e) {
+    Real lo = mesh.nodes[mesh.elements[e][0]].x(), hi = lo;
+    for (Index a : mesh.elements[e]) {
+      lo = std::min(lo, mesh.nodes[a].x());
+      hi = std::max(hi, mesh.nodes[a].x());
+    }
+    if (x < lo || x >= hi) continue;
+    DepthSample s;
+    s.depth = strip_height - centroid(mesh, e).y();
+    for (int q = 0; q < strip.points_per_element(); ++q) s.stress += strip.state(e, q).stress;
+    s.stress /= strip.points_per_element();
+    s.plastic_strain = mean_plastic_strain(strip, e);
+    out.push_back(s);
+  }
+  std::sort(out.begin(), out.end(), [](const DepthSample& p, const DepthSample& q) { return p.depth < q.depth; });
+  return out;
+}
+
+}  // namespace roller
