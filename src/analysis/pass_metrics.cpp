@@ -72,7 +72,10 @@ void PassTrack::observe(Real centre_x, const std::vector<Real>& contact_x, const
 }
 
 nlohmann::json PassTrack::save() const {
-  return {{"touched", touched}, {"x_min", x_min}, {"x_max", x_max}, {"half_width", half_width},
+  return {{"touched", touched},
+          {"x_min", x_min},
+          {"x_max", x_max},
+          {"half_width", half_width},
           {"peak_pressure", peak_pressure}};
 }
 
@@ -147,8 +150,8 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
     plastic_increment[e] = mean_plastic_strain(strip, e) - start.plastic_strain[e];
     if (in_window[e]) r.max_plastic_increment = std::max(r.max_plastic_increment, plastic_increment[e]);
   }
-  r.mean_plastic_increment =
-      weighted_mean(mesh, [&](Index e) { return in_window[e]; }, [&](Index e) { return plastic_increment[e]; });
+  r.mean_plastic_increment = weighted_mean(
+      mesh, [&](Index e) { return in_window[e]; }, [&](Index e) { return plastic_increment[e]; });
   // The band at the depth of maximum shear: the window's elements whose centroid lies within a/4
   // of it.
   auto in_band = [&](Index e) { return in_window[e] && std::abs(depth[e] - r.shear_depth) <= 0.25 * a; };

@@ -40,20 +40,23 @@ bool RollerSpec::is_valid(std::string* why) const {
       return bad(fmt::format("{}.harmonic.wavelength = {}: must be > 0", at, s.harmonic_wavelength));
     if (s.fy) {
       if (!(*s.fy >= 0.0 && std::isfinite(*s.fy)))
-        return bad(fmt::format("{}.fy = {}: must be a finite force >= 0 [N per mm] (the contact only pushes)", at,
-                               *s.fy));
+        return bad(
+            fmt::format("{}.fy = {}: must be a finite force >= 0 [N per mm] (the contact only pushes)", at, *s.fy));
       if (s.dy != 0.0)
-        return bad(fmt::format("{}.fy = {}: give either dy (motion) or fy (force) for the vertical direction, not "
-                               "both (dy = {})",
-                               at, *s.fy, s.dy));
+        return bad(
+            fmt::format("{}.fy = {}: give either dy (motion) or fy (force) for the vertical direction, not "
+                        "both (dy = {})",
+                        at, *s.fy, s.dy));
       if (s.harmonic_wavelength > 0.0)
-        return bad(fmt::format("{}.fy = {}: a harmonic moves the centre's height, which fy leaves free: remove "
-                               "one of them",
-                               at, *s.fy));
+        return bad(
+            fmt::format("{}.fy = {}: a harmonic moves the centre's height, which fy leaves free: remove "
+                        "one of them",
+                        at, *s.fy));
       if (suspension)
-        return bad(fmt::format("{}.fy = {}: a suspended roller's height is already an unknown; prescribe the "
-                               "force without roller.suspension",
-                               at, *s.fy));
+        return bad(
+            fmt::format("{}.fy = {}: a suspended roller's height is already an unknown; prescribe the "
+                        "force without roller.suspension",
+                        at, *s.fy));
     }
     if (s.friction && !(*s.friction >= 0.0 && *s.friction <= 10.0))
       return bad(fmt::format("{}.friction = {}: must satisfy 0 <= friction <= 10", at, *s.friction));

@@ -10,7 +10,7 @@ namespace {
 
 struct Sample {
   Real w = 0.0;
-  Real r = 0.0;       // F(w) - target: positive when the roller is too deep
+  Real r = 0.0;           // F(w) - target: positive when the roller is too deep
   bool touching = false;  // F(w) > 0
 };
 

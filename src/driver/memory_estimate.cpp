@@ -44,9 +44,10 @@ void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& line
   const std::string advice =
       linear.out_of_core
           ? "use a smaller mesh.refine (--refine), nx or ny"
-          : fmt::format("use a smaller mesh.refine (--refine), nx or ny, or set [linear_solver] out_of_core = true "
-                        "(factors on disk: about {:.1f} GiB for this mesh)",
-                        estimate_run_memory(mesh, on_disk).bytes / kGiB);
+          : fmt::format(
+                "use a smaller mesh.refine (--refine), nx or ny, or set [linear_solver] out_of_core = true "
+                "(factors on disk: about {:.1f} GiB for this mesh)",
+                estimate_run_memory(mesh, on_disk).bytes / kGiB);
   throw SystemError(fmt::format(
       "mesh.refine = {}: the mesh has {:.3g} dofs and the run needs about {:.1f} GiB of memory ({:.1f} kB per dof "
       "{}, measured: docs/benchmarks.md), but this machine has {:.1f} GiB available: {}",

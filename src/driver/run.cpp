@@ -94,9 +94,7 @@ void write_summary(const std::filesystem::path& file, const Simulation& sim, con
   j["message"] = summary.message;
   if (scene.passes.count > 1) {
     const ShakedownClassification c = classify_passes(sim.pass_records());
-    j["passes"] = {{"count", sim.pass_records().size()},
-                   {"verdict", enum_name(c.verdict)},
-                   {"criterion", c.criterion}};
+    j["passes"] = {{"count", sim.pass_records().size()}, {"verdict", enum_name(c.verdict)}, {"criterion", c.criterion}};
     if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
   }
   std::ofstream(file) << j.dump(2) << "\n";

@@ -66,10 +66,11 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
   if (sim.scene().roller) {
     contact_csv_ = open_table(out_dir / "contact.csv",
                               {"step", "pass", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"}, resume, done);
-    roller_csv_ = open_table(out_dir / "roller.csv",
-                             {"step", "pass", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
-                              "deflection_velocity", "deflection_acceleration", "fy_prescribed", "load_offset"},
-                             resume, done);
+    roller_csv_ =
+        open_table(out_dir / "roller.csv",
+                   {"step", "pass", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
+                    "deflection_velocity", "deflection_acceleration", "fy_prescribed", "load_offset"},
+                   resume, done);
     if (!resume) {
       const RollerPose& pose = sim.pose();
       roller_csv_->add_row({Index{0}, Index{1}, 0.0, pose.centre.x(), pose.centre.y(), pose.angle, 0.0, 0.0, 0.0, 0.0,
@@ -77,15 +78,15 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
     }
   }
   if (sim.scene().passes.count > 1) {
-    passes_csv_ = open_table(out_dir / "passes.csv",
-                             {"step", "pass", "max_plastic_increment", "mean_plastic_increment", "band_plastic_increment", "surface_ux", "surface_uy",
-                              "surface_dux", "surface_duy", "shear_depth", "residual_shear_strain",
-                              "residual_shear_increment", "peak_pressure", "contact_half_width", "track_start",
-                              "track_end"},
-                             resume, done);
-    depth_csv_ = open_table(out_dir / "residual_depth.csv",
-                            {"step", "pass", "x", "depth", "sxx", "syy", "szz", "sxy", "eq_plastic_strain"}, resume,
-                            done);
+    passes_csv_ =
+        open_table(out_dir / "passes.csv",
+                   {"step", "pass", "max_plastic_increment", "mean_plastic_increment", "band_plastic_increment",
+                    "surface_ux", "surface_uy", "surface_dux", "surface_duy", "shear_depth", "residual_shear_strain",
+                    "residual_shear_increment", "peak_pressure", "contact_half_width", "track_start", "track_end"},
+                   resume, done);
+    depth_csv_ =
+        open_table(out_dir / "residual_depth.csv",
+                   {"step", "pass", "x", "depth", "sxx", "syy", "szz", "sxy", "eq_plastic_strain"}, resume, done);
   }
   if (resume) {
     for (int step = 0; step <= done; ++step)
@@ -171,8 +172,8 @@ void RunOutputs::write_step(int step, const std::optional<Simulation::StepResult
     const Suspension* suspension = sim_.suspension();
     // The prescribed force, or an empty cell in a step whose motion is prescribed.
     const std::optional<Real> force = sim_.prescribed_force(step);
-    roller_csv_->add_row({static_cast<Index>(step), pass, step * scene.steps.dt, pose.centre.x(), pose.centre.y(), pose.angle,
-                          f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
+    roller_csv_->add_row({static_cast<Index>(step), pass, step * scene.steps.dt, pose.centre.x(), pose.centre.y(),
+                          pose.angle, f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
                           sim_.suspension_velocity(), sim_.suspension_acceleration(),
                           force ? CsvTable::Cell(*force) : CsvTable::Cell(std::string()), sim_.load_offset()});
   }

@@ -169,8 +169,9 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     motion.friction =
         friction_in_step(*scene_.roller, static_cast<int>(std::ceil(local - 1e-12)), scene_.contact.friction);
   }
-  const Solution solution = solve_increment(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &motion : nullptr),
-                                            motion, prescribed_force(s_to), inc);
+  const Solution solution =
+      solve_increment(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &motion : nullptr), motion,
+                      prescribed_force(s_to), inc);
   if (inc.converged) commit(solution, motion, s_from, s_to, inc);
   return inc;
 }
@@ -271,9 +272,9 @@ Simulation::Solution Simulation::solve_loaded(Real force, IncrementEnergy& energ
     if (seg.fy) largest = std::max(largest, *seg.fy);
   settings.force_tolerance = 1e-6 * largest;
   // Line contact is about as stiff as E* per unit length; later increments use the last slope.
-  settings.stiffness_guess =
-      load_stiffness_ > 0.0 ? load_stiffness_
-                            : scene_.material.youngs_modulus / (1.0 - std::pow(scene_.material.poisson_ratio, 2));
+  settings.stiffness_guess = load_stiffness_ > 0.0
+                                 ? load_stiffness_
+                                 : scene_.material.youngs_modulus / (1.0 - std::pow(scene_.material.poisson_ratio, 2));
   settings.max_offset_change = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
   const ForceControlResult fc = solve_for_force(force, load_offset_, settings, force_at);
   inc.load_passes = fc.iterations;
@@ -321,12 +322,13 @@ std::string Simulation::return_for_pass(int pass) {
   const RollerPose start = prescribed_pose((pass - 1) * scene_.steps.n_steps);
   const std::vector<Vec2> x = model_->current_coordinates();
   for (Index a : candidate_nodes_)
-    if ((x[a] - start.centre).norm() < scene_.roller->radius)
-      return fmt::format("pass {} would start with node {} inside the roller at ({:.6g}, {:.6g}): start the pass "
-                         "clear of the strip (roller.centre) or press in from above",
-                         pass, a + 1, start.centre.x(), start.centre.y());
+    if ((x[a] - start.centre).norm() < (1.0 - 1e-9) * scene_.roller->radius)  // touching is clear
+      return fmt::format(
+          "pass {} would start with node {} inside the roller at ({:.6g}, {:.6g}): start the pass "
+          "clear of the strip (roller.centre) or press in from above",
+          pass, a + 1, start.centre.x(), start.centre.y());
   pose_ = start;
-  load_offset_ = 0.0;       // each pass meets the strip as the first did
+  load_offset_ = 0.0;         // each pass meets the strip as the first did
   last_increment_.setZero();  // the lift is no predictor of the press
   contact_.clear();
   return "";

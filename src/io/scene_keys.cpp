@@ -657,9 +657,8 @@ std::vector<SceneKey> make_keys() {
             if (auto steps = s.real_array("save_states")) {
               for (Real v : *steps) {
                 if (v != std::floor(v) || v < 1 || v > scene.total_steps())
-                  s.fail("save_states",
-                         fmt::format("expected step numbers in 1..{} (steps.count x passes.count)",
-                                     scene.total_steps()));
+                  s.fail("save_states", fmt::format("expected step numbers in 1..{} (steps.count x passes.count)",
+                                                    scene.total_steps()));
                 scene.output.save_states.push_back(static_cast<int>(v));
               }
             }

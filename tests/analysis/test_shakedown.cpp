@@ -29,11 +29,13 @@ std::vector<PassRecord> sequence(int n, Real (*mean)(int), Real net_share) {
 }  // namespace
 
 TEST_CASE("shakedown verdict: increments dying out are elastic shakedown", "[analysis][shakedown]") {
-  const auto r = classify_passes(sequence(5, [](int k) { return 1e-3 * std::pow(0.1, k - 1); }, 0.9));
+  const auto r = classify_passes(sequence(
+      5, [](int k) { return 1e-3 * std::pow(0.1, k - 1); }, 0.9));
   CHECK(r.verdict == ShakedownVerdict::ElasticShakedown);
   CHECK_THAT(r.criterion, Contains("0.0001 of pass 1's in pass 5"));
   // No plastic strain at all.
-  const auto none = classify_passes(sequence(3, [](int) { return 0.0; }, 0.0));
+  const auto none = classify_passes(sequence(
+      3, [](int) { return 0.0; }, 0.0));
   CHECK(none.verdict == ShakedownVerdict::ElasticShakedown);
   CHECK_THAT(none.criterion, Contains("no plastic strain"));
 }
@@ -46,12 +48,14 @@ TEST_CASE("shakedown verdict: steady increments with no net strain are plastic s
   CHECK(ratchet.verdict == ShakedownVerdict::Ratchetting);
   CHECK_THAT(ratchet.criterion, Contains("0.8 of its accumulated"));
   // Decaying, but not below 1 % of pass 1 by the last pass: not (yet) elastic shakedown.
-  CHECK(classify_passes(sequence(4, [](int k) { return 1e-3 * std::pow(0.5, k - 1); }, 0.9)).verdict ==
-        ShakedownVerdict::Ratchetting);
+  CHECK(classify_passes(sequence(
+                            4, [](int k) { return 1e-3 * std::pow(0.5, k - 1); }, 0.9))
+            .verdict == ShakedownVerdict::Ratchetting);
 }
 
 TEST_CASE("shakedown verdict: fewer than three passes are undetermined", "[analysis][shakedown]") {
-  const auto r = classify_passes(sequence(2, [](int) { return 1e-3; }, 0.9));
+  const auto r = classify_passes(sequence(
+      2, [](int) { return 1e-3; }, 0.9));
   CHECK(r.verdict == ShakedownVerdict::Undetermined);
   CHECK_THAT(r.criterion, Contains("at least 3"));
 }

@@ -13,33 +13,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "../support/run_roller.hpp"
 #include "../support/temp_files.hpp"
 #include "roller/io/scene_keys.hpp"
 
 namespace fs = std::filesystem;
 
-namespace {
-
-struct Run {
-  int exit_code;
-  std::string output;
-};
-
-Run run_roller(const std::string& args) {
-  // Unique per process and call: CTest runs test cases in parallel processes.
-  static int calls = 0;
-  const fs::path log = fs::temp_directory_path() / fs::path("roller_cli_test_" + std::to_string(::getpid()) + "_" +
-                                                            std::to_string(++calls) + ".log");
-  const std::string cmd = std::string(ROLLER_ROLLER_EXE) + " " + args + " > " + log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(log);
-  std::stringstream s;
-  s << in.rdbuf();
-  fs::remove(log);
-  return {WEXITSTATUS(status), s.str()};
-}
-
-}  // namespace
+using roller::test::Run;
+using roller::test::run_roller;
 
 TEST_CASE("roller run: the default scene runs end to end and writes its results", "[app]") {
   const fs::path out = fs::temp_directory_path() / "roller_cli_block";

@@ -79,13 +79,14 @@ TEST_CASE("force control: a load nothing carries stops the step with a message",
 TEST_CASE("force control: the prescribed force ramps from the last earlier force segment", "[contact][force]") {
   RollerSpec spec;
   spec.path.resize(4);
-  spec.path[0] = PathSegment{1, 4};
+  const int steps[4][2] = {{1, 4}, {5, 6}, {7, 8}, {9, 9}};
+  for (int i = 0; i < 4; ++i) {
+    spec.path[i].first_step = steps[i][0];
+    spec.path[i].last_step = steps[i][1];
+  }
   spec.path[0].fy = 400.0;  // 0 -> 400 over steps 1-4
-  spec.path[1] = PathSegment{5, 6};
-  spec.path[1].dx = 2.0;  // motion: no force control
-  spec.path[2] = PathSegment{7, 8};
+  spec.path[1].dx = 2.0;    // motion: no force control
   spec.path[2].fy = 200.0;  // from 400 (the last force segment) down to 200
-  spec.path[3] = PathSegment{9, 9};
   spec.path[3].friction = 0.3;
   CHECK(prescribed_vertical_force(spec, 1.0).value() == Approx(100.0));
   CHECK(prescribed_vertical_force(spec, 2.5).value() == Approx(250.0));  // within a cut step

@@ -44,7 +44,7 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
 
 // Residual state under x (the column of elements whose initial x-range holds it), by depth.
 struct DepthSample {
-  Real depth = 0.0;  // of the element's centroid in the initial mesh [mm]
+  Real depth = 0.0;            // of the element's centroid in the initial mesh [mm]
   Vec4 stress = Vec4::Zero();  // mean Cauchy stress [xx, yy, zz, xy] [MPa]
   Real plastic_strain = 0.0;   // mean eps_p
 };

@@ -14,18 +14,18 @@
 namespace roller {
 
 struct ForceControlSettings {
-  Real force_tolerance = 0.0;  // |F(w) - P| that is converged [N per mm]
-  Real stiffness_guess = 0.0;  // dF/d(-w) for the first step [N/mm per mm], > 0
+  Real force_tolerance = 0.0;    // |F(w) - P| that is converged [N per mm]
+  Real stiffness_guess = 0.0;    // dF/d(-w) for the first step [N/mm per mm], > 0
   Real max_offset_change = 0.0;  // |w - w0| beyond this: nothing carries the load [mm]
   int max_iterations = 40;       // contact solves
 };
 
 struct ForceControlResult {
   bool converged = false;
-  int iterations = 0;   // contact solves
-  Real offset = 0.0;    // w at the last solve
-  Real force = 0.0;     // F(w) there
-  Real stiffness = 0.0; // converged: the slope dF/d(-w) last used (> 0), a guess for the next increment
+  int iterations = 0;    // contact solves
+  Real offset = 0.0;     // w at the last solve
+  Real force = 0.0;      // F(w) there
+  Real stiffness = 0.0;  // converged: the slope dF/d(-w) last used (> 0), a guess for the next increment
   std::string message;
 };
 

@@ -1,0 +1,78 @@
+// Repeated passes: an elastic strip is left as it was found; a plastic three-pass run writes its
+// per-pass files and continues from a checkpoint in the middle of a pass to the same bytes.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "../support/run_roller.hpp"
+#include "../support/run_scene.hpp"
+#include "../support/temp_files.hpp"
+
+using namespace roller;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Press 0.05 mm, roll 2 mm with creep, lift 0.25 mm clear: 8 steps per pass.
+const std::string kPass = "roller.path=[{steps=[1,2], dy=-0.05}, {steps=[3,6], dx=2.0, slip=0.002}, "
+                          "{steps=[7,8], dy=0.3}]";
+
+SceneOverride override_of(const std::string& text) { return parse_override(text); }
+
+}  // namespace
+
+TEST_CASE("passes: an elastic strip rolled twice is left without stress or displacement", "[contact][passes]") {
+  const Simulation sim = test::run_scene(
+      "rolling_friction", {override_of(kPass), {"steps.count", "8"}, {"passes.count", "2"}});
+  REQUIRE(sim.steps_done() == 16);
+  REQUIRE(sim.pass_records().size() == 2);
+  // The pass pressed: a peak pressure of a few hundred MPa.
+  CHECK(sim.pass_records()[1].peak_pressure > 100.0);
+  Real stress = 0.0;
+  for (const MaterialState& s : sim.model().states()) stress = std::max(stress, s.stress.cwiseAbs().maxCoeff());
+  CHECK(stress <= 1e-8 * sim.pass_records()[1].peak_pressure);
+  CHECK(sim.model().total_displacement().cwiseAbs().maxCoeff() <= 1e-12);
+  CHECK(sim.pass_records()[1].surface_dux == Approx(0.0).margin(1e-12));
+  CHECK(sim.pass_records()[1].max_plastic_increment == 0.0);
+}
+
+TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mid-pass to the same bytes",
+          "[contact][passes]") {
+  test::TempDir dir("roller_passes");
+  const fs::path whole = dir.path() / "whole", split = dir.path() / "split";
+  const std::string run = "run problems/rolling_friction.toml --set material.yield_stress=600.0 --set "
+                          "material.tangent_modulus=2100.0 --set steps.count=8 --set passes.count=3 --set "
+                          "'" + kPass + "' --set output.save_states=[12] --set output.vtu=false --out ";
+  const test::Run r = test::run_roller(run + whole.string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("pass  2/3  step   12/24"));
+  // One row per pass; one row per element of the column under the track's middle per pass.
+  const std::string passes = test::read_text(whole / "passes.csv");
+  CHECK(std::count(passes.begin(), passes.end(), '\n') == 1 + 3);
+  const std::string depth = test::read_text(whole / "residual_depth.csv");
+  const auto depth_rows = std::count(depth.begin(), depth.end(), '\n') - 1;
+  CHECK(depth_rows % 3 == 0);
+  CHECK(depth_rows >= 3 * 30);  // the strip's 30 rows of elements (mesh ny)
+  const auto summary = nlohmann::json::parse(test::read_text(whole / "summary.json"));
+  CHECK(summary["passes"]["count"] == 3);
+  CHECK(summary["passes"]["verdict"] != "undetermined");
+  CHECK(summary["passes"]["criterion"].get<std::string>().size() > 20);
+  CHECK(summary["passes"].contains("p0_over_k") == false);  // depth-controlled: no load to measure
+
+  // The run as if killed after step 12 (mid-pass 2): its folder with that step's state as the
+  // checkpoint; --resume drops the rows after it and recomputes them.
+  fs::copy(whole, split);
+  fs::copy_file(whole / "state_0012.cbor", split / "checkpoint.cbor", fs::copy_options::overwrite_existing);
+  const test::Run resumed = test::run_roller(run + split.string() + " --resume");
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK_THAT(resumed.output, Catch::Contains("resuming after step 12"));
+  for (const char* f : {"passes.csv", "residual_depth.csv", "roller.csv", "contact.csv"})
+    CHECK(test::read_text(split / f) == test::read_text(whole / f));
+  const auto resumed_summary = nlohmann::json::parse(test::read_text(split / "summary.json"));
+  CHECK(resumed_summary["passes"] == summary["passes"]);
+}
