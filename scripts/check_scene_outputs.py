@@ -7,7 +7,9 @@ usage: /usr/bin/python3 scripts/check_scene_outputs.py [--out build/scene_output
                                                        [--roller ./build/roller] [--timeout 900]
                                                        [--only z1_outf05,hertz]
 
-problems/z3_data02.toml starts from z3_data01's final state of the same backend. Files scanned:
+problems/z3_data02.toml starts from z3_data01's final state of the same backend. The shakedown
+scenes (problems/shakedown_p*.toml, minutes each) are skipped unless --only names them; their
+study (scripts/shakedown.py) scans its own outputs. Files scanned:
 every CSV cell, JSON value, VTU DataArray, CBOR float and nan/inf token of the text files and of
 the log (scripts/stability.py, scan_outputs). Prints one line per run; exit code 1 if any run
 failed or wrote a non-finite number.
@@ -56,6 +58,8 @@ def main():
     for scene in scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
         if only and name not in only:
+            continue
+        if not only and name.startswith("shakedown_"):
             continue
         for backend in (["ipopt", "penalty"] if has_roller(scene) else [None]):
             out = os.path.join(args.out, "%s_%s" % (name, backend) if backend else name)
