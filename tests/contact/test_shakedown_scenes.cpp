@@ -1,0 +1,30 @@
+// The shakedown validation scenes (docs/validation.md, Shakedown): first yield of their line
+// contact against Johnson's p0/k = 3.1, and the classification of repeated rolling below and above
+// his shakedown limit 4.0.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "../support/run_scene.hpp"
+#include "roller/analysis/hertz.hpp"
+#include "roller/material/j2_plasticity.hpp"
+
+using namespace roller;
+using test::run_scene;
+
+
+TEST_CASE("shakedown scenes: first yield of the line contact within 5 % of Johnson's p0/k = 3.1",
+          "[contact][shakedown]") {
+  // Pressed to its load at p0/k = 3.0: still elastic, and the elastic stresses scale with p0.
+  const Simulation sim = run_scene("shakedown_p30", {{"passes.count", "1"}, {"steps.count", "3"}});
+  Real vm = 0.0;
+  for (const MaterialState& s : sim.model().states()) vm = std::max(vm, von_mises(s.stress));
+  const Real sigma_y = sim.scene().material.yield_stress;
+  REQUIRE(vm < sigma_y);  // no point yielded
+  const Real p = sim.roller_force().y();
+  const Real e_star = sim.scene().material.youngs_modulus / (1.0 - std::pow(sim.scene().material.poisson_ratio, 2));
+  const Real p0 = hertz_line_contact(p, sim.scene().roller->radius, e_star).peak;
+  const Real first_yield = p0 / vm * std::sqrt(3.0);  // p0/k at which vm reaches sigma_y = sqrt(3) k
+  INFO("first yield at p0/k = " << first_yield);
+  CHECK(std::abs(first_yield / 3.1 - 1.0) <= 0.05);
+}
