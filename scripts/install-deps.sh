@@ -15,6 +15,7 @@ packages=(
   libtomlplusplus-dev                    # scene files (TOML)
   libfmt-dev                             # formatting
   nlohmann-json3-dev                     # summary.json, state files
+  zlib1g-dev                             # compressed VTU output
   python3 python3-numpy python3-matplotlib  # figures (PNG)
 )
 

@@ -32,6 +32,7 @@ import os
 import struct
 import sys
 import xml.etree.ElementTree as ET
+import zlib
 
 import matplotlib
 
@@ -46,28 +47,45 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 DTYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1), "Int32": ("i", 4)}
 
 
-def decode(array):
-    """Decodes one inline base64 DataArray written by roller (UInt64 byte-count header)."""
-    raw = base64.b64decode(array.text.strip())
-    nbytes = struct.unpack("<Q", raw[:8])[0]
+def decode(array, compressed=False):
+    """Decodes one inline base64 DataArray written by roller: raw (UInt64 byte-count header) or,
+    in a file with compressor="vtkZLibDataCompressor", zlib-compressed (VTK's block header: blocks,
+    block size, last block size, compressed sizes; base64 of the header, then of the blocks)."""
+    text = array.text.strip()
     code, size = DTYPES[array.get("type")]
-    values = struct.unpack("<%d%s" % (nbytes // size, code), raw[8:8 + nbytes])
+    if compressed:
+        first = base64.b64decode(text[:32])  # 24 bytes: the first three UInt64
+        n_blocks = struct.unpack("<Q", first[:8])[0]
+        header_bytes = 8 * (3 + n_blocks)
+        header_chars = 4 * ((header_bytes + 2) // 3)
+        header = struct.unpack("<%dQ" % (3 + n_blocks), base64.b64decode(text[:header_chars])[:header_bytes])
+        data = base64.b64decode(text[header_chars:])
+        raw, pos = b"", 0
+        for n in header[3:]:
+            raw += zlib.decompress(data[pos:pos + n])
+            pos += n
+    else:
+        decoded = base64.b64decode(text)
+        nbytes = struct.unpack("<Q", decoded[:8])[0]
+        raw = decoded[8:8 + nbytes]
+    values = struct.unpack("<%d%s" % (len(raw) // size, code), raw)
     n = int(array.get("NumberOfComponents", "1"))
     return np.array(values).reshape(-1, n) if n > 1 else np.array(values)
 
 
 def read_vtu(path):
     root = ET.parse(path).getroot()
+    z = root.get("compressor") == "vtkZLibDataCompressor"
     piece = root.find("UnstructuredGrid/Piece")
-    points = decode(piece.find("Points/DataArray"))[:, :2]
-    cells = {a.get("Name"): decode(a) for a in piece.find("Cells")}
+    points = decode(piece.find("Points/DataArray"), z)[:, :2]
+    cells = {a.get("Name"): decode(a, z) for a in piece.find("Cells")}
     conn, offsets = cells["connectivity"].astype(int), cells["offsets"].astype(int)
     elements, start = [], 0
     for end in offsets:
         elements.append(conn[start:end])
         start = end
-    point_data = {a.get("Name"): decode(a) for a in piece.find("PointData")}
-    cell_data = {a.get("Name"): decode(a) for a in piece.find("CellData")}
+    point_data = {a.get("Name"): decode(a, z) for a in piece.find("PointData")}
+    cell_data = {a.get("Name"): decode(a, z) for a in piece.find("CellData")}
     return points, elements, point_data, cell_data
 
 

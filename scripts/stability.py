@@ -193,8 +193,9 @@ def scan_file(path):
             read_vtu(path)  # the structure plot_scene.py relies on
             root = ET.parse(path).getroot()
             bad = 0
+            compressed = root.get("compressor") == "vtkZLibDataCompressor"
             for array in root.iter("DataArray"):
-                values = decode(array)
+                values = decode(array, compressed)
                 if values.dtype.kind == "f":
                     bad += int(np.count_nonzero(~np.isfinite(values)))
             return bad

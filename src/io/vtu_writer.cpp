@@ -1,9 +1,12 @@
 // VTK XML UnstructuredGrid (.vtu) and collection (.pvd) writers.
 //
 // File layout (VTK XML format 0.1, byte_order LittleEndian, header_type UInt64): every
-// DataArray is inline, format="binary", i.e. base64 of one stream [UInt64 payload byte count]
-// [payload bytes], uncompressed. Values are serialised byte by byte in little-endian order so
-// the output does not depend on the host's endianness.
+// DataArray is inline, format="binary". Uncompressed: base64 of one stream [UInt64 payload byte
+// count][payload bytes]. Compressed (compressor="vtkZLibDataCompressor", the default): the payload
+// cut into 32 KiB blocks, each deflated; base64 of the header [UInt64 number of blocks, block
+// size, size of the last partial block (0 if full), compressed size of each block] followed by
+// base64 of the compressed blocks, as VTK's writer does. Values are serialised byte by byte in
+// little-endian order so the output does not depend on the host's endianness.
 //
 // Both writers assemble the whole document in memory, write it to "<path>.tmp" and rename it
 // over <path> (atomic on POSIX within one file system), so a crash or a thrown error never
@@ -11,6 +14,7 @@
 #include "roller/io/vtu_writer.hpp"
 
 #include <fmt/format.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdint>
@@ -78,6 +82,33 @@ std::string encode_block(const std::string& payload) {
   append_le(bytes, static_cast<std::uint64_t>(payload.size()), 8);
   bytes += payload;
   return base64(bytes);
+}
+
+// The zlib-compressed form of one DataArray (header comment).
+std::string encode_compressed(const std::string& payload) {
+  constexpr std::size_t kBlock = 32768;
+  const std::size_t n_blocks = (payload.size() + kBlock - 1) / kBlock;
+  std::string header, data;
+  append_le(header, n_blocks, 8);
+  append_le(header, kBlock, 8);
+  append_le(header, payload.size() % kBlock, 8);
+  std::string buffer(compressBound(kBlock), '\0');
+  for (std::size_t b = 0; b < n_blocks; ++b) {
+    const std::size_t begin = b * kBlock;
+    const std::size_t size = std::min(kBlock, payload.size() - begin);
+    uLongf compressed = static_cast<uLongf>(buffer.size());
+    const int rc = compress2(reinterpret_cast<Bytef*>(buffer.data()), &compressed,
+                             reinterpret_cast<const Bytef*>(payload.data() + begin), static_cast<uLong>(size),
+                             Z_DEFAULT_COMPRESSION);
+    if (rc != Z_OK) throw std::runtime_error(fmt::format("write_vtu: zlib compress2 failed ({})", rc));
+    append_le(header, compressed, 8);
+    data.append(buffer.data(), compressed);
+  }
+  return base64(header) + base64(data);
+}
+
+std::string encode(const std::string& payload, VtuCompression compression) {
+  return compression == VtuCompression::ZLib ? encode_compressed(payload) : encode_block(payload);
 }
 
 // Escapes text for use inside a double-quoted XML attribute.
@@ -170,7 +201,7 @@ void check_field(const VtuField& field, Index n_tuples, const char* kind, std::s
   }
 }
 
-void append_field(std::string& xml, const VtuField& field) {
+void append_field(std::string& xml, const VtuField& field, VtuCompression compression) {
   std::string payload;
   payload.reserve(8 * field.values.size());
   for (const Real v : field.values) append_f64(payload, v);
@@ -180,14 +211,15 @@ void append_field(std::string& xml, const VtuField& field) {
     xml += fmt::format(R"( ComponentName{}="{}")", c, xml_attr(field.component_names[c]));
   }
   xml += " format=\"binary\">\n          ";
-  xml += encode_block(payload);
+  xml += encode(payload, compression);
   xml += "\n        </DataArray>\n";
 }
 
 }  // namespace
 
 void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
-               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data) {
+               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
+               VtuCompression compression) {
   const Index n_nodes = mesh.n_nodes();
   const Index n_elements = mesh.n_elements();
 
@@ -227,17 +259,18 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
 
   std::string xml;
   xml += "<?xml version=\"1.0\"?>\n";
-  xml +=
+  xml += fmt::format(
       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" "
-      "header_type=\"UInt64\">\n";
+      "header_type=\"UInt64\"{}>\n",
+      compression == VtuCompression::ZLib ? " compressor=\"vtkZLibDataCompressor\"" : "");
   xml += "  <UnstructuredGrid>\n";
   xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n_nodes, n_elements);
 
   xml += "      <PointData>\n";
-  for (const auto& f : point_data) append_field(xml, f);
+  for (const auto& f : point_data) append_field(xml, f, compression);
   xml += "      </PointData>\n";
   xml += "      <CellData>\n";
-  for (const auto& f : cell_data) append_field(xml, f);
+  for (const auto& f : cell_data) append_field(xml, f, compression);
   xml += "      </CellData>\n";
 
   {
@@ -252,7 +285,7 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
     xml +=
         "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
         "format=\"binary\">\n          ";
-    xml += encode_block(points);
+    xml += encode(points, compression);
     xml += "\n        </DataArray>\n";
     xml += "      </Points>\n";
   }
@@ -274,13 +307,13 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
     }
     xml += "      <Cells>\n";
     xml += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"binary\">\n          ";
-    xml += encode_block(connectivity);
+    xml += encode(connectivity, compression);
     xml += "\n        </DataArray>\n";
     xml += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"binary\">\n          ";
-    xml += encode_block(offsets);
+    xml += encode(offsets, compression);
     xml += "\n        </DataArray>\n";
     xml += "        <DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n          ";
-    xml += encode_block(types);
+    xml += encode(types, compression);
     xml += "\n        </DataArray>\n";
     xml += "      </Cells>\n";
   }

@@ -2,6 +2,8 @@
 // base64 decoder, and every number is compared exactly.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -18,6 +20,8 @@
 
 #include "../support/temp_files.hpp"
 #include "roller/io/vtu_writer.hpp"
+
+#include <zlib.h>
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -111,11 +115,35 @@ DataArray find_array(const std::string& xml, const std::string& name) {
       const std::size_t close = xml.find("</DataArray>", tag_end);
       REQUIRE(close != std::string::npos);
       REQUIRE(a.attribute("format") == "binary");
-      const auto bytes = base64_decode(xml.substr(tag_end + 1, close - tag_end - 1));
-      REQUIRE(bytes.size() >= 8);
-      const std::uint64_t n = le_u64(bytes, 0);
-      REQUIRE(n == bytes.size() - 8);  // UInt64 header = payload byte count
-      a.payload.assign(bytes.begin() + 8, bytes.end());
+      std::string text = xml.substr(tag_end + 1, close - tag_end - 1);
+      text.erase(std::remove_if(text.begin(), text.end(), [](char c) { return std::isspace(c); }), text.end());
+      if (xml.find("compressor=\"vtkZLibDataCompressor\"") == std::string::npos) {
+        const auto bytes = base64_decode(text);
+        REQUIRE(bytes.size() >= 8);
+        const std::uint64_t n = le_u64(bytes, 0);
+        REQUIRE(n == bytes.size() - 8);  // UInt64 header = payload byte count
+        a.payload.assign(bytes.begin() + 8, bytes.end());
+        return a;
+      }
+      // Compressed: base64 of [blocks, block size, last block size, compressed sizes...], then
+      // base64 of the deflated blocks; the header's encoded length follows from its block count.
+      const std::uint64_t n_blocks = le_u64(base64_decode(text.substr(0, 32)), 0);
+      const std::size_t header_bytes = 8 * (3 + n_blocks);
+      const std::size_t header_chars = 4 * ((header_bytes + 2) / 3);
+      const auto header = base64_decode(text.substr(0, header_chars));
+      const auto data = base64_decode(text.substr(header_chars));
+      const std::uint64_t block = le_u64(header, 8), last = le_u64(header, 16);
+      std::size_t at = 0;
+      for (std::uint64_t b = 0; b < n_blocks; ++b) {
+        const std::uint64_t compressed = le_u64(header, 24 + 8 * b);
+        uLongf size = static_cast<uLongf>(b + 1 == n_blocks && last != 0 ? last : block);
+        std::vector<std::uint8_t> out(size);
+        REQUIRE(uncompress(out.data(), &size, data.data() + at, static_cast<uLong>(compressed)) == Z_OK);
+        REQUIRE(size == (b + 1 == n_blocks && last != 0 ? last : block));
+        a.payload.insert(a.payload.end(), out.begin(), out.end());
+        at += compressed;
+      }
+      REQUIRE(at == data.size());
       return a;
     }
     pos = tag_end;
@@ -182,7 +210,7 @@ void check_bitwise_equal(const std::vector<double>& got, const std::vector<doubl
   }
 }
 
-void check_round_trip(ElementType type) {
+void check_round_trip(ElementType type, VtuCompression compression) {
   test::TempDir dir("roller_vtu_test");
   const fs::path file = dir.path() / "mesh.vtu";
   const Mesh mesh = two_element_mesh(type);
@@ -198,7 +226,7 @@ void check_round_trip(ElementType type) {
                                             make_field("stress", 4, n_nodes, 2, {"xx", "yy", "zz", "xy"})};
   const std::vector<VtuField> cell_data = {make_field("plastic_strain", 1, n_cells, 5)};
 
-  write_vtu(file, mesh, coordinates, point_data, cell_data);
+  write_vtu(file, mesh, coordinates, point_data, cell_data, compression);
 
   REQUIRE(fs::exists(file));
   const std::string xml = read_text(file);
@@ -278,11 +306,26 @@ void check_round_trip(ElementType type) {
 }  // namespace
 
 TEST_CASE("write_vtu writes a Q4 mesh whose arrays decode to exactly the numbers given", "[io]") {
-  check_round_trip(ElementType::Q4);
+  check_round_trip(ElementType::Q4, VtuCompression::ZLib);
+  check_round_trip(ElementType::Q4, VtuCompression::None);
 }
 
 TEST_CASE("write_vtu writes a T3 mesh whose arrays decode to exactly the numbers given", "[io]") {
-  check_round_trip(ElementType::T3);
+  check_round_trip(ElementType::T3, VtuCompression::ZLib);
+  check_round_trip(ElementType::T3, VtuCompression::None);
+}
+
+TEST_CASE("write_vtu compresses a large array in several blocks that inflate to the exact values", "[io]") {
+  test::TempDir dir("roller_vtu_test");
+  const fs::path file = dir.path() / "big.vtu";
+  const Mesh mesh = two_element_mesh(ElementType::Q4);
+  // 6 nodes x 5001 components x 8 bytes = 240 kB: 7 full 32 KiB blocks and a partial one.
+  const VtuField big = make_field("big", 5001, mesh.nodes.size(), 7);
+  write_vtu(file, mesh, mesh.nodes, {big}, {});
+  const std::string xml = read_text(file);
+  CHECK_THAT(xml, Contains("compressor=\"vtkZLibDataCompressor\""));
+  check_bitwise_equal(find_array(xml, "big").as_f64(), big.values);
+  CHECK(fs::file_size(file) < 8 * big.values.size());  // smaller than the raw values
 }
 
 TEST_CASE("the python XML check used by these tests rejects a malformed file", "[io]") {

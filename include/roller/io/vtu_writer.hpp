@@ -21,12 +21,17 @@ struct VtuField {
   std::vector<std::string> component_names;  // optional, written as ComponentName0.. attributes
 };
 
+// How the DataArrays are stored: zlib-compressed blocks (VTK's vtkZLibDataCompressor, which
+// ParaView reads; a 2.9e5-dof step shrinks several times) or raw.
+enum class VtuCompression { ZLib, None };
+
 // Writes `mesh` with node coordinates `coordinates` (current configuration; may differ from
 // mesh.nodes) and the given point and cell data. Throws std::runtime_error naming the path if
 // the file cannot be written, and std::invalid_argument naming the field when a field's size
 // does not match n_nodes * n_components (point) or n_elements * n_components (cell).
 void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
-               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data);
+               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
+               VtuCompression compression = VtuCompression::ZLib);
 
 // A .pvd collection. Each add() appends a dataset entry and rewrites the .pvd file at once, so
 // a run that stops early leaves a valid series of the steps already written.
