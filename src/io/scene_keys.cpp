@@ -641,7 +641,10 @@ std::vector<SceneKey> make_keys() {
       // [output]
       key(
           "output.every", [](auto& s) -> auto& { return s.output.every; },
-          "write fields every N steps (the last step always)", at_least(1)),
+          "write fields every N steps (the last step always)", at_least(1))
+          .when_absent("1; steps.count (every pass's end) with [passes]",
+                       // Long multi-pass studies would otherwise fill the disk with every step.
+                       [](Scene& s) { s.output.every = s.passes.count > 1 ? s.steps.n_steps : 1; }),
       key(
           "output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
       key(
