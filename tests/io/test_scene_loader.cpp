@@ -4,6 +4,9 @@
 
 #include <filesystem>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "../support/scene_errors.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
@@ -146,6 +149,12 @@ TEST_CASE("bad scene files give precise errors", "[io][scene][errors]") {
   // A device or a folder is not read (/dev/zero would be read forever).
   CHECK_THROWS_WITH(load_scene("/dev/zero"), Contains("/dev/zero: not a regular file"));
   CHECK_THROWS_WITH(load_scene("/tmp"), Contains("not a regular file"));
+  // A FIFO would block the read until someone writes into it.
+  const std::filesystem::path fifo =
+      std::filesystem::temp_directory_path() / ("roller_fifo_" + std::to_string(::getpid()) + ".toml");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(load_scene(fifo), Contains("not a regular file"));
+  std::filesystem::remove(fifo);
 }
 
 TEST_CASE("node selectors are checked against the mesh", "[io][scene][errors]") {
