@@ -67,7 +67,7 @@ def main():
     args.roller = os.path.abspath(args.roller)
     os.makedirs(args.out, exist_ok=True)
     rows, problems_total = [], 0
-    yield_ratio, vm = (None, None) if args.no_run else first_yield(args)
+    yield_ratio, vm = first_yield(args)  # seconds: run even with --no-run
     for load in args.loads.split(","):
         scene = "problems/shakedown_p%s.toml" % load
         for backend in args.backends.split(","):
