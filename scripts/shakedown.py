@@ -4,7 +4,7 @@
 
 usage: /usr/bin/python3 scripts/shakedown.py [--out out/shakedown] [--backends ipopt,penalty]
                                              [--loads 30,37,45,55] [--roller ./build/roller]
-                                             [--timeout 3600] [--no-run]
+                                             [--timeout 3600] [--passes N] [--no-run]
 
 1. First yield: problems/shakedown_p30.toml pressed to its load (steps 1-3, one pass; 3.0 k is
    below Johnson's 3.1 k, so the strip stays elastic); the largest element von Mises stress
@@ -61,6 +61,7 @@ def main():
     ap.add_argument("--loads", default="30,37,45,55")
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=3600.0)
+    ap.add_argument("--passes", type=int, default=0, help="passes per scene (default: the scenes' 5)")
     ap.add_argument("--no-run", action="store_true", help="measure the runs already in --out")
     args = ap.parse_args()
     os.chdir(ROOT)
@@ -75,8 +76,8 @@ def main():
             log = out + ".log"
             wall = None
             if not args.no_run:
-                _, rc, timed_out, wall = run_one(args.roller, scene, ["--overwrite"], backend, out, log,
-                                                 args.timeout)
+                extra = ["--overwrite"] + (["--set", "passes.count=%d" % args.passes] if args.passes else [])
+                _, rc, timed_out, wall = run_one(args.roller, scene, extra, backend, out, log, args.timeout)
             summary = {}
             if os.path.exists(os.path.join(out, "summary.json")):
                 with open(os.path.join(out, "summary.json")) as f:
