@@ -17,16 +17,17 @@ namespace fs = std::filesystem;
 namespace {
 
 // Press 0.05 mm, roll 2 mm with creep, lift 0.25 mm clear: 8 steps per pass.
-const std::string kPass = "roller.path=[{steps=[1,2], dy=-0.05}, {steps=[3,6], dx=2.0, slip=0.002}, "
-                          "{steps=[7,8], dy=0.3}]";
+const std::string kPass =
+    "roller.path=[{steps=[1,2], dy=-0.05}, {steps=[3,6], dx=2.0, slip=0.002}, "
+    "{steps=[7,8], dy=0.3}]";
 
 SceneOverride override_of(const std::string& text) { return parse_override(text); }
 
 }  // namespace
 
 TEST_CASE("passes: an elastic strip rolled twice is left without stress or displacement", "[contact][passes]") {
-  const Simulation sim = test::run_scene(
-      "rolling_friction", {override_of(kPass), {"steps.count", "8"}, {"passes.count", "2"}});
+  const Simulation sim =
+      test::run_scene("rolling_friction", {override_of(kPass), {"steps.count", "8"}, {"passes.count", "2"}});
   REQUIRE(sim.steps_done() == 16);
   REQUIRE(sim.pass_records().size() == 2);
   // The pass pressed: a peak pressure of a few hundred MPa.
@@ -43,9 +44,11 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
           "[contact][passes]") {
   test::TempDir dir("roller_passes");
   const fs::path whole = dir.path() / "whole", split = dir.path() / "split";
-  const std::string run = "run problems/rolling_friction.toml --set material.yield_stress=600.0 --set "
-                          "material.tangent_modulus=2100.0 --set steps.count=8 --set passes.count=3 --set "
-                          "'" + kPass + "' --set output.save_states=[12] --set output.vtu=false --out ";
+  const std::string run =
+      "run problems/rolling_friction.toml --set material.yield_stress=600.0 --set "
+      "material.tangent_modulus=2100.0 --set steps.count=8 --set passes.count=3 --set "
+      "'" +
+      kPass + "' --set output.save_states=[12] --set output.vtu=false --out ";
   const test::Run r = test::run_roller(run + whole.string());
   INFO(r.output);
   REQUIRE(r.exit_code == 0);

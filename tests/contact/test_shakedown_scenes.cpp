@@ -12,7 +12,6 @@
 using namespace roller;
 using test::run_scene;
 
-
 TEST_CASE("shakedown scenes: first yield of the line contact within 5 % of Johnson's p0/k = 3.1",
           "[contact][shakedown]") {
   // Pressed to its load at p0/k = 3.0: still elastic, and the elastic stresses scale with p0.
@@ -29,7 +28,8 @@ TEST_CASE("shakedown scenes: first yield of the line contact within 5 % of Johns
   CHECK(std::abs(first_yield / 3.1 - 1.0) <= 0.05);
 }
 
-TEST_CASE("shakedown scenes: three passes shake down at p0/k = 3.7 and keep yielding at 4.5", "[contact][shakedown][slow]") {
+TEST_CASE("shakedown scenes: three passes shake down at p0/k = 3.7 and keep yielding at 4.5",
+          "[contact][shakedown][slow]") {
   // Johnson: elastic shakedown limit of frictionless line rolling p0/k = 4.0. Three passes (the
   // scenes have five): below it the mean plastic increment falls below 1 % of pass 1's by pass 3
   // (measured 0.7 %), above it it stays at a fifth.
