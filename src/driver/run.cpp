@@ -65,7 +65,7 @@ std::optional<Real> p0_over_k(const Scene& scene) {
   for (const PathSegment& seg : scene.roller->path)
     if (seg.fy) load = std::max(load, *seg.fy);
   if (!(load > 0.0)) return std::nullopt;
-  const Real e_star = scene.material.youngs_modulus / (1.0 - std::pow(scene.material.poisson_ratio, 2));
+  const Real e_star = scene.material.plane_strain_modulus();
   const Real p0 = hertz_line_contact(load, scene.roller->radius, e_star).peak;
   return p0 / (scene.material.yield_stress / std::sqrt(3.0));
 }

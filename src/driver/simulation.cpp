@@ -272,9 +272,7 @@ Simulation::Solution Simulation::solve_loaded(Real force, IncrementEnergy& energ
     if (seg.fy) largest = std::max(largest, *seg.fy);
   settings.force_tolerance = 1e-6 * largest;
   // Line contact is about as stiff as E* per unit length; later increments use the last slope.
-  settings.stiffness_guess = load_stiffness_ > 0.0
-                                 ? load_stiffness_
-                                 : scene_.material.youngs_modulus / (1.0 - std::pow(scene_.material.poisson_ratio, 2));
+  settings.stiffness_guess = load_stiffness_ > 0.0 ? load_stiffness_ : scene_.material.plane_strain_modulus();
   settings.max_offset_change = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
   const ForceControlResult fc = solve_for_force(force, load_offset_, settings, force_at);
   inc.load_passes = fc.iterations;

@@ -20,7 +20,7 @@ namespace {
 Real fitted_half_width(const Simulation& sim) {
   std::vector<PressureSample> samples = sim.pressure_profile();
   std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
-  const Real e_star = sim.scene().material.youngs_modulus / (1.0 - std::pow(sim.scene().material.poisson_ratio, 2));
+  const Real e_star = sim.scene().material.plane_strain_modulus();
   return compare_with_hertz(samples, sim.roller_force().y(), sim.scene().roller->radius, e_star).half_width;
 }
 

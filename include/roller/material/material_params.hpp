@@ -41,6 +41,8 @@ struct MaterialParams {
   // True when every field is admissible; otherwise false and *why names the field, its value
   // and the violated rule.
   bool is_valid(std::string* why) const;
+  // E* = E / (1 - nu^2): the stiffness of line contact (Hertz) and of the plane-strain strip.
+  Real plane_strain_modulus() const { return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio); }
 };
 
 }  // namespace roller
