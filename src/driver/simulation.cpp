@@ -93,10 +93,14 @@ Vec2 Simulation::roller_force() const {
 
 RollerPose Simulation::prescribed_pose(Real s) const {
   const PassPosition at = locate_pass(s, scene_.steps.n_steps);
+  return pose_in_pass(at.pass, at.local);
+}
+
+RollerPose Simulation::pose_in_pass(int pass, Real local) const {
   Vec2 start;
   const RollerSpec spec =
-      roller_of_pass(*scene_.roller, scene_.passes, at.pass, start_centre(), scene_.steps.n_steps, &start);
-  return roller_pose(spec, start, at.local);
+      roller_of_pass(*scene_.roller, scene_.passes, pass, start_centre(), scene_.steps.n_steps, &start);
+  return roller_pose(spec, start, local);
 }
 
 std::optional<Real> Simulation::prescribed_force(Real s) const {
@@ -317,7 +321,8 @@ std::string Simulation::return_for_pass(int pass) {
         "pass {} ends with the roller on the strip ({} nodes in contact): end each pass with a lift (a "
         "[[roller.path]] segment with dy > 0) so that the roller can return for pass {}",
         pass - 1, touching, pass);
-  const RollerPose start = prescribed_pose((pass - 1) * scene_.steps.n_steps);
+  // Not prescribed_pose((pass - 1) N): that step belongs to the previous pass (its end).
+  const RollerPose start = pose_in_pass(pass, 0.0);
   const std::vector<Vec2> x = model_->current_coordinates();
   for (Index a : candidate_nodes_)
     if ((x[a] - start.centre).norm() < (1.0 - 1e-9) * scene_.roller->radius)  // touching is clear

@@ -40,6 +40,27 @@ TEST_CASE("passes: an elastic strip rolled twice is left without stress or displ
   CHECK(sim.pass_records()[1].max_plastic_increment == 0.0);
 }
 
+TEST_CASE("passes: the second pass over an elastic strip repeats the first from the same start", "[contact][passes]") {
+  // The strip is back in its virgin state after pass 1, so pass 2 must meet it exactly as pass 1
+  // did: the roller returns to the pass's start before the first step (not to the end of pass 1,
+  // from where the first increment would drag it back with a slip of the whole track).
+  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/rolling_friction.toml",
+                            {override_of(kPass), {"steps.count", "8"}, {"passes.count", "2"}}));
+  std::vector<Vec2> pass1_force, pass1_centre;
+  for (int step = 1; step <= 16; ++step) {
+    REQUIRE(sim.advance_step(step).converged);
+    if (step <= 8) {
+      pass1_force.push_back(sim.roller_force());
+      pass1_centre.push_back(sim.pose().centre);
+      continue;
+    }
+    const Vec2& f = pass1_force[step - 9];
+    INFO("step " << step);
+    CHECK((sim.pose().centre - pass1_centre[step - 9]).norm() <= 1e-12);
+    CHECK((sim.roller_force() - f).norm() <= 1e-6 * std::max(1.0, f.norm()));
+  }
+}
+
 TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mid-pass to the same bytes",
           "[contact][passes]") {
   test::TempDir dir("roller_passes");

@@ -144,6 +144,8 @@ class Simulation {
   // Before the first step of pass `pass` > 1: the roller, clear of the strip, returns to the
   // pass's start; a message (and nothing changed) when it is not clear.
   std::string return_for_pass(int pass);
+  // The prescribed pose at step `local` (fractional) of pass `pass` (1-based).
+  RollerPose pose_in_pass(int pass, Real local) const;
   void check_roller_starts_outside() const;  // InputError naming roller.centre
   // Where an increment starts: the previous converged increment scaled to this one's length
   // (and, as an option, the thesis's arc predictor for nodes that would enter the roller).
