@@ -4,7 +4,7 @@ contact backends and compares with Carter's theory (docs/validation.md, "Carter:
 with creep").
 
 usage: /usr/bin/python3 scripts/carter.py [--out DIR] [--roller BIN] [--refine K] [--quick]
-                                          [--backends ipopt,penalty] [--scene FILE]
+                                          [--backends ipopt,penalty] [--scene FILE] [--traction]
 
 Theory (rigid cylinder on an elastic half-plane, plane strain, E* = E/(1 - nu^2), normal and
 tangential problems decoupled): a = sqrt(4 P R/(pi E*)), p0 = 2P/(pi a) = a E*/(2R);
@@ -29,6 +29,13 @@ both are cruder, see docs/validation.md. The leading edge of the stick zone is d
 zone touches the leading contact edge). Steadiness: Q/(mu P) and c one contact width 2a of
 rolling before the last step.
 
+--traction poses Carter's problem the other way round: the roller turns at the rolling rate
+(slip 0) while a horizontal force fx = -(Q/(mu P)) mu P0 acts on it (roller.path fx, ramped over
+the build-up segment, P0 the press-in's force), so that its centre x is an unknown; the creep is
+then an outcome, s = d(load_offset_x)/d(xc) over the last contact width 2a (roller.csv), compared
+with Carter's s = (mu a/R)(1 - sqrt(1 - Q/(mu P))). Tractions Q/(mu P) = 0.36, 0.64, 0.84, 0.96
+(the creeps 0.2 ... 0.8 mu a/R); writes DIR/carter_traction.csv and .png.
+
 Writes DIR/carter.csv and DIR/carter.png (and keeps the runs in DIR/<backend>_<k>/).
 """
 import argparse
@@ -50,6 +57,8 @@ import numpy as np  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FRACTIONS = [0.2, 0.4, 0.6, 0.8, 1.5]   # creep / (mu a0 / R)
 QUICK_FRACTIONS = [0.4, 0.8]
+TRACTIONS = [0.36, 0.64, 0.84, 0.96]     # Q/(mu P) = 1 - (1 - f)^2 for f = 0.2, 0.4, 0.6, 0.8
+QUICK_TRACTIONS = [0.64, 0.96]
 PROFILE_FRACTION = 0.6
 
 
@@ -164,6 +173,29 @@ def path_override(segments, creep):
     return "roller.path=[" + ",".join(parts) + "]"
 
 
+def traction_override(segments, fx):
+    """The scene's path turning at the rolling rate (slip 0) under the horizontal force fx on every
+    rolling segment (ramped from 0 over the first)."""
+    parts = []
+    for s in segments:
+        keys = ["steps=[%d,%d]" % tuple(s["steps"])]
+        for k in ("dx", "dy"):
+            if k in s:
+                keys.append("%s=%r" % (k, float(s[k])))
+        if float(s.get("dx", 0.0)) != 0.0:
+            keys.append("fx=%r" % fx)
+        parts.append("{" + ",".join(keys) + "}")
+    return "roller.path=[" + ",".join(parts) + "]"
+
+
+def measured_creep(roller, s_prev):
+    """s = (v - omega R)/v from the centre's drift off its rolling path over steps s_prev...last."""
+    first = next(r for r in roller if int(r["step"]) == s_prev)
+    last = roller[-1]
+    dx = float(last["xc"]) - float(first["xc"])
+    return (float(last["load_offset_x"]) - float(first["load_offset_x"])) / dx
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "carter"))
@@ -173,6 +205,7 @@ def main():
     ap.add_argument("--quick", action="store_true", help="creeps 0.4 and 0.8 of mu a/R only")
     ap.add_argument("--backends", default="ipopt,penalty")
     ap.add_argument("--reuse", action="store_true", help="analyse the runs already in --out instead of running")
+    ap.add_argument("--traction", action="store_true", help="prescribe Q (roller.path fx), measure the creep")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
 
@@ -193,17 +226,26 @@ def main():
     a0 = m0["a"]
     print("press-in: a0 = %.4f mm, mu a0/R = %.4e" % (a0, mu * a0 / R))
 
-    fractions = QUICK_FRACTIONS if args.quick else FRACTIONS
+    if args.traction:
+        fractions = QUICK_TRACTIONS if args.quick else TRACTIONS
+        p_press = float(read_csv(os.path.join(press, "roller.csv"))[-1]["fy"])
+    else:
+        fractions = QUICK_FRACTIONS if args.quick else FRACTIONS
+    tag = "traction_" if args.traction else ""
     results = []
     for backend in backends:
         for k, frac in enumerate(fractions):
-            creep = round(frac * mu * a0 / R, 7)
-            out = os.path.join(args.out, "%s_%d" % (backend, k))
+            out = os.path.join(args.out, "%s%s_%d" % (tag, backend, k))
+            if args.traction:
+                override = traction_override(segments, -frac * mu * p_press)
+            else:
+                creep = round(frac * mu * a0 / R, 7)
+                override = path_override(segments, creep)
             if args.reuse:  # the run's own wall time
                 with open(os.path.join(out, "summary.json")) as f:
                     wall = float(json.load(f)["wall_s"])
             else:
-                wall = run(args, out, backend, [path_override(segments, creep)])
+                wall = run(args, out, backend, [override])
             roller = read_csv(os.path.join(out, "roller.csv"))
             contact = read_csv(os.path.join(out, "contact.csv"))
             last = int(roller[-1]["step"])
@@ -218,6 +260,8 @@ def main():
             s_prev = int(earlier["step"])
             q_prev = abs(float(earlier["fx"])) / (mu * float(earlier["fy"]))
             m_prev = measure(contact, s_prev, mu)
+            if args.traction:
+                creep = measured_creep(roller, s_prev)
             xi_norm = creep * R / (mu * a)
             c_carter = a * math.sqrt(max(1.0 - q_ratio, 0.0))
             row = dict(
@@ -232,7 +276,8 @@ def main():
                 c_from_creep=a * max(1.0 - xi_norm, 0.0),
                 dq_last_2a=(q_ratio - q_prev) / q_ratio,
                 dc_last_2a=(m["c"] - m_prev["c"]) / m["c"] if m["c"] > 0.0 else float("nan"),
-                rolled=xc_last - float(next(r for r in roller if int(r["step"]) == n_press)["xc"]), steps=last, wall_s=wall)
+                rolled=xc_last - float(next(r for r in roller if int(r["step"]) == n_press)["xc"]), steps=last, wall_s=wall,
+                creep_carter=mu * a / R * (1.0 - math.sqrt(max(1.0 - q_ratio, 0.0))))
             results.append((row, m, frac))
             print("%-7s xi=%.3e xiR/(mu a)=%.3f  Q/(mu P)=%.4f (Carter %.4f)  a=%.4f  c=%.4f (Carter %.4f, %+.1f %%) "
                   "d+c=%.3f  c_parabola=%.3f c_status=%.3f  dQ,dc over last 2a: %+.2f %%, %+.2f %%  %.1f s"
@@ -241,7 +286,7 @@ def main():
                   flush=True)
 
     keys = list(results[0][0].keys())
-    with open(os.path.join(args.out, "carter.csv"), "w", newline="") as f:
+    with open(os.path.join(args.out, "carter%s.csv" % ("_traction" if args.traction else "")), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
         for row, _, _ in results:
@@ -262,7 +307,7 @@ def main():
     ax1.set_ylim(0.0, 1.05)
     ax1.grid(alpha=0.3)
     ax1.legend(loc="lower right")
-    ax1.set_title("Traction against creep (last step)")
+    ax1.set_title("Creep (measured) under a prescribed traction" if args.traction else "Traction against creep (last step)")
 
     target = min(fractions, key=lambda f: abs(f - PROFILE_FRACTION))
     xa = np.linspace(-1.0, 1.0, 401)
@@ -290,8 +335,9 @@ def main():
     ax2.grid(alpha=0.3)
     ax2.legend(loc="upper left", fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "carter.png"), dpi=110)
-    print("wrote %s and %s" % (os.path.join(args.out, "carter.csv"), os.path.join(args.out, "carter.png")))
+    name = os.path.join(args.out, "carter%s" % ("_traction" if args.traction else ""))
+    fig.savefig(name + ".png", dpi=110)
+    print("wrote %s.csv and %s.png" % (name, name))
 
 
 if __name__ == "__main__":

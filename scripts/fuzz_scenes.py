@@ -30,7 +30,8 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Scenes that run on their own (z3_data02 needs z3_data01's final state); small ones weigh more.
 SEEDS = ["block_compression", "hertz", "cattaneo", "bar_impact", "z1_outf05", "z2_infini", "z2_large",
-         "z4_v25", "stability_thin", "rolling_friction", "hertz_nu049", "block_compression", "hertz"]
+         "z4_v25", "stability_thin", "rolling_friction", "hertz_nu049", "block_compression", "hertz",
+         "cattaneo_mindlin", "burnishing"]
 HOSTILE_NUMBERS = ["nan", "inf", "-inf", "0", "-0.0", "-1", "1e308", "-1e308", "1e-308", "1e-300", "1e300",
                    "4294967297", "9007199254740993", "-4294967298", "2147483648", "1e20", "0.5", "3"]
 WRONG_TYPES = ['"x"', "true", "[]", "{}", "[1, 2, 3]", '""', "{ value = nan }", "[nan, 0.0]"]

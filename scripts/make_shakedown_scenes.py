@@ -3,6 +3,7 @@
 "Shakedown: repeated rolling of a line contact").
 
 usage: /usr/bin/python3 scripts/make_shakedown_scenes.py [--loads 3.0,3.7,4.5,5.5] [--passes 5]
+                                                       [--element-size 0.2] [--out problems]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -11,7 +12,8 @@ yield stress sets the load ratio: k = sigma_y/sqrt(3) = p0/(p0/k). The strip, 20
 its base bonded, acts as a half-space under the track: uniform 0.2 mm elements (20 across 2a)
 over x = 88...112 and the top 6 mm, graded outside. One pass: press to P at x = 92 (steps 1-3),
 roll 16 mm = 8a to x = 108 under P (steps 4-19, 0.5a per step), lift 0.3 mm (steps 20-21); the
-window of passes.csv is then x = 96...104.
+window of passes.csv is then x = 96...104. --element-size changes the uniform size (0.1: 40
+elements across 2a, 4.8e4 dofs, the strip of benchmarks/passes.py) and --out the folder.
 """
 import argparse
 import math
@@ -47,8 +49,7 @@ def graded(x0, x1, h_fine, n, fine_at_end):
     return out
 
 
-def lines():
-    h = 0.2
+def lines(h):
     xs = [0.0] + graded(0.0, 88.0, h, 24, fine_at_end=True)
     xs += [88.0 + h * i for i in range(int(round(24.0 / h)) + 1)]
     xs += graded(112.0, 200.0, h, 24, fine_at_end=False) + [200.0]
@@ -69,9 +70,9 @@ def fmt_lines(values):
     return "[\n" + "\n".join(out) + "\n]"
 
 
-def scene(ratio, passes):
+def scene(ratio, passes, h):
     sigma_y = math.sqrt(3.0) * P0 / ratio
-    xs, ys = lines()
+    xs, ys = lines(h)
     name = "shakedown_p%02d" % round(10 * ratio)
     return name, """# Shakedown validation at p0/k = {ratio}: written by scripts/make_shakedown_scenes.py (edit that
 # script, not this file); docs/validation.md, "Shakedown: repeated rolling of a line contact".
@@ -137,10 +138,12 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--loads", default="3.0,3.7,4.5,5.5")
     ap.add_argument("--passes", type=int, default=5)
+    ap.add_argument("--element-size", type=float, default=0.2)
     ap.add_argument("--out", default=os.path.join(ROOT, "problems"))
     args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
     for ratio in [float(r) for r in args.loads.split(",")]:
-        name, text = scene(ratio, args.passes)
+        name, text = scene(ratio, args.passes, args.element_size)
         path = os.path.join(args.out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)

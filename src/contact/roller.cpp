@@ -58,6 +58,14 @@ bool RollerSpec::is_valid(std::string* why) const {
                         "force without roller.suspension",
                         at, *s.fy));
     }
+    if (s.fx) {
+      if (!std::isfinite(*s.fx)) return bad(fmt::format("{}.fx = {}: must be a finite force [N per mm]", at, *s.fx));
+      if (suspension)
+        return bad(
+            fmt::format("{}.fx = {}: prescribe forces on a roller without roller.suspension (the suspension "
+                        "already makes its height an unknown)",
+                        at, *s.fx));
+    }
     if (s.friction && !(*s.friction >= 0.0 && *s.friction <= 10.0))
       return bad(fmt::format("{}.friction = {}: must satisfy 0 <= friction <= 10", at, *s.friction));
   }
@@ -103,20 +111,29 @@ const PathSegment* segment_of_step(const RollerSpec& spec, int step) {
 
 }  // namespace
 
-std::optional<Real> prescribed_vertical_force(const RollerSpec& spec, Real s) {
+namespace {
+
+// The force of member `force` at step s: ramped from the last earlier segment that has one.
+std::optional<Real> ramped_force(const RollerSpec& spec, Real s, std::optional<Real> PathSegment::*force) {
   const int step = static_cast<int>(std::ceil(s - 1e-12));
   Real start = 0.0;  // the force reached by the last earlier force segment
   for (const PathSegment& seg : spec.path) {
     if (step < seg.first_step) break;
     if (step <= seg.last_step) {
-      if (!seg.fy) return std::nullopt;
+      if (!(seg.*force)) return std::nullopt;
       const Real begin = seg.first_step - 1;
       const Real f = std::clamp((s - begin) / (seg.last_step - begin), 0.0, 1.0);
-      return start + f * (*seg.fy - start);
+      return start + f * (*(seg.*force) - start);
     }
-    if (seg.fy) start = *seg.fy;
+    if (seg.*force) start = *(seg.*force);
   }
   return std::nullopt;
+}
+
+}  // namespace
+
+PrescribedForce prescribed_force(const RollerSpec& spec, Real s) {
+  return {ramped_force(spec, s, &PathSegment::fx), ramped_force(spec, s, &PathSegment::fy)};
 }
 
 Real friction_in_step(const RollerSpec& spec, int step, Real fallback) {

@@ -10,9 +10,27 @@ namespace {
 
 struct Sample {
   Real w = 0.0;
-  Real r = 0.0;           // F(w) - target: positive when the roller is too deep
-  bool touching = false;  // F(w) > 0
+  Real r = 0.0;           // F(w) - target: positive when the roller is too deep (too far back)
+  bool touching = false;  // on the force law's smooth part: vertical F(w) > 0; horizontal always
 };
+
+// The words of the messages for each axis.
+struct AxisWords {
+  const char* position;  // what w moves
+  const char* motion;    // the key that prescribes the motion instead
+  const char* cause;     // why nothing may carry the load
+};
+
+AxisWords words(ForceAxis axis) {
+  if (axis == ForceAxis::Vertical)
+    return {"height", "dy",
+            "the roller has left the strip, or the strip gives way under it; check the load and the "
+            "roller's start"};
+  return {"x", "dx",
+          "the roller slides: |fx| must stay below about friction x fy, and the strip carries no "
+          "horizontal force without friction or an indentation to push against; lower fx, raise the "
+          "friction or the vertical load"};
+}
 
 }  // namespace
 
@@ -37,11 +55,12 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
     out.iterations = it;
     out.offset = w;
     if (!f) {
-      out.message = fmt::format("the contact solve failed with the roller centre {:.6g} mm off its path", w);
+      out.message = fmt::format("the contact solve failed with the roller centre's {} {:.6g} mm off its path",
+                                words(settings.axis).position, w);
       return out;
     }
     out.force = *f;
-    const Sample now{w, *f - target, *f > 0.0};
+    const Sample now{w, *f - target, settings.axis == ForceAxis::Horizontal || *f > 0.0};
     if (std::abs(now.r) <= settings.force_tolerance) {
       out.converged = true;
       out.stiffness = slope;
@@ -78,28 +97,28 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
       const Real lo = std::min(deep->s.w, shallow->s.w), hi = std::max(deep->s.w, shallow->s.w);
       if (hi - lo <= 1e-14 * std::max(1.0, std::abs(w))) {
         out.message = fmt::format(
-            "the force on the roller jumps across the prescribed {:.6g} N/mm within {:.3g} mm of centre height (last "
-            "{:.6g} N/mm): take smaller steps",
-            target, hi - lo, out.force);
+            "the force on the roller jumps across the prescribed {:.6g} N/mm within {:.3g} mm of the centre's {} "
+            "(last {:.6g} N/mm): take smaller steps",
+            target, hi - lo, words(settings.axis).position, out.force);
         return out;
       }
       if (!(w_next > lo && w_next < hi))  // Newton left the bracket: Illinois false position
         w_next = deep->s.w - deep->weight * (shallow->s.w - deep->s.w) / (shallow->weight - deep->weight);
     }
     if (!(std::abs(w_next - w0) <= settings.max_offset_change)) {
+      const AxisWords wd = words(settings.axis);
       out.message = fmt::format(
-          "the roller would have to move more than {:.3g} mm to bring the force from {:.6g} to the prescribed {:.6g} "
-          "N/mm: nothing carries the load (the roller has left the strip, or the strip gives way under it); check the "
-          "load and the roller's start, or prescribe the motion (dy) instead",
-          settings.max_offset_change, *f, target);
+          "the roller's {} would have to move more than {:.3g} mm to bring the force from {:.6g} to the prescribed "
+          "{:.6g} N/mm: nothing carries the load ({}), or prescribe the motion ({}) instead",
+          wd.position, settings.max_offset_change, *f, target, wd.cause, wd.motion);
       return out;
     }
     w = w_next;
   }
   out.message = fmt::format(
-      "the roller's height under the prescribed force {:.6g} N/mm did not converge in {} contact solves (force {:.6g} "
+      "the roller's {} under the prescribed force {:.6g} N/mm did not converge in {} contact solves (force {:.6g} "
       "N/mm): take smaller steps",
-      target, settings.max_iterations, out.force);
+      words(settings.axis).position, target, settings.max_iterations, out.force);
   return out;
 }
 

@@ -66,15 +66,15 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
   if (sim.scene().roller) {
     contact_csv_ = open_table(out_dir / "contact.csv",
                               {"step", "pass", "node", "x", "y", "gap", "p_n", "p_t", "status", "slip"}, resume, done);
-    roller_csv_ =
-        open_table(out_dir / "roller.csv",
-                   {"step", "pass", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y", "deflection",
-                    "deflection_velocity", "deflection_acceleration", "fy_prescribed", "load_offset"},
-                   resume, done);
+    roller_csv_ = open_table(out_dir / "roller.csv",
+                             {"step", "pass", "time", "xc", "yc", "phi", "fx", "fy", "vx", "vy", "anchor_y",
+                              "deflection", "deflection_velocity", "deflection_acceleration", "fx_prescribed",
+                              "fy_prescribed", "load_offset_x", "load_offset_y"},
+                             resume, done);
     if (!resume) {
       const RollerPose& pose = sim.pose();
       roller_csv_->add_row({Index{0}, Index{1}, 0.0, pose.centre.x(), pose.centre.y(), pose.angle, 0.0, 0.0, 0.0, 0.0,
-                            pose.centre.y(), 0.0, 0.0, 0.0, std::string(), 0.0});
+                            pose.centre.y(), 0.0, 0.0, 0.0, std::string(), std::string(), 0.0, 0.0});
     }
   }
   if (sim.scene().passes.count > 1) {
@@ -170,12 +170,15 @@ void RunOutputs::write_step(int step, const std::optional<Simulation::StepResult
     const Vec2 v = sim_.roller_velocity();
     const Real anchor_y = sim_.prescribed_pose(step).centre.y();
     const Suspension* suspension = sim_.suspension();
-    // The prescribed force, or an empty cell in a step whose motion is prescribed.
-    const std::optional<Real> force = sim_.prescribed_force(step);
+    // The prescribed forces, or empty cells in a step whose motion is prescribed.
+    const PrescribedForce force = sim_.prescribed_force(step);
+    auto cell = [](const std::optional<Real>& value) {
+      return value ? CsvTable::Cell(*value) : CsvTable::Cell(std::string());
+    };
     roller_csv_->add_row({static_cast<Index>(step), pass, step * scene.steps.dt, pose.centre.x(), pose.centre.y(),
                           pose.angle, f.x(), f.y(), v.x(), v.y(), anchor_y, suspension ? suspension->deflection() : 0.0,
-                          sim_.suspension_velocity(), sim_.suspension_acceleration(),
-                          force ? CsvTable::Cell(*force) : CsvTable::Cell(std::string()), sim_.load_offset()});
+                          sim_.suspension_velocity(), sim_.suspension_acceleration(), cell(force.fx), cell(force.fy),
+                          sim_.load_offset().x(), sim_.load_offset().y()});
   }
   if (step % scene.output.every == 0 || step == scene.total_steps()) write_fields(step);
 }

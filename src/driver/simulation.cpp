@@ -103,9 +103,9 @@ RollerPose Simulation::pose_in_pass(int pass, Real local) const {
   return roller_pose(spec, start, local);
 }
 
-std::optional<Real> Simulation::prescribed_force(Real s) const {
-  if (!scene_.roller) return std::nullopt;
-  return prescribed_vertical_force(*scene_.roller, locate_pass(s, scene_.steps.n_steps).local);
+PrescribedForce Simulation::prescribed_force(Real s) const {
+  if (!scene_.roller) return {};
+  return roller::prescribed_force(*scene_.roller, locate_pass(s, scene_.steps.n_steps).local);
 }
 
 std::vector<PressureSample> Simulation::pressure_profile() const {
@@ -168,7 +168,7 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
     motion.radius = scene_.roller->radius;
     motion.start = pose_;
     motion.end = prescribed_pose(s_to);
-    motion.end.centre.y() += load_offset_;
+    motion.end.centre += load_offset_;
     const Real local = locate_pass(s_to, scene_.steps.n_steps).local;
     motion.friction =
         friction_in_step(*scene_.roller, static_cast<int>(std::ceil(local - 1e-12)), scene_.contact.friction);
@@ -194,10 +194,11 @@ VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) c
 }
 
 Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor,
-                                                 RollerMotion& motion, std::optional<Real> force, Increment& inc) {
+                                                 RollerMotion& motion, const PrescribedForce& force, Increment& inc) {
   VecX x = model_->dof_map().restrict_to_free(predictor);
   Solution solution;
   solution.load_offset = load_offset_;
+  solution.load_stiffness = load_stiffness_;
   if (!scene_.roller) {
     add_solve(inc, newton_.minimise(energy, x, scene_.newton));
     solution.u = energy.full_increment(x);
@@ -205,8 +206,8 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
   }
   if (dynamics_.suspension()) {
     solution = solve_suspended(energy, prescribed, predictor, motion, x, inc);
-  } else if (force) {
-    solution = solve_loaded(*force, energy, prescribed, predictor, motion, x, inc);
+  } else if (force.any()) {
+    solution = solve_loaded(force, energy, prescribed, predictor, motion, x, inc);
   } else {
     solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
     add_solve(inc, solution.contact);
@@ -227,7 +228,7 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
     solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
     add_solve(inc, solution.contact);
     if (!solution.contact.converged()) return std::nullopt;
-    return vertical_force(solution, motion, energy);
+    return strip_force(solution, motion, energy).y();
   };
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
@@ -243,50 +244,112 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   return solution;
 }
 
-Real Simulation::vertical_force(const Solution& solution, const RollerMotion& motion, IncrementEnergy& energy) const {
+Vec2 Simulation::strip_force(const Solution& solution, const RollerMotion& motion, IncrementEnergy& energy) const {
   const BackendResult& r = solution.contact;
   const VecX u = energy.full_increment(r.x);
-  Real fy = 0.0;
+  Vec2 f = Vec2::Zero();
   for (std::size_t i = 0; i < solution.candidates.size(); ++i) {
     const ContactCandidate& c = solution.candidates[i];
     const Vec2 xi = c.position + Vec2(u(2 * c.node), u(2 * c.node + 1));
     const Vec2 n = (xi - motion.end.centre).normalized();
-    fy -= contact_force(r.contact[i].normal_force, r.contact[i].tangential_force, n, c.tangent).y();
+    f -= contact_force(r.contact[i].normal_force, r.contact[i].tangential_force, n, c.tangent);
   }
-  return fy;
+  return f;
 }
 
-Simulation::Solution Simulation::solve_loaded(Real force, IncrementEnergy& energy, const VecX& prescribed,
-                                              const VecX& predictor, RollerMotion& motion, VecX& x, Increment& inc) {
-  // The centre sits at the path's height plus w; w carries the force (force_control.hpp).
+Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, IncrementEnergy& energy,
+                                              const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
+                                              VecX& x, Increment& inc) {
+  // The centre sits at the path's position plus an offset that carries the forces
+  // (force_control.hpp).
   Solution solution;
-  const Real path_y = motion.end.centre.y() - load_offset_;
-  auto force_at = [&](Real w) -> std::optional<Real> {
-    motion.end.centre.y() = path_y + w;
-    solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
-    add_solve(inc, solution.contact);
-    if (!solution.contact.converged()) return std::nullopt;
-    return vertical_force(solution, motion, energy);
-  };
-  ForceControlSettings settings;
+  solution.load_offset = load_offset_;
+  solution.load_stiffness = load_stiffness_;
+  const Vec2 path = motion.end.centre - load_offset_;
   // 1e-6 of the largest force of the path: far below what a user reads, far above the contact
-  // solves' own accuracy.
-  Real largest = force;
-  for (const PathSegment& seg : scene_.roller->path)
-    if (seg.fy) largest = std::max(largest, *seg.fy);
-  settings.force_tolerance = 1e-6 * largest;
-  // Line contact is about as stiff as E* per unit length; later increments use the last slope.
-  settings.stiffness_guess = load_stiffness_ > 0.0 ? load_stiffness_ : scene_.material.plane_strain_modulus();
-  settings.max_offset_change = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
-  const ForceControlResult fc = solve_for_force(force, load_offset_, settings, force_at);
-  inc.load_passes = fc.iterations;
-  if (!fc.converged) {
-    inc.converged = false;
-    inc.message = fc.message;
+  // solves' own accuracy. A horizontal force is measured against the vertical one as well (a
+  // traction of 0 under a prescribed depth).
+  Vec2 largest(force.fx ? std::abs(*force.fx) : 0.0, force.fy ? *force.fy : 0.0);
+  for (const PathSegment& seg : scene_.roller->path) {
+    if (seg.fx) largest.x() = std::max(largest.x(), std::abs(*seg.fx));
+    if (seg.fy) largest.y() = std::max(largest.y(), *seg.fy);
+  }
+  // Line contact is about as stiff as E* per unit length, normally and tangentially; later
+  // increments use the last slopes.
+  auto settings = [&](ForceAxis axis) {
+    ForceControlSettings s;
+    s.axis = axis;
+    const int k = axis == ForceAxis::Vertical ? 1 : 0;
+    s.stiffness_guess =
+        solution.load_stiffness(k) > 0.0 ? solution.load_stiffness(k) : scene_.material.plane_strain_modulus();
+    if (axis == ForceAxis::Vertical) {
+      s.force_tolerance = 1e-6 * largest.y();
+      s.max_offset_change = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
+    } else {
+      const Real scale = std::max({largest.x(), largest.y(), roller_force().norm()});
+      s.force_tolerance = 1e-6 * (scale > 0.0 ? scale : 1e-6 * scene_.material.plane_strain_modulus() * motion.radius);
+      // A roller that must move sideways by its radius within one increment to carry the force
+      // is sliding, not held by friction.
+      s.max_offset_change = std::min(motion.radius, std::max(scene_.mesh.length, scene_.mesh.height));
+    }
+    return s;
+  };
+  std::string failure;  // the first failure's message (an inner one says more than the outer)
+  auto fail = [&](const std::string& message) {
+    if (failure.empty()) failure = message;
+    return std::nullopt;
+  };
+  // One contact solve at the centre's current x, under the prescribed vertical force if any:
+  // the strip's force on the roller, or nullopt.
+  auto solve_at_x = [&]() -> std::optional<Vec2> {
+    auto solve = [&]() -> std::optional<Vec2> {
+      solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+      add_solve(inc, solution.contact);
+      if (!solution.contact.converged()) return std::nullopt;
+      return strip_force(solution, motion, energy);
+    };
+    if (!force.fy) {
+      const std::optional<Vec2> f = solve();
+      if (!f) return fail(fmt::format("the contact solve failed: {}", solution.contact.message));
+      return f;
+    }
+    std::optional<Vec2> last;
+    auto fy_at = [&](Real w) -> std::optional<Real> {
+      motion.end.centre.y() = path.y() + w;
+      last = solve();
+      if (!last) return std::nullopt;
+      return last->y();
+    };
+    const ForceControlResult fc =
+        solve_for_force(*force.fy, solution.load_offset.y(), settings(ForceAxis::Vertical), fy_at);
+    inc.load_passes += fc.iterations;
+    if (!fc.converged) return fail(fc.message);
+    solution.load_offset.y() = fc.offset;
+    solution.load_stiffness.y() = fc.stiffness;
+    return last;
+  };
+  if (!force.fx) {
+    if (!solve_at_x()) {
+      inc.converged = false;
+      inc.message = failure;
+    }
     return solution;
   }
-  solution.load_offset = fc.offset;
-  solution.load_stiffness = fc.stiffness;
+  auto fx_at = [&](Real w) -> std::optional<Real> {
+    motion.end.centre.x() = path.x() + w;
+    const std::optional<Vec2> f = solve_at_x();
+    if (!f) return std::nullopt;
+    if (!force.fy) ++inc.load_passes;  // a solve per x; counted within the vertical iteration otherwise
+    return f->x();
+  };
+  const ForceControlResult fc = solve_for_force(*force.fx, load_offset_.x(), settings(ForceAxis::Horizontal), fx_at);
+  if (!fc.converged) {
+    inc.converged = false;
+    inc.message = failure.empty() ? fc.message : failure;
+    return solution;
+  }
+  solution.load_offset.x() = fc.offset;
+  solution.load_stiffness.x() = fc.stiffness;
   return solution;
 }
 
@@ -303,7 +366,7 @@ void Simulation::commit(const Solution& solution, const RollerMotion& motion, Re
   last_increment_ = solution.u;
   last_length_ = s_to - s_from;
   load_offset_ = solution.load_offset;
-  if (solution.load_stiffness > 0.0) load_stiffness_ = solution.load_stiffness;
+  load_stiffness_ = solution.load_stiffness;
   dynamics_.commit_increment(model_->total_displacement(), solution.deflection);
   if (scene_.roller) {
     pose_ = motion.end;
@@ -331,7 +394,7 @@ std::string Simulation::return_for_pass(int pass) {
           "clear of the strip (roller.centre) or press in from above",
           pass, a + 1, start.centre.x(), start.centre.y());
   pose_ = start;
-  load_offset_ = 0.0;         // each pass meets the strip as the first did
+  load_offset_.setZero();     // each pass meets the strip as the first did
   last_increment_.setZero();  // the lift is no predictor of the press
   contact_.clear();
   return "";
@@ -365,7 +428,7 @@ Simulation::StepResult Simulation::advance_step(int step) {
   // below if the step fails, so that a failed step changes nothing).
   struct BeforeReturn {
     RollerPose pose;
-    Real load_offset;
+    Vec2 load_offset;
     VecX last_increment;
     std::vector<NodeContactRecord> contact;
   };

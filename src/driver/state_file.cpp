@@ -48,6 +48,15 @@ std::string scene_fingerprint(const Scene& scene) {
   return fnv1a_hex(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
 }
 
+// Force control's offsets and slopes: [x, y]; a single number (files written before horizontal
+// force control) is the y; absent in files of runs without force control.
+Vec2 offset_pair(const nlohmann::json& j, const char* key) {
+  if (!j.contains(key)) return Vec2::Zero();
+  const nlohmann::json& v = j.at(key);
+  if (v.is_number()) return Vec2(0.0, v.get<Real>());
+  return Vec2(v.at(0).get<Real>(), v.at(1).get<Real>());
+}
+
 }  // namespace
 
 void Simulation::save_state(const std::filesystem::path& file) const {
@@ -71,8 +80,8 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["last_increment"] = to_list(last_increment_);
   j["last_length"] = last_length_;
   j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
-  j["load_offset"] = load_offset_;
-  j["load_stiffness"] = load_stiffness_;
+  j["load_offset"] = {load_offset_.x(), load_offset_.y()};
+  j["load_stiffness"] = {load_stiffness_.x(), load_stiffness_.y()};
   if (scene_.passes.count > 1) {
     j["pass_track"] = pass_track_.save();
     j["pass_baseline"] = pass_baseline_.save();
@@ -174,8 +183,8 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
     const auto pose = j.at("pose").get<std::vector<Real>>();
     pose_.centre = Vec2(pose.at(0), pose.at(1));
     pose_.angle = pose.at(2);
-    load_offset_ = j.value("load_offset", 0.0);  // absent in files of runs without force control
-    load_stiffness_ = j.value("load_stiffness", 0.0);
+    load_offset_ = offset_pair(j, "load_offset");
+    load_stiffness_ = offset_pair(j, "load_stiffness");
     if (scene_.passes.count > 1 && j.contains("pass_track")) {
       pass_track_ = PassTrack::load(j.at("pass_track"));
       pass_baseline_ = PassBaseline::load(j.at("pass_baseline"));

@@ -809,6 +809,20 @@ std::vector<SceneKey> make_keys() {
             if (const auto& fy = scene.roller->path[i].fy) t.insert("fy", *fy);
           }),
       custom(
+          "roller.path.fx", "number", "absent (dx: motion)", "-1e15 <= fx <= 1e15",
+          "horizontal force of the strip on the roller at the segment's end [N per mm], linear from the last "
+          "earlier segment's fx (0 if none); the centre's x becomes an unknown while dx still turns the roller "
+          "(dx = 0: rotation blocked)",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            if (const auto fx = s.real("fx")) {
+              if (!(std::abs(*fx) <= kMaxForce)) s.fail("fx", fmt::format("must satisfy |fx| <= {:g}", kMaxForce));
+              scene.roller->path[i].fx = *fx;
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            if (const auto& fx = scene.roller->path[i].fx) t.insert("fx", *fx);
+          }),
+      custom(
           "roller.path.friction", "number", "contact.friction", "0 <= friction <= 10",
           "Coulomb coefficient over the segment's steps (e.g. 0 while pressing, mu once the roller rolls)",
           [](TomlSection& s, Scene& scene, Ref i) {

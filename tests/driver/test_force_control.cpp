@@ -90,3 +90,25 @@ TEST_CASE("force control: loads nothing carries and failing solves stop with a m
   CHECK_FALSE(f.converged);
   CHECK_THAT(f.message, Contains("contact solve failed") && Contains("0.25 mm"));
 }
+
+TEST_CASE("force control: a horizontal force of either sign is met on a frictional law, beyond it the roller slides",
+          "[driver][force]") {
+  // Cattaneo-like: the strip's horizontal force on the roller falls from 0 as the centre moves on
+  // (w > 0) and saturates at -mu P in gross sliding, symmetrically backwards.
+  const Real mu_p = 900.0, k = 2e5;
+  auto friction = [&](Real w) -> std::optional<Real> { return -mu_p * std::tanh(k * w / mu_p); };
+  for (const Real target : {-450.0, 450.0, -850.0}) {
+    ForceControlSettings s = settings(1e-6 * mu_p, k);
+    s.axis = ForceAxis::Horizontal;
+    const ForceControlResult r = solve_for_force(target, 0.0, s, friction);
+    REQUIRE(r.converged);
+    CHECK(std::abs(r.force - target) <= 1e-6 * mu_p);
+    CHECK(r.offset == Approx(-mu_p / k * std::atanh(target / mu_p)).epsilon(1e-5));
+  }
+  ForceControlSettings s = settings(1e-6 * mu_p, k);
+  s.axis = ForceAxis::Horizontal;
+  const ForceControlResult slide = solve_for_force(-1000.0, 0.0, s, friction);
+  CHECK_FALSE(slide.converged);
+  CHECK_THAT(slide.message, Contains("the roller slides") && Contains("dx"));
+  CHECK(std::isfinite(slide.offset));
+}

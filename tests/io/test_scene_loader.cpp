@@ -277,3 +277,17 @@ TEST_CASE("the roller's size and the motions are checked against the strip's siz
   CHECK_THAT(error_of(replace(kGood, "y = 0.0", "y = 2e4")),
              Contains("bad.toml:18: displacement[0].y = 20000") && Contains("strip's size"));
 }
+
+TEST_CASE("prescribed roller forces are checked before computing", "[io][scene][errors]") {
+  using Catch::Contains;
+  const std::string roller = kGood + "[roller]\nradius = 2.0\ncentre = [5.0, 7.0]\n";
+  CHECK(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\nfy = 10.0\nfx = -2.5\n").empty());
+  CHECK_THAT(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\nfy = -10.0\n"),
+             Contains("bad.toml") && Contains("fy = -10") && Contains("only pushes"));
+  CHECK_THAT(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\nfx = 1e16\n"),
+             Contains("bad.toml") && Contains("fx = 1e+16") && Contains("|fx| <= 1e+15"));
+  CHECK_THAT(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\nfx = \"left\"\n"),
+             Contains("roller.path") && Contains("fx"));
+  CHECK_THAT(error_of(roller + "[roller.suspension]\nstiffness = 1e3\n[[roller.path]]\nsteps = [1, 4]\nfx = 1.0\n"),
+             Contains("bad.toml:22: roller.path[0].fx") && Contains("without roller.suspension"));
+}

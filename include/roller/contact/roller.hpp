@@ -12,9 +12,12 @@
 //
 // A segment may prescribe the vertical force on the roller instead of its vertical motion (fy):
 // over the segment's steps the centre's height is an unknown that carries the force
-// (driver/force_control.hpp), and the offset it reaches from the path is kept afterwards. A
-// segment may also set the friction coefficient for its steps (the Cattaneo-Mindlin protocol:
-// mu = 0 while pressing, mu once the tangential load starts).
+// (driver/force_control.hpp), and the offset it reaches from the path is kept afterwards. In the
+// same way fx prescribes the horizontal force: the centre's x floats about the path's x while the
+// path's dx still turns the roller (rolling kinematics), so dx = 0 blocks the rotation (the
+// Cattaneo-Mindlin protocol) and dx != 0 rolls it under a traction with the creep an outcome
+// (Carter). A segment may also set the friction coefficient for its steps (mu = 0 while pressing,
+// mu once the tangential load starts).
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +44,9 @@ struct PathSegment {
   // Vertical force of the strip on the roller at the segment's end [N per mm], reached linearly
   // from the fy of the last earlier segment that has one (0 if none); replaces dy.
   std::optional<Real> fy;
+  // Horizontal force of the strip on the roller at the segment's end [N per mm], reached linearly
+  // from the fx of the last earlier segment that has one (0 if none); the centre's x carries it.
+  std::optional<Real> fx;
   std::optional<Real> friction;  // Coulomb coefficient over the segment's steps (else contact.friction)
 };
 
@@ -57,9 +63,14 @@ struct RollerSpec {
 // sampled at step ends and interpolated linearly within a step.
 RollerPose roller_pose(const RollerSpec& spec, const Vec2& start_centre, Real s);
 
-// The vertical force prescribed at (fractional) step s, s in (n - 1, n] belonging to step n:
-// none when step n's segment prescribes the motion (or no segment covers it).
-std::optional<Real> prescribed_vertical_force(const RollerSpec& spec, Real s);
+// The forces prescribed at (fractional) step s, s in (n - 1, n] belonging to step n: per
+// direction, none when step n's segment prescribes the motion (or no segment covers it).
+struct PrescribedForce {
+  std::optional<Real> fx;
+  std::optional<Real> fy;
+  bool any() const { return fx || fy; }
+};
+PrescribedForce prescribed_force(const RollerSpec& spec, Real s);
 
 // The friction coefficient of step n's segment, else `fallback` (contact.friction).
 Real friction_in_step(const RollerSpec& spec, int step, Real fallback);

@@ -1,9 +1,10 @@
 #pragma once
-// A roller under a prescribed vertical force (docs/model.md, Force-controlled roller): the
-// centre's height is an unknown of the increment. The centre sits at the path's height plus an
-// offset w, and the increment's contact solve gives the strip's force F(w) on the roller, which
-// falls as w rises (lifting relieves the contact). solve_for_force() finds w with F(w) = P by a
-// safeguarded secant on the contact solves, as the suspension coupling does
+// A roller under a prescribed force (docs/model.md, Force-controlled roller): the centre's height
+// (vertical force) or x (horizontal force) is an unknown of the increment. The centre sits at the
+// path's position plus an offset w along that axis, and the increment's contact solve gives the
+// strip's force component F(w) on the roller, which falls as w grows (lifting relieves the
+// contact; moving on in x makes the strip hold the roller back). solve_for_force() finds w with
+// F(w) = target by a safeguarded secant on the contact solves, as the suspension coupling does
 // (dynamics/suspension.hpp), so both contact backends are driven the same way.
 #include <functional>
 #include <optional>
@@ -13,7 +14,13 @@
 
 namespace roller {
 
+enum class ForceAxis {
+  Vertical,   // F = f_y >= 0: the contact only pushes, F = 0 means the roller is off the strip
+  Horizontal  // F = f_x of either sign, carried by friction (and by the indentation's flanks)
+};
+
 struct ForceControlSettings {
+  ForceAxis axis = ForceAxis::Vertical;
   Real force_tolerance = 0.0;    // |F(w) - P| that is converged [N per mm]
   Real stiffness_guess = 0.0;    // dF/d(-w) for the first step [N/mm per mm], > 0
   Real max_offset_change = 0.0;  // |w - w0| beyond this: nothing carries the load [mm]
@@ -32,7 +39,7 @@ struct ForceControlResult {
 // Finds w with F(w) = target, starting at w0. `force_at(w)` solves the increment with the centre
 // at offset w and returns F, or nullopt when that solve fails. While the root is not bracketed
 // the step is the secant (or the guess) slope's Newton step, doubled while F does not change (the
-// roller above the strip); once bracketed, Illinois regula falsi. Fails with a message when a
+// roller above the strip, vertical axis only); once bracketed, Illinois regula falsi. Fails with a message when a
 // solve fails, when w would move more than max_offset_change (a load nothing carries: the roller
 // pulled off the strip, or a strip that collapses under it) or after max_iterations.
 ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSettings& settings,

@@ -85,10 +85,10 @@ class Simulation {
   // The roller's prescribed pose at (fractional) scene step s: for a suspended roller, its anchor;
   // under force control (roller.path fy) the path without the load offset.
   RollerPose prescribed_pose(Real s) const;
-  // Force control: the centre's height offset from the path that carries the prescribed force
-  // (kept after the force-controlled segments), and that force at step s (none: motion).
-  Real load_offset() const { return load_offset_; }
-  std::optional<Real> prescribed_force(Real s) const;
+  // Force control: the centre's offset from the path that carries the prescribed forces (kept
+  // after the force-controlled segments), and those forces at step s (none: motion).
+  Vec2 load_offset() const { return load_offset_; }
+  PrescribedForce prescribed_force(Real s) const;
   // Roller centre velocity over the last step (backward difference) [mm/s].
   Vec2 roller_velocity() const { return roller_velocity_; }
 
@@ -157,22 +157,23 @@ class Simulation {
     std::vector<ContactCandidate> candidates;
     BackendResult contact;
     Real deflection = 0.0;
-    Real load_offset = 0.0;     // force control: the centre's offset that carries the force
-    Real load_stiffness = 0.0;  // and the slope dF/d(-w) there (0: not force-controlled)
+    Vec2 load_offset = Vec2::Zero();     // force control: the centre's offset that carries the forces
+    Vec2 load_stiffness = Vec2::Zero();  // and the slopes -dF/dw there per axis (0: not force-controlled)
   };
-  // `force`: the prescribed vertical force on the roller (none: its motion is prescribed).
+  // `force`: the forces prescribed on the roller (none: its motion is prescribed).
   Solution solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor, RollerMotion& motion,
-                           std::optional<Real> force, Increment& inc);
+                           const PrescribedForce& force, Increment& inc);
   BackendResult solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
                               RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
   Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
                            VecX& x, Increment& inc);
-  // The prescribed vertical force, iterated on the centre's height (driver/force_control.hpp).
-  Solution solve_loaded(Real force, IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
-                        RollerMotion& motion, VecX& x, Increment& inc);
-  // The vertical force of the strip on the roller in a contact solution (up positive).
-  Real vertical_force(const Solution& solution, const RollerMotion& motion, IncrementEnergy& energy) const;
+  // The prescribed forces, iterated on the centre's height and x (driver/force_control.hpp): a
+  // horizontal force by an outer iteration on x whose every solve carries the vertical one.
+  Solution solve_loaded(const PrescribedForce& force, IncrementEnergy& energy, const VecX& prescribed,
+                        const VecX& predictor, RollerMotion& motion, VecX& x, Increment& inc);
+  // The force of the strip on the roller in a contact solution.
+  Vec2 strip_force(const Solution& solution, const RollerMotion& motion, IncrementEnergy& energy) const;
   // Accepts a converged increment (transactional: a throw of the strip's commit changes nothing).
   void commit(const Solution& solution, const RollerMotion& motion, Real s_from, Real s_to, Increment& inc);
   void record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result, const VecX& u);
@@ -203,8 +204,8 @@ class Simulation {
   std::vector<PassRecord> pass_records_;
   // After a converged step: observes the contact; at a pass's last step, measures the pass.
   std::optional<StepResult::PassEnd> observe_pass(int step);
-  Real load_offset_ = 0.0;     // force control: the centre's height above the path [mm]
-  Real load_stiffness_ = 0.0;  // dF/d(-w) of the last force-controlled increment (0: none yet)
+  Vec2 load_offset_ = Vec2::Zero();     // force control: the centre's offset from the path [mm]
+  Vec2 load_stiffness_ = Vec2::Zero();  // -dF/dw per axis, last force-controlled increment (0: none yet)
 };
 
 }  // namespace roller
