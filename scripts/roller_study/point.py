@@ -1,0 +1,100 @@
+"""One point of a study: one roller process with the point's --set values, its output folder
+kept, and what the study collects from it. run_point() runs where a Dask worker runs it, so it
+takes plain data and returns plain data; it never raises for a failing run (the failure is the
+point's result: status and message)."""
+import csv
+import json
+import os
+import signal
+import subprocess
+import time
+
+# Exit codes of roller run (docs/stability.md, docs/scenes.md): 0 converged, 1 a step failed, 2 bad
+# input, 3 not enough memory; anything else (4: an internal error, a signal) is a crash.
+STATUS = {0: "ok", 1: "failed", 2: "input_error", 3: "out_of_memory"}
+RECORD = "point.json"
+
+
+def command(roller, scene, backend, set_values, out):
+    cmd = [roller, "run", scene, "--out", out, "--overwrite", "--contact", backend]
+    for key, literal in set_values:
+        cmd += ["--set", "%s=%s" % (key, literal)]
+    return cmd
+
+
+def _last_line(text):
+    lines = [l.strip() for l in text.splitlines() if l.strip()]
+    return lines[-1] if lines else ""
+
+
+def collect_values(out, fields):
+    """The collected fields of a finished run: summary.json dotted paths, FILE.csv:COLUMN from
+    the last row; None where a run did not write them."""
+    summary = None
+    try:
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+    except (OSError, ValueError):
+        pass
+    values = {}
+    for name in fields:
+        value = None
+        if ":" in name:
+            file, column = name.split(":", 1)
+            try:
+                with open(os.path.join(out, file), newline="") as f:
+                    rows = list(csv.DictReader(f))
+                value = rows[-1].get(column) if rows else None
+            except OSError:
+                pass
+        elif summary is not None:
+            value = summary
+            for part in name.split("."):
+                value = value.get(part) if isinstance(value, dict) else None
+        values[name] = value
+    return values
+
+
+def run_point(task):
+    """task: dict(name, cmd, out, timeout, collect, values, backend, index). Returns the point's
+    record (also written to OUT/point.json, the mark of a complete point for --resume)."""
+    out = task["out"]
+    os.makedirs(out, exist_ok=True)
+    log = os.path.join(out, "run.log")
+    t0 = time.monotonic()
+    with open(log, "w") as f:
+        proc = subprocess.Popen(task["cmd"], stdout=f, stderr=subprocess.STDOUT, start_new_session=True)
+        try:
+            rc = proc.wait(timeout=task["timeout"])
+            timed_out = False
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)  # the run's own process group only
+            proc.wait()
+            rc, timed_out = None, True
+    wall = time.monotonic() - t0
+    with open(log, errors="replace") as f:
+        message = _last_line(f.read())
+    if timed_out:
+        status, message = "timeout", "no result within %g s (study timeout)" % task["timeout"]
+    else:
+        status = STATUS.get(rc, "crashed")
+        if status == "crashed":
+            message = "exit %s: %s" % (rc, message)
+    record = {"index": task["index"], "name": task["name"], "backend": task["backend"], "values": task["values"],
+              "status": status, "message": message, "wall_s": round(wall, 3), "out": out,
+              "collected": collect_values(out, task["collect"]), "command": task["cmd"]}
+    tmp = os.path.join(out, RECORD + ".tmp")
+    with open(tmp, "w") as f:
+        json.dump(record, f, indent=1)
+    os.replace(tmp, os.path.join(out, RECORD))
+    return record
+
+
+def finished_record(out, task):
+    """The record of a point already complete in `out` with the same command, else None."""
+    try:
+        with open(os.path.join(out, RECORD)) as f:
+            record = json.load(f)
+    except (OSError, ValueError):
+        return None
+    return record if record.get("command") == task["cmd"] else None
