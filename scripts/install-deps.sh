@@ -17,6 +17,7 @@ packages=(
   nlohmann-json3-dev                     # summary.json, state files
   zlib1g-dev                             # compressed VTU output
   python3 python3-numpy python3-matplotlib  # figures (PNG)
+  python3-distributed python3-tqdm       # studies: Dask LocalCluster or a cluster, progress bar
 )
 
 missing=()

@@ -16,7 +16,7 @@ RECORD = "point.json"
 
 
 def command(roller, scene, backend, set_values, out):
-    cmd = [roller, "run", scene, "--out", out, "--overwrite", "--contact", backend]
+    cmd = [roller, "run", scene, "--out", out, "--overwrite"] + (["--contact", backend] if backend else [])
     for key, literal in set_values:
         cmd += ["--set", "%s=%s" % (key, literal)]
     return cmd
@@ -56,14 +56,15 @@ def collect_values(out, fields):
 
 
 def run_point(task):
-    """task: dict(name, cmd, out, timeout, collect, values, backend, index). Returns the point's
+    """task: dict(name, cmd, out, timeout, collect, values, backend, index, env). Returns the point's
     record (also written to OUT/point.json, the mark of a complete point for --resume)."""
     out = task["out"]
     os.makedirs(out, exist_ok=True)
     log = os.path.join(out, "run.log")
     t0 = time.monotonic()
     with open(log, "w") as f:
-        proc = subprocess.Popen(task["cmd"], stdout=f, stderr=subprocess.STDOUT, start_new_session=True)
+        env = dict(os.environ, **task.get("env", {}))
+        proc = subprocess.Popen(task["cmd"], stdout=f, stderr=subprocess.STDOUT, start_new_session=True, env=env)
         try:
             rc = proc.wait(timeout=task["timeout"])
             timed_out = False

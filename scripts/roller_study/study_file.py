@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 TOP_KEYS = {"title", "scene", "backends", "timeout", "collect", "set", "grid", "point"}
 BACKENDS = ("ipopt", "penalty")
+RUNNER_COLUMNS = ("index", "backend", "status", "message", "wall_s", "out")
 
 
 class StudyError(ValueError):
@@ -23,7 +24,7 @@ class Point:
 
     @property
     def name(self):
-        return "p%03d_%s" % (self.index, self.backend)
+        return "p%03d_%s" % (self.index, self.backend) if self.backend else "p%03d" % self.index
 
 
 @dataclass
@@ -31,7 +32,7 @@ class Study:
     path: str
     title: str
     scene: str                  # absolute path of the base scene
-    backends: list
+    backends: list              # None: the scene's own backend
     timeout: float              # per point [s]
     collect: list               # summary.json dotted paths, or FILE.csv:COLUMN (last row)
     fixed: dict                 # --set for every point
@@ -106,10 +107,11 @@ def load(path):
     scene = os.path.normpath(os.path.join(os.path.dirname(path), scene))
     if not os.path.isfile(scene):
         _fail(path, "scene", doc["scene"], "no such file (%s)" % scene)
-    backends = doc.get("backends", ["ipopt"])
-    if not isinstance(backends, list) or not backends or any(b not in BACKENDS for b in backends) \
-            or len(set(backends)) != len(backends):
+    backends = doc.get("backends")  # absent: the scene's own (or none: a scene without a roller)
+    if backends is not None and (not isinstance(backends, list) or not backends
+                                 or any(b not in BACKENDS for b in backends) or len(set(backends)) != len(backends)):
         _fail(path, "backends", backends, "expected a list of distinct backends from %s" % ", ".join(BACKENDS))
+    backends = backends or [None]
     timeout = doc.get("timeout", 3600)
     if not isinstance(timeout, (int, float)) or isinstance(timeout, bool) or not 0 < timeout <= 1e7:
         _fail(path, "timeout", timeout, "expected seconds per point, 0 < timeout <= 1e7")
@@ -119,6 +121,10 @@ def load(path):
     for c in collect:
         if ":" in c and not (c.split(":", 1)[0].endswith(".csv") and c.split(":", 1)[1]):
             _fail(path, "collect", c, "expected FILE.csv:COLUMN (the column's value in the last row)")
+    clash = [c for c in collect if c in RUNNER_COLUMNS]
+    if clash:
+        _fail(path, "collect", clash[0], "study.csv has this column already (the runner's: %s)"
+              % ", ".join(RUNNER_COLUMNS))
     fixed = doc.get("set", {})
     if not isinstance(fixed, dict):
         _fail(path, "set", fixed, "expected a table of --set keys and values")

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""Draws a shakedown map from a study's study.csv (scripts/study.py with
+problems/studies/shakedown_map.toml; docs/validation.md, "Shakedown map"): every point at its
+traction coefficient mu (contact.friction) and load p0/k (passes.p0_over_k), marked by its verdict
+(elastic shakedown, plastic shakedown, ratchetting; failed points as crosses), with Johnson's
+shakedown limit over it (scripts/line_contact_shakedown.py) and the surface limit 1/mu.
+
+usage: /usr/bin/python3 scripts/plot_shakedown_map.py STUDY_CSV [--out MAP.png]
+Default --out: shakedown_map.png beside the CSV.
+"""
+import argparse
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from line_contact_shakedown import shakedown_limit  # noqa: E402
+
+STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
+         "plastic_shakedown": ("s", "C1", "plastic shakedown (closed cycle)"),
+         "ratchetting": ("^", "C3", "ratchetting"),
+         "undetermined": ("D", "0.5", "undetermined")}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv")
+    ap.add_argument("--out")
+    args = ap.parse_args()
+    with open(args.csv, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        sys.exit("plot_shakedown_map: %s has no points" % args.csv)
+    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    mus = np.linspace(0.0, 0.5, 51)
+    ax.plot(mus, [shakedown_limit(m) for m in mus], "k-", label="Johnson: shakedown limit (Melan)")
+    ax.plot(mus[mus > 0.15], 1.0 / mus[mus > 0.15], "k:", label="surface limit 1/μ")
+    seen = set()
+    for r in rows:
+        mu = float(r["contact.friction"])
+        verdict = r.get("passes.verdict") or ""
+        if r["status"] != "ok" or verdict not in STYLE:
+            ax.plot(mu, float(r["passes.p0_over_k"] or "nan"), "kx", ms=9,
+                    label=None if "failed" in seen else "failed: %s" % r["status"])
+            seen.add("failed")
+            continue
+        marker, colour, label = STYLE[verdict]
+        ax.plot(mu, float(r["passes.p0_over_k"]), marker, color=colour, ms=10,
+                label=None if verdict in seen else label)
+        seen.add(verdict)
+    ax.set_xlabel("traction coefficient μ = Q/P (sliding)")
+    ax.set_ylabel("load p0/k")
+    ax.set_xlim(-0.02, 0.42)
+    ax.set_ylim(2.0, 5.0)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="upper right", fontsize=8)
+    ax.set_title("Shakedown map of a line contact (%d points)" % len(rows))
+    fig.tight_layout()
+    out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "shakedown_map.png")
+    fig.savefig(out, dpi=110)
+    print("wrote", out)
+
+
+if __name__ == "__main__":
+    main()
