@@ -8,10 +8,13 @@ usage: /usr/bin/python3 benchmarks/scaling.py [--build build] [--out DIR] [--min
 Cases: Hertz (frictionless, elastic): the whole indentation in ONE increment, cold start; Z1
 (plastic, friction, finite strain): the first rolling increment (step 4, warm from step 3).
 For each mesh size: wall time of that increment (solver.csv wall_s) and of the whole process
-(cold: scene, mesh, earlier steps, output), solver iterations, peak memory of the whole process
-(/usr/bin/time -v), and the time (and MUMPS memory) of one MUMPS analysis + factorisation of the
-strip tangent K (bench_factorize) as the unit. Writes DIR/scaling.csv, DIR/scaling.png and
-prints a Markdown table with the fitted exponent of time against dofs (sizes >= 1e4).
+(cold: scene, mesh, earlier steps, output), solver iterations, peak memory of the roller process
+(summary.json), and the time (and MUMPS memory) of one MUMPS analysis + factorisation of the
+strip tangent K (bench_factorize) as the unit. The runs are a study per case on the study runner
+(scripts/study.py, DIR/study_CASE/: one point per size and backend, serial so that timings are
+not disturbed, resumed when rerun: a study stopped part-way keeps every size it measured; a size
+beyond --timeout is recorded as timeout). Writes DIR/scaling.csv, DIR/scaling.png and prints a
+Markdown table with the fitted exponent of time against dofs (sizes >= 1e4).
 --set adds scene overrides to every run and to the unit factorisation, e.g.
 --set linear_solver.out_of_core=true (docs/benchmarks.md, memory).
 """
@@ -20,8 +23,6 @@ import csv
 import json
 import math
 import os
-import re
-import signal
 import subprocess
 import sys
 
@@ -30,7 +31,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-QUIET = ["--set", "output.monitor=false", "--set", "output.vtu=false", "--set", "output.checkpoint_every=0"]
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+QUIET = ["output.monitor=false", "output.vtu=false", "output.checkpoint_every=0"]
 # (label, scene, overrides, measured step); dofs: Hertz 2(60k+1)(30k+1), Z1 2(45k+1)(3k+1).
 CASES = {
     "hertz": [("hertz", "problems/hertz.toml",
@@ -51,37 +53,44 @@ def dofs_of(label, overrides):
     return 2 * (45 * k + 1) * (3 * k + 1)
 
 
-def run_case(build, label, scene, overrides, step, backend, out, timeout):
-    run_dir = os.path.join(out, "runs", f"{label}_{backend}_{dofs_of(label, overrides)}")
-    cmd = ["/usr/bin/time", "-v", os.path.join(build, "roller"), "run", scene, "--out", run_dir,
-           "--contact", backend] + QUIET
-    for o in overrides:
-        cmd += ["--set", o]
-    # Own process group: on a timeout roller goes down with /usr/bin/time, not left running.
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
-    try:
-        _, stderr = p.communicate(timeout=timeout)
-    except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)
-        p.communicate()
-        return {"status": f"timeout ({timeout:.0f} s)"}
-    rss = re.search(r"Maximum resident set size \(kbytes\): (\d+)", stderr)
-    # Whole process, cold: reading the scene, meshing, every step before the measured one, output.
-    elapsed = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): ([\d:.]+)", stderr)
-    row = {"status": "converged" if p.returncode == 0 else f"exit {p.returncode}",
-           "peak_memory_mb": int(rss.group(1)) / 1024 if rss else float("nan"),
-           "process_wall_s": sum(float(x) * 60 ** i for i, x in enumerate(reversed(elapsed.group(1).split(":"))))
-           if elapsed else float("nan")}
-    with open(os.path.join(run_dir, "solver.csv")) as f:
-        steps = {int(r["step"]): r for r in csv.DictReader(f)}
-    if step in steps:
-        row["wall_s"] = float(steps[step]["wall_s"])
-        row["iterations"] = int(steps[step]["iterations"])
-        for key in ("factorizations", "linearisations", "condensed_dofs", "ipopt_time_s"):
-            row[key] = float(steps[step].get(key, "nan"))
-    with open(os.path.join(run_dir, "summary.json")) as f:
-        row["dofs"] = json.load(f)["ndof"]
-    return row
+def run_sizes(args, case, sizes):
+    """Runs the sizes of a case as a study (scripts/study.py, docs/studies.md): one point per size
+    and backend, serially (timings undisturbed), resumable (a rerun keeps the sizes measured
+    before). Returns {(size index, backend): row}."""
+    scene, step = sizes[0][1], sizes[0][3]
+    backends = args.backends.split(",")
+    out = os.path.join(args.out, "study_" + case)
+    os.makedirs(out, exist_ok=True)
+    solver = ("step", "wall_s", "iterations", "factorizations", "linearisations", "condensed_dofs", "ipopt_time_s")
+    lines = ['title = "scaling: %s"' % case, 'scene = "%s"' % os.path.join(ROOT, scene),
+             "backends = [%s]" % ", ".join('"%s"' % b for b in backends), "timeout = %r" % float(args.timeout),
+             "collect = [%s]" % ", ".join('"%s"' % c for c in ["ndof", "peak_memory_mb"] +
+                                          ["solver.csv:" + k for k in solver]),
+             "[set]"] + ['"%s" = %s' % tuple(o.split("=", 1)) for o in QUIET + args.set]
+    for _, _, overrides, _ in sizes:
+        lines += ["[[point]]"] + ['"%s" = %s' % tuple(o.split("=", 1)) for o in overrides]
+    study = os.path.join(out, "study.toml")
+    with open(study, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "study.py"), study, "--out", out, "--serial",
+                    "--resume", "--roller", os.path.abspath(os.path.join(args.build, "roller"))], check=True)
+    with open(os.path.join(out, "study.csv"), newline="") as f:
+        study_rows = list(csv.DictReader(f))
+    results = {}
+    for r in study_rows:
+        row = {"status": "converged" if r["status"] == "ok" else r["status"],
+               # the whole process, cold: reading the scene, meshing, every step before the measured one
+               "process_wall_s": float(r["wall_s"]),
+               "peak_memory_mb": float(r["peak_memory_mb"] or "nan")}
+        if r["solver.csv:step"] and int(r["solver.csv:step"]) == step:
+            row["wall_s"] = float(r["solver.csv:wall_s"])
+            row["iterations"] = int(r["solver.csv:iterations"])
+            for key in solver[3:]:
+                row[key] = float(r["solver.csv:" + key] or "nan")
+        if r["ndof"]:
+            row["dofs"] = int(r["ndof"])
+        results[(int(r["index"]) // len(backends), r["backend"])] = row
+    return results
 
 
 def factorization_time(build, scene, overrides):
@@ -117,27 +126,21 @@ def main():
                "linearisations", "condensed_dofs", "ipopt_time_s", "peak_memory_mb", "factorization_s",
                "factorization_memory_mb", "time_in_factorizations"]
     rows = []
-    timed_out = {}
-    # Written row by row: a study stopped part-way keeps every size it measured.
     with open(os.path.join(args.out, "scaling.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
         w.writeheader()
         for case in args.cases.split(","):
-            for label, scene, overrides, step in CASES[case]:
+            sizes = [c for c in CASES[case] if args.min_dofs <= dofs_of(c[0], c[2] + args.set) <= args.max_dofs]
+            if not sizes:
+                continue
+            results = run_sizes(args, case, sizes)
+            for i, (label, scene, overrides, step) in enumerate(sizes):
                 overrides = overrides + args.set
-                n = dofs_of(label, overrides)
-                if n > args.max_dofs or n < args.min_dofs:
-                    continue
                 unit, unit_memory = factorization_time(args.build, scene, overrides)
                 for backend in args.backends.split(","):
-                    if (case, backend) in timed_out:  # a larger size would time out as well
-                        r = {"status": f"not run: {timed_out[(case, backend)]} timed out"}
-                    else:
-                        r = run_case(args.build, label, scene, overrides, step, backend, args.out, args.timeout)
-                        if r["status"].startswith("timeout"):
-                            timed_out[(case, backend)] = f"{n} dofs"
+                    r = dict(results.get((i, backend), {"status": "not run"}))
                     r.update({"case": label, "backend": backend, "factorization_s": unit,
-                              "factorization_memory_mb": unit_memory, "dofs": r.get("dofs", n)})
+                              "factorization_memory_mb": unit_memory, "dofs": r.get("dofs", dofs_of(label, overrides))})
                     if "wall_s" in r:
                         r["time_in_factorizations"] = r["wall_s"] / unit
                     rows.append(r)
