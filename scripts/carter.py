@@ -158,7 +158,9 @@ def run(args, out, backend, overrides, steps=None):
     return wall
 
 
-def path_override(segments, creep):
+def rolling_path(segments, rolling_keys):
+    """The scene's path as a --set roller.path override, every rolling segment (dx != 0) given
+    rolling_keys instead of its own slip."""
     parts = []
     for s in segments:
         keys = ["steps=[%d,%d]" % tuple(s["steps"])]
@@ -166,26 +168,21 @@ def path_override(segments, creep):
             if k in s:
                 keys.append("%s=%r" % (k, float(s[k])))
         if float(s.get("dx", 0.0)) != 0.0:
-            keys.append("slip=%r" % creep)
+            keys += ["%s=%r" % kv for kv in rolling_keys.items()]
         elif "slip" in s:
             keys.append("slip=%r" % s["slip"])
         parts.append("{" + ",".join(keys) + "}")
     return "roller.path=[" + ",".join(parts) + "]"
 
 
+def path_override(segments, creep):
+    return rolling_path(segments, {"slip": creep})
+
+
 def traction_override(segments, fx):
-    """The scene's path turning at the rolling rate (slip 0) under the horizontal force fx on every
-    rolling segment (ramped from 0 over the first)."""
-    parts = []
-    for s in segments:
-        keys = ["steps=[%d,%d]" % tuple(s["steps"])]
-        for k in ("dx", "dy"):
-            if k in s:
-                keys.append("%s=%r" % (k, float(s[k])))
-        if float(s.get("dx", 0.0)) != 0.0:
-            keys.append("fx=%r" % fx)
-        parts.append("{" + ",".join(keys) + "}")
-    return "roller.path=[" + ",".join(parts) + "]"
+    """Turning at the rolling rate (slip 0) under the horizontal force fx on every rolling
+    segment (ramped from 0 over the first)."""
+    return rolling_path(segments, {"fx": fx})
 
 
 def measured_creep(roller, s_prev):
