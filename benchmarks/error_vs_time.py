@@ -3,11 +3,13 @@
 
 usage: /usr/bin/python3 benchmarks/error_vs_time.py [--quick] [--build DIR] [--out DIR]
            [--scenes hertz,cattaneo,...] [--refine-max N] [--max-run-seconds S]
-           [--max-reference-seconds S] [--plot-only] [--check]
+           [--max-reference-seconds S] [--plot-only] [--check] [--jobs N] [--scheduler ADDR] [--resume]
 
 Runs DIR/benchmarks/bench_error_time (default DIR: build/ of this checkout; when the program is
 missing it is built first: `bash scripts/build.sh` for build/, a CMake build of the one target
-otherwise). The program sweeps mesh refinement, penalty factor and Ipopt tolerance for each
+otherwise), once per scene, as points of the study runner (scripts/study.py): one scene at a time
+by default (timings undisturbed), --jobs N side by side on a Dask LocalCluster or --scheduler on
+a cluster; --resume keeps the scenes already complete in --out (OUT/scenes/SCENE/). The program sweeps mesh refinement, penalty factor and Ipopt tolerance for each
 scene, times every run and compares it with a reference run (ipopt, one mesh level finer, the
 tightest tolerance; Hertz pressure: the analytic solution). Every run is guarded: a failure, an
 exception or the per-run budget (--max-run-seconds, stopped between steps) ends that run only
@@ -34,6 +36,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# The plan's scenes (bench_error_time.cpp, plans()), in its order.
+SCENES = ["hertz", "cattaneo", "z1_outf05", "z3_data01", "z4_v25"]
+QUICK_SCENES = ["hertz", "cattaneo"]
 STUDY_BUDGET_S = 3600.0  # the default study should fit in one hour on 2 cores
 
 COLUMNS = ["scene", "backend", "parameter", "value", "refine", "dofs", "status", "converged", "message",
@@ -247,6 +252,57 @@ def ensure_binary(build, bench):
         sys.exit(f"error: the build finished but {bench} is still missing")
 
 
+def run_scenes(args, bench, csv_path):
+    """One point of the study runner (scripts/study.py, docs/studies.md) per scene: each runs
+    bench_error_time on that scene alone (its sweeps and its own reference) into
+    OUT/scenes/SCENE/; serial by default so that timings are not disturbed, --jobs N on a
+    LocalCluster or --scheduler on a cluster; --resume keeps the scenes complete. The scenes'
+    CSVs are then joined into csv_path in the plan's order. Returns 0 when every scene finished."""
+    sys.path.insert(0, os.path.join(REPO, "scripts"))
+    from roller_study import engines
+    from roller_study.point import finished_record, run_point
+    scenes = args.scenes.split(",") if args.scenes else (QUICK_SCENES if args.quick else SCENES)
+    tasks, records = [], []
+    for i, scene in enumerate(scenes):
+        out = os.path.abspath(os.path.join(args.out, "scenes", scene))
+        cmd = [bench, "--out", os.path.join(out, "error_vs_time.csv"), "--scenes", scene]
+        cmd += ["--quick"] if args.quick else []
+        cmd += ["--refine-max", str(args.refine_max)] if args.refine_max else []
+        if args.max_run_seconds is not None:
+            cmd += ["--max-run-seconds", str(args.max_run_seconds)]
+        if args.max_reference_seconds is not None:
+            cmd += ["--max-reference-seconds", str(args.max_reference_seconds)]
+        task = {"index": i, "name": scene, "backend": None, "values": {"scene": scene}, "cmd": cmd, "out": out,
+                "timeout": 1e7, "collect": [], "env": {}, "key": scene}
+        done = finished_record(out, task) if args.resume else None
+        (records.append(done) if done else tasks.append(task))
+
+    def on_done(record):
+        records.append(record)
+        print("%s: %s in %.0f s (%s)" % (record["name"], record["status"], record["wall_s"], record["message"]),
+              flush=True)
+
+    print("error_vs_time: %d scenes (%d complete) -> %s" % (len(scenes), len(records), csv_path), flush=True)
+    if args.jobs == 1 and not args.scheduler:
+        engines.run_serial(tasks, run_point, on_done)
+    else:
+        engines.run_dask(tasks, run_point, on_done, jobs=args.jobs, scheduler=args.scheduler)
+    header, rows = None, []
+    for scene in scenes:
+        path = os.path.join(args.out, "scenes", scene, "error_vs_time.csv")
+        if os.path.isfile(path):
+            with open(path, newline="") as f:
+                reader = csv.DictReader(f)
+                header = header or reader.fieldnames
+                rows += list(reader)
+    if header:
+        with open(csv_path, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=header)
+            w.writeheader()
+            w.writerows(rows)
+    return 0 if all(r["status"] == "ok" for r in records) else 1
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="Hertz and Cattaneo on coarse meshes (the CTest check)")
@@ -259,31 +315,23 @@ def main():
     ap.add_argument("--max-reference-seconds", type=float, default=None,
                     help="budget of each scene's reference run (program default 600)")
     ap.add_argument("--plot-only", action="store_true", help="do not run; redraw from OUT/error_vs_time.csv")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="scenes side by side on a Dask LocalCluster (default 1: one at a time, timings undisturbed)")
+    ap.add_argument("--scheduler", help="a running Dask scheduler for the scenes (their timings then are the workers')")
+    ap.add_argument("--resume", action="store_true", help="keep the scenes already complete in --out")
     ap.add_argument("--check", action="store_true")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     csv_path = os.path.join(args.out, "error_vs_time.csv")
     elapsed = 0.0
     if not args.plot_only:
-        bench = os.path.join(args.build, "benchmarks", "bench_error_time")
+        bench = os.path.abspath(os.path.join(args.build, "benchmarks", "bench_error_time"))
         ensure_binary(args.build, bench)
-        cmd = [bench, "--out", csv_path]
-        if args.quick:
-            cmd.append("--quick")
-        if args.scenes:
-            cmd += ["--scenes", args.scenes]
-        if args.refine_max:
-            cmd += ["--refine-max", str(args.refine_max)]
-        if args.max_run_seconds is not None:
-            cmd += ["--max-run-seconds", str(args.max_run_seconds)]
-        if args.max_reference_seconds is not None:
-            cmd += ["--max-reference-seconds", str(args.max_reference_seconds)]
-        print("running:", " ".join(cmd), flush=True)
         t0 = time.monotonic()
-        rc = subprocess.run(cmd).returncode
+        rc = run_scenes(args, bench, csv_path)
         elapsed = time.monotonic() - t0
         if rc != 0:
-            print(f"warning: bench_error_time exited with code {rc}; plotting the rows it wrote", file=sys.stderr)
+            print("warning: a scene's bench_error_time did not finish; plotting the rows written", file=sys.stderr)
             if not os.path.isfile(csv_path):
                 return 1
     with open(csv_path, newline="") as f:
