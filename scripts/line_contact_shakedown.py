@@ -25,24 +25,24 @@ def mcewen(x, z, mu):
     return sx, sz, t
 
 
-def shakes_down(load, mu, x, depths):
-    for z in depths:
-        sx, sz, t = mcewen(x, z, mu)
-        lt = load * t
-        if np.max(np.abs(lt)) > 1.0:
-            return False
-        centre, radius = load * (sx - sz) / 2.0, np.sqrt(1.0 - lt * lt)
-        if np.max(-radius - centre) > np.min(radius - centre) + 1e-12:  # no rho/2 fits every x
-            return False
-    return True
+def shakes_down(load, stresses):
+    """Melan's condition at the load p0/k for the elastic stresses (per unit p0) on a grid of
+    depths (rows) by x (columns)."""
+    sx, sz, t = stresses
+    lt = load * t
+    if np.max(np.abs(lt)) > 1.0:
+        return False
+    centre, radius = load * (sx - sz) / 2.0, np.sqrt(1.0 - lt * lt)
+    # Per depth, one rho/2 must fit every x: the largest lower bound below the smallest upper one.
+    return bool(np.all(np.max(-radius - centre, axis=1) <= np.min(radius - centre, axis=1) + 1e-12))
 
 
 def shakedown_limit(mu, tol=1e-4):
     """Johnson's elastic shakedown limit p0/k for the traction coefficient mu (bisection)."""
-    x = np.linspace(-5.0, 5.0, 4001)
-    depths = np.linspace(0.0, 3.0, 601)
+    x, z = np.meshgrid(np.linspace(-5.0, 5.0, 4001), np.linspace(0.0, 3.0, 601))
+    stresses = mcewen(x, z, mu)
     lo, hi = 0.5, 6.0
     while hi - lo > tol:
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if shakes_down(mid, mu, x, depths) else (lo, mid)
+        lo, hi = (mid, hi) if shakes_down(mid, stresses) else (lo, mid)
     return lo

@@ -3,7 +3,8 @@
 problems/studies/shakedown_map.toml; docs/validation.md, "Shakedown map"): every point at its
 traction coefficient mu (contact.friction) and load p0/k (passes.p0_over_k), marked by its verdict
 (elastic shakedown, plastic shakedown, ratchetting; failed points as crosses), with Johnson's
-shakedown limit over it (scripts/line_contact_shakedown.py) and the surface limit 1/mu.
+shakedown limit over it (scripts/line_contact_shakedown.py) and the surface limit 1/mu; prints a
+Markdown table of the points against that limit.
 
 usage: /usr/bin/python3 scripts/plot_shakedown_map.py STUDY_CSV [--out MAP.png]
 Default --out: shakedown_map.png beside the CSV.
@@ -62,6 +63,18 @@ def main():
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title("Shakedown map of a line contact (%d points)" % len(rows))
     fig.tight_layout()
+    # The table: each point against Johnson's limit at its mu.
+    limits = {}
+    print("| p0/k | μ | Johnson's limit | expected | verdict | status | run [s] |")
+    print("|---:|---:|---:|---|---|---|---:|")
+    for r in rows:
+        mu = float(r["contact.friction"])
+        limits.setdefault(mu, shakedown_limit(mu))
+        load = float(r["passes.p0_over_k"] or "nan")
+        expected = "elastic shakedown" if load < limits[mu] else "not elastic shakedown"
+        print("| %.2f | %.2f | %.2f | %s | %s | %s | %.0f |" % (load, mu, limits[mu], expected,
+                                                             r.get("passes.verdict") or "—", r["status"],
+                                                             float(r["wall_s"])))
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "shakedown_map.png")
     fig.savefig(out, dpi=110)
     print("wrote", out)
