@@ -38,7 +38,7 @@ def main():
         rows = list(csv.DictReader(f))
     if not rows:
         sys.exit("plot_shakedown_map: %s has no points" % args.csv)
-    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    fig, ax = plt.subplots(figsize=(9.5, 5.5))
     mus = np.linspace(0.0, 0.5, 51)
     ax.plot(mus, [shakedown_limit(m) for m in mus], "k-", label="Johnson: shakedown limit (Melan)")
     ax.plot(mus[mus > 0.15], 1.0 / mus[mus > 0.15], "k:", label="surface limit 1/μ")
@@ -60,7 +60,7 @@ def main():
     ax.set_xlim(-0.02, 0.42)
     ax.set_ylim(2.0, 5.0)
     ax.grid(alpha=0.3)
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     ax.set_title("Shakedown map of a line contact (%d points)" % len(rows))
     fig.tight_layout()
     # The table: each point against Johnson's limit at its mu.
