@@ -15,10 +15,14 @@ RollerSpec roller_of_pass(const RollerSpec& spec, const PassSpec& passes, int pa
                           int steps_per_pass, Vec2* pass_start) {
   *pass_start = start_centre;
   if (passes.direction == PassDirection::Same || pass % 2 == 1) return spec;
-  // Back the way the odd passes came: from where the scene's path ends (in x), every travel in x
-  // reversed; heights, forces, slips and harmonics as in the scene.
+  // Back the way the odd passes came: from where the scene's path ends (in x), every travel and
+  // horizontal force in x reversed (a traction acts along the rolling direction); heights,
+  // vertical forces, slips and harmonics as in the scene.
   RollerSpec mirrored = spec;
-  for (PathSegment& seg : mirrored.path) seg.dx = -seg.dx;
+  for (PathSegment& seg : mirrored.path) {
+    seg.dx = -seg.dx;
+    if (seg.fx) seg.fx = -*seg.fx;
+  }
   pass_start->x() = roller_pose(spec, start_centre, steps_per_pass).centre.x();
   return mirrored;
 }

@@ -109,10 +109,6 @@ const PathSegment* segment_of_step(const RollerSpec& spec, int step) {
   return nullptr;
 }
 
-}  // namespace
-
-namespace {
-
 // The force of member `force` at step s: ramped from the last earlier segment that has one.
 std::optional<Real> ramped_force(const RollerSpec& spec, Real s, std::optional<Real> PathSegment::*force) {
   const int step = static_cast<int>(std::ceil(s - 1e-12));

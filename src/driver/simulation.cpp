@@ -105,7 +105,10 @@ RollerPose Simulation::pose_in_pass(int pass, Real local) const {
 
 PrescribedForce Simulation::prescribed_force(Real s) const {
   if (!scene_.roller) return {};
-  return roller::prescribed_force(*scene_.roller, locate_pass(s, scene_.steps.n_steps).local);
+  const PassPosition at = locate_pass(s, scene_.steps.n_steps);
+  Vec2 start;
+  return roller::prescribed_force(
+      roller_of_pass(*scene_.roller, scene_.passes, at.pass, start_centre(), scene_.steps.n_steps, &start), at.local);
 }
 
 std::vector<PressureSample> Simulation::pressure_profile() const {

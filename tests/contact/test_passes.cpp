@@ -100,3 +100,36 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   const auto resumed_summary = nlohmann::json::parse(test::read_text(split / "summary.json"));
   CHECK(resumed_summary["passes"] == summary["passes"]);
 }
+
+TEST_CASE("passes: alternating passes run the path mirrored, horizontal forces reversed with it", "[contact][passes]") {
+  RollerSpec spec;
+  spec.radius = 50.0;
+  spec.path.resize(2);
+  spec.path[0].first_step = 1;
+  spec.path[0].last_step = 2;
+  spec.path[0].fy = 400.0;
+  spec.path[1].first_step = 3;
+  spec.path[1].last_step = 6;
+  spec.path[1].dx = 4.0;
+  spec.path[1].fx = -30.0;  // the strip holds back a roller driven to +x
+  const PassSpec alternate{2, PassDirection::Alternate};
+  Vec2 start1, start2;
+  const RollerSpec first = roller_of_pass(spec, alternate, 1, Vec2(10.0, 60.0), 6, &start1);
+  const RollerSpec second = roller_of_pass(spec, alternate, 2, Vec2(10.0, 60.0), 6, &start2);
+  CHECK(start1.x() == 10.0);
+  CHECK(start2.x() == Approx(14.0));  // where the first pass's path ends
+  CHECK(first.path[1].dx == 4.0);
+  CHECK(*first.path[1].fx == -30.0);
+  CHECK(second.path[1].dx == -4.0);
+  CHECK(*second.path[1].fx == 30.0);  // now it holds back a roller driven to -x
+  CHECK(*second.path[0].fy == 400.0);
+  // The driver prescribes what the pass's own path says.
+  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml",
+                            {{"steps.count", "6"},
+                             {"passes.count", "2"},
+                             {"passes.direction", "\"alternate\""},
+                             {"roller.path", "[{steps=[1,2], fy=400.0}, {steps=[3,6], dx=4.0, fx=-30.0}]"}}));
+  CHECK(sim.prescribed_force(6.0).fx.value() == Approx(-30.0));
+  CHECK(sim.prescribed_force(12.0).fx.value() == Approx(30.0));
+  CHECK(sim.prescribed_force(8.0).fy.value() == Approx(400.0));
+}

@@ -33,7 +33,7 @@ struct PassPosition {
 PassPosition locate_pass(Real s, int steps_per_pass);
 
 // The roller of pass `pass` (1-based): the scene's, or for an even pass with alternating
-// direction the path mirrored in x (dx -> -dx) and started where the scene's path ends.
+// direction the path mirrored in x (dx -> -dx, fx -> -fx) and started where the scene's path ends.
 RollerSpec roller_of_pass(const RollerSpec& spec, const PassSpec& passes, int pass, const Vec2& start_centre,
                           int steps_per_pass, Vec2* pass_start);
 
