@@ -260,7 +260,7 @@ def run_scenes(args, bench, csv_path):
     CSVs are then joined into csv_path in the plan's order. Returns 0 when every scene finished."""
     sys.path.insert(0, os.path.join(REPO, "scripts"))
     from roller_study import engines
-    from roller_study.point import finished_record, run_point
+    from roller_study.point import finished_record, make_task, run_point
     scenes = args.scenes.split(",") if args.scenes else (QUICK_SCENES if args.quick else SCENES)
     tasks, records = [], []
     for i, scene in enumerate(scenes):
@@ -272,8 +272,7 @@ def run_scenes(args, bench, csv_path):
             cmd += ["--max-run-seconds", str(args.max_run_seconds)]
         if args.max_reference_seconds is not None:
             cmd += ["--max-reference-seconds", str(args.max_reference_seconds)]
-        task = {"index": i, "name": scene, "backend": None, "values": {"scene": scene}, "cmd": cmd, "out": out,
-                "timeout": 1e7, "collect": [], "env": {}, "key": scene}
+        task = make_task(i, scene, cmd, out, values={"scene": scene})
         done = finished_record(out, task) if args.resume else None
         (records.append(done) if done else tasks.append(task))
 

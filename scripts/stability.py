@@ -27,7 +27,6 @@ import math
 import os
 import re
 import shutil
-import signal
 import struct
 import subprocess
 import sys
@@ -39,6 +38,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from plot_scene import decode, read_vtu  # noqa: E402
+from roller_study.point import run_logged  # noqa: E402
 
 Z1 = "problems/z1_outf05.toml"
 HERTZ = "problems/hertz.toml"
@@ -98,17 +98,8 @@ def run_one(roller, scene, extra, backend, out, log, timeout):
     if os.path.isdir(out):
         shutil.rmtree(out)
     cmd = [roller, "run", scene, "--out", out] + (["--contact", backend] if backend else []) + extra
-    t0 = time.monotonic()
-    with open(log, "w") as f:
-        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True)
-        try:
-            rc = proc.wait(timeout=timeout)
-            timed_out = False
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)  # our own child's process group only
-            proc.wait()
-            rc, timed_out = None, True
-    return cmd, rc, timed_out, time.monotonic() - t0
+    rc, timed_out, wall = run_logged(cmd, log, timeout)
+    return cmd, rc, timed_out, wall
 
 
 def shell_command(cmd):

@@ -23,7 +23,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from roller_study import engines, table  # noqa: E402
-from roller_study.point import command, finished_record, run_point  # noqa: E402
+from roller_study.point import command, finished_record, make_task, run_point  # noqa: E402
 from roller_study.study_file import StudyError, load, toml_value  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -38,9 +38,8 @@ def tasks_of(study, args):
         out = os.path.join(args.out, "points", p.name)
         varied = [(k, toml_value(p.values[k])) for k in study.parameters]
         cmd = command(args.roller, study.scene, p.backend, fixed + varied, out)
-        tasks.append({"index": p.index, "name": p.name, "backend": p.backend, "values": p.values, "cmd": cmd,
-                      "out": out, "timeout": study.timeout, "collect": study.collect, "env": env,
-                      "key": "%x" % (hash(tuple(cmd)) & 0xffffffff)})
+        tasks.append(make_task(p.index, p.name, cmd, out, backend=p.backend, values=p.values, timeout=study.timeout,
+                               collect=study.collect, env=env))
     return tasks
 
 

@@ -26,8 +26,7 @@ def run_dask(tasks, run_point, on_done, jobs=None, scheduler=None):
                                dashboard_address=None)
         client = Client(cluster)
     try:
-        futures = [client.submit(run_point, task, key="roller-" + task["name"] + "-" + task["key"], pure=False)
-                   for task in tasks]
+        futures = [client.submit(run_point, task, pure=False) for task in tasks]
         for future in as_completed(futures):
             on_done(future.result())
     finally:

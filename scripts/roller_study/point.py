@@ -55,24 +55,36 @@ def collect_values(out, fields):
     return values
 
 
+def make_task(index, name, cmd, out, backend=None, values=None, timeout=1e7, collect=(), env=None):
+    """The plain data run_point() takes (what a Dask worker receives)."""
+    return {"index": index, "name": name, "backend": backend, "values": values or {}, "cmd": cmd, "out": out,
+            "timeout": timeout, "collect": list(collect), "env": env or {}}
+
+
+def run_logged(cmd, log, timeout, env=None):
+    """Runs cmd in its own process group with its output in `log`; on the timeout kills that
+    group (the run and its children, nothing else). Returns (exit code or None, timed out,
+    wall seconds)."""
+    t0 = time.monotonic()
+    with open(log, "w") as f:
+        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True,
+                                env=dict(os.environ, **(env or {})))
+        try:
+            rc, timed_out = proc.wait(timeout=timeout), False
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+            rc, timed_out = None, True
+    return rc, timed_out, time.monotonic() - t0
+
+
 def run_point(task):
-    """task: dict(name, cmd, out, timeout, collect, values, backend, index, env). Returns the point's
-    record (also written to OUT/point.json, the mark of a complete point for --resume)."""
+    """task: make_task()'s dict. Returns the point's record (also written to OUT/point.json, the
+    mark of a complete point for --resume)."""
     out = task["out"]
     os.makedirs(out, exist_ok=True)
     log = os.path.join(out, "run.log")
-    t0 = time.monotonic()
-    with open(log, "w") as f:
-        env = dict(os.environ, **task.get("env", {}))
-        proc = subprocess.Popen(task["cmd"], stdout=f, stderr=subprocess.STDOUT, start_new_session=True, env=env)
-        try:
-            rc = proc.wait(timeout=task["timeout"])
-            timed_out = False
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)  # the run's own process group only
-            proc.wait()
-            rc, timed_out = None, True
-    wall = time.monotonic() - t0
+    rc, timed_out, wall = run_logged(task["cmd"], log, task["timeout"], task["env"])
     with open(log, errors="replace") as f:
         message = _last_line(f.read())
     if timed_out:
