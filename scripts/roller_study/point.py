@@ -5,6 +5,7 @@ point's result: status and message)."""
 import csv
 import json
 import os
+import shutil
 import signal
 import subprocess
 import time
@@ -61,14 +62,27 @@ def make_task(index, name, cmd, out, backend=None, values=None, timeout=1e7, col
             "timeout": timeout, "collect": list(collect), "env": env or {}}
 
 
+# The run dies with the process that started it (a killed study, a stopped Dask worker): left
+# running, an orphan would go on writing into the folder that --resume hands to a new run of the
+# same point. util-linux's setpriv (essential in Debian) sets the parent-death signal and execs a
+# shell that runs the command only if its parent is still this process: a study killed between
+# the fork and the prctl would otherwise leave the run behind. Without setpriv the run is started
+# bare.
+def _die_with_parent(cmd):
+    if not shutil.which("setpriv"):
+        return list(cmd)
+    return ["setpriv", "--pdeathsig", "KILL", "--", "sh", "-c", 'test "$PPID" = %d && exec "$@"' % os.getpid(),
+            "sh"] + list(cmd)
+
+
 def run_logged(cmd, log, timeout, env=None):
     """Runs cmd in its own process group with its output in `log`; on the timeout kills that
-    group (the run and its children, nothing else). Returns (exit code or None, timed out,
-    wall seconds)."""
+    group (the run and its children, nothing else). If this process dies, the run is killed too.
+    Returns (exit code or None, timed out, wall seconds)."""
     t0 = time.monotonic()
     with open(log, "w") as f:
-        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.STDOUT, start_new_session=True,
-                                env=dict(os.environ, **(env or {})))
+        proc = subprocess.Popen(_die_with_parent(cmd), stdout=f, stderr=subprocess.STDOUT,
+                                start_new_session=True, env=dict(os.environ, **(env or {})))
         try:
             rc, timed_out = proc.wait(timeout=timeout), False
         except subprocess.TimeoutExpired:

@@ -37,6 +37,21 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+def roller_processes_in(out):
+    """Pids of the live processes whose command line names `out`."""
+    pids = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open("/proc/%s/cmdline" % pid, "rb") as f:
+                if out.encode() in f.read():
+                    with open("/proc/%s/stat" % pid) as s:
+                        if s.read().rsplit(")", 1)[1].split()[0] != "Z":
+                            pids.append(int(pid))
+        except OSError:
+            pass
+    return pids
+
+
 def run_study(*args):
     return subprocess.run(STUDY + list(args) + ["--roller", ROLLER, "--quiet"], capture_output=True, text=True)
 
@@ -158,9 +173,15 @@ collect = ["converged", "iterations_total"]
         deadline = time.monotonic() + 120
         while not os.path.exists(first) and time.monotonic() < deadline:
             time.sleep(0.02)
-        os.killpg(proc.pid, signal.SIGKILL)  # the study and the roller it runs
+        os.killpg(proc.pid, signal.SIGKILL)  # the study; the roller it runs has a session of its own
         proc.wait()
         self.assertTrue(os.path.exists(first))
+        # The running point's roller dies with the study: an orphan would go on writing into the
+        # folder the resumed study gives to the same point's new run.
+        deadline = time.monotonic() + 0.25  # a point runs for about 0.6 s
+        while roller_processes_in(out) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        self.assertEqual(roller_processes_in(out), [])
         done = sorted(d for d in os.listdir(os.path.join(out, "points"))
                       if os.path.exists(os.path.join(out, "points", d, "point.json")))
         self.assertLess(len(done), 4)
