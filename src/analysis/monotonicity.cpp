@@ -6,12 +6,12 @@
 #include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 
 #include "roller/assembly/strip_model.hpp"
 #include "roller/core/error.hpp"
 #include "roller/fem/element_kernel.hpp"
 #include "roller/fem/shape_functions.hpp"
+#include "roller/solver/mumps_factorization.hpp"
 
 namespace roller {
 
@@ -253,32 +253,27 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
 
 // ---- Sparse ----------------------------------------------------------------------------------
 
-SparseDefiniteness sparse_definiteness(const SparseMatrix& k, Real relative_tolerance) {
+SparseDefiniteness sparse_definiteness(const SparseMatrix& k, MumpsSolver& solver) {
   require(k.rows() == k.cols(), "sparse_definiteness: the matrix must be square");
   SparseDefiniteness out;
   if (k.rows() == 0) {
     out.factorized = true;
     return out;
   }
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt(k);
-  out.factorized = ldlt.info() == Eigen::Success;
-  if (!out.factorized) return out;
-  const VecX d = ldlt.vectorD();
-  if (!d.allFinite()) {
-    out.factorized = false;
+  solver.detect_null_pivots(1e-12);
+  out.factorized = solver.factorize(k);
+  if (!out.factorized) {
+    out.message = solver.message();
     return out;
   }
-  out.min_pivot = d.minCoeff();
-  out.max_pivot = d.maxCoeff();
-  const Real zero = relative_tolerance * d.cwiseAbs().maxCoeff();
-  for (Index i = 0; i < d.size(); ++i) {
-    if (std::abs(d(i)) <= zero || d(i) == 0.0) {
-      ++out.n_zero;
-    } else if (d(i) < 0.0) {
-      ++out.n_negative;
-    }
-  }
+  out.n_negative = solver.negative_pivots();
+  out.n_zero = solver.null_pivots();
   return out;
+}
+
+SparseDefiniteness sparse_definiteness(const SparseMatrix& k) {
+  MumpsSolver solver(MumpsSolver::Symmetry::Symmetric);
+  return sparse_definiteness(k, solver);
 }
 
 bool is_positive_definite(const SparseMatrix& k_eff) { return sparse_definiteness(k_eff).positive_definite(); }

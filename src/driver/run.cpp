@@ -14,9 +14,9 @@
 #include "output_folder.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
+#include "roller/driver/step_monitor.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "run_outputs.hpp"
-#include "step_monitor.hpp"
 
 namespace roller {
 
@@ -124,7 +124,17 @@ RunSummary Simulation::run(const RunOptions& options) {
     write_summary(options.out_dir / "summary.json", *this, summary, first_step, options.resume);
     throw;
   }
-  if (summary.converged) save_state(options.out_dir / "state_final.cbor");
+  if (summary.converged) {
+    // The checkpoint of the last step holds the same state: a copy instead of a second
+    // serialisation (at 2.9e5 dofs 37 MB, 0.4 s).
+    const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
+    const int every = scene_.output.checkpoint_every;
+    if (every > 0 && steps_done_ % every == 0 && std::filesystem::exists(checkpoint))
+      std::filesystem::copy_file(checkpoint, options.out_dir / "state_final.cbor",
+                                 std::filesystem::copy_options::overwrite_existing);
+    else
+      save_state(options.out_dir / "state_final.cbor");
+  }
   summary.wall_s = seconds_since(t_start);
   summary.peak_memory_mb = peak_memory_mb();
   if (summary.converged) summary.message = fmt::format("{} steps converged", summary.steps_done);

@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "roller/driver/simulation.hpp"
+#include "roller/driver/step_monitor.hpp"
 #include "roller/io/csv_table.hpp"
 #include "roller/io/vtu_writer.hpp"
-#include "step_monitor.hpp"
 
 namespace roller {
 

@@ -1,4 +1,4 @@
-#include "step_monitor.hpp"
+#include "roller/driver/step_monitor.hpp"
 
 #include <cmath>
 #include <ostream>
@@ -7,15 +7,36 @@
 
 namespace roller {
 
+namespace {
+
+// K_eff and operator A independent of the state: no initial-stress term, no plastic branch, a
+// mesh that never moves (docs/model.md, Run-time monitor).
+bool tangent_is_constant(const StripModel& model) {
+  return model.options().kinematics == Kinematics::Small && !model.material().plastic;
+}
+
+}  // namespace
+
 MonitorReport StepMonitor::check(int step, StripModel& model) {
   MonitorReport r;
   if (!enabled_) return r;
-  r.checked = true;
-  r.pointwise = check_strip(model, mass_free_ ? dt_ : 0.0);
-  SparseMatrix k_eff;
-  model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k_eff);
-  if (mass_free_) k_eff += (2.0 / (dt_ * dt_)) * *mass_free_;
-  r.assembled = sparse_definiteness(k_eff);
+  const bool constant = tangent_is_constant(model);
+  if (constant && constant_report_ && constant_free_dofs_ == model.dof_map().free_dofs()) {
+    r = *constant_report_;
+    r.reused = true;
+    r.worst_place = Vec2::Zero();
+  } else {
+    r.checked = true;
+    r.pointwise = check_strip(model, mass_free_ ? dt_ : 0.0);
+    SparseMatrix k_eff;
+    model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k_eff);
+    if (mass_free_) k_eff += (2.0 / (dt_ * dt_)) * *mass_free_;
+    r.assembled = sparse_definiteness(k_eff);
+    if (constant) {
+      constant_report_ = r;
+      constant_free_dofs_ = model.dof_map().free_dofs();
+    }
+  }
   const StripMonotonicity& mono = r.pointwise;
   if (mono.worst.element >= 0) {
     const auto x = model.current_coordinates();
@@ -32,11 +53,16 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
         step, mono.n_not_pd, r.worst_place.x(), r.worst_place.y());
     pointwise_loss_reported_ = true;
   }
-  if (!r.assembled.positive_definite())
+  if (!r.assembled.factorized || r.assembled.n_zero > 0)
     *progress_ << fmt::format(
-        "warning: step {}: the assembled tangent stiffness is not positive definite ({} negative, {} zero "
+        "warning: step {}: the assembled tangent stiffness is singular ({}): the strip can move without "
+        "strain energy; check the supports ([[displacement]])\n",
+        step, r.assembled.factorized ? fmt::format("{} null pivots", r.assembled.n_zero) : r.assembled.message);
+  else if (!r.assembled.positive_definite())
+    *progress_ << fmt::format(
+        "warning: step {}: the assembled tangent stiffness is not positive definite ({} negative "
         "pivots) near x = {:.4g}, y = {:.4g} mm: operator A lost monotonicity ({}); {}\n",
-        step, r.assembled.n_negative, r.assembled.n_zero, r.worst_place.x(), r.worst_place.y(), mono.brief_report(),
+        step, r.assembled.n_negative, r.worst_place.x(), r.worst_place.y(), mono.brief_report(),
         mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
             ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
             : "in a quasistatic strip no time step restores it: use smaller steps or check the supports");

@@ -97,9 +97,9 @@ std::string encode_compressed(const std::string& payload) {
     const std::size_t begin = b * kBlock;
     const std::size_t size = std::min(kBlock, payload.size() - begin);
     uLongf compressed = static_cast<uLongf>(buffer.size());
-    const int rc = compress2(reinterpret_cast<Bytef*>(buffer.data()), &compressed,
-                             reinterpret_cast<const Bytef*>(payload.data() + begin), static_cast<uLong>(size),
-                             Z_DEFAULT_COMPRESSION);
+    const int rc =
+        compress2(reinterpret_cast<Bytef*>(buffer.data()), &compressed,
+                  reinterpret_cast<const Bytef*>(payload.data() + begin), static_cast<uLong>(size), Z_BEST_SPEED);
     if (rc != Z_OK) throw std::runtime_error(fmt::format("write_vtu: zlib compress2 failed ({})", rc));
     append_le(header, compressed, 8);
     data.append(buffer.data(), compressed);

@@ -36,7 +36,11 @@ class MumpsSolver {
   bool factorize_with_schur(const SparseMatrix& a, const std::vector<Index>& schur, MatX* s);
   // After factorize_with_schur: x_i = A_ii^-1 b_i on the eliminated variables, x_s = 0.
   VecX solve_interior(const VecX& b);
-  Index negative_pivots() const;  // Symmetric: negative eigenvalues of the last matrix
+  // From the next factorisation on, pivots below relative_threshold * ||A|| count as null (and
+  // the factorisation goes on past them) instead of failing as singular or passing unnoticed.
+  void detect_null_pivots(Real relative_threshold);
+  Index negative_pivots() const;  // Symmetric: negative eigenvalues of the last matrix (null ones excluded)
+  Index null_pivots() const;      // with detect_null_pivots: the null pivots of the last factorisation
   Index memory_mb() const;        // memory MUMPS allocated for the last factorisation (INFOG(19), MB)
   int workspace_percent() const;  // ICNTL(14) now: the option's start, doubled per workspace overrun
   const std::string& message() const;

@@ -3,7 +3,14 @@
 // A at the integration points and the definiteness of the assembled effective tangent (contact
 // terms excluded) at the new state, with warnings a user can act on. Switched off
 // (output.monitor = false) it checks nothing and its solver.csv columns read -1.
+//
+// Cost. The assembled check is one assembly and one LDL^T factorisation (MUMPS) of K_eff per
+// step. Where the tangent cannot change from step to step (a linear elastic strip with small
+// kinematics: K and the pointwise operator do not depend on the state), the first step's verdict
+// holds for every later step with the same free dofs and is reused, not recomputed.
 #include <iosfwd>
+#include <optional>
+#include <vector>
 
 #include "roller/analysis/monotonicity.hpp"
 #include "roller/assembly/strip_model.hpp"
@@ -12,6 +19,7 @@ namespace roller {
 
 struct MonitorReport {
   bool checked = false;
+  bool reused = false;              // the verdict of an earlier step with the same constant tangent
   StripMonotonicity pointwise;      // operator A at the integration points
   SparseDefiniteness assembled;     // the effective tangent K (+ 2M/dt^2 with strip inertia)
   Vec2 worst_place = Vec2::Zero();  // centroid of the element with the worst point [mm]
@@ -32,6 +40,9 @@ class StepMonitor {
   const SparseMatrix* mass_free_;
   std::ostream* progress_;
   bool pointwise_loss_reported_ = false;
+  // The verdict of a state-independent tangent and the free dofs it was computed on.
+  std::optional<MonitorReport> constant_report_;
+  std::vector<Index> constant_free_dofs_;
 };
 
 }  // namespace roller
