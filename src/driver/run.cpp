@@ -15,6 +15,7 @@
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
+#include "roller/io/background_writer.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "run_outputs.hpp"
 
@@ -106,17 +107,25 @@ RunSummary Simulation::run(const RunOptions& options) {
   const auto t_start = Clock::now();
   start_or_resume(options);
   const int first_step = steps_done_ + 1;
-  RunOutputs outputs(*this, options.out_dir, options.resume);
+  // VTU and state files are written while the next step is solved (io/background_writer.hpp),
+  // except when the factors go to disk to save memory: the jobs' copies would undo that.
+  BackgroundWriter writer(!scene_.newton.linear.out_of_core);
+  RunOutputs outputs(*this, options.out_dir, options.resume, writer);
   StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                       scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, options.progress);
   RunSummary summary;
   summary.converged = true;
   summary.steps_done = steps_done_;
   try {
-    run_steps(options, first_step, outputs, monitor, summary);
+    run_steps(options, first_step, outputs, monitor, writer, summary);
+    writer.finish();
   } catch (const std::exception& e) {
     // Whatever stops the run (a full disk, a bug), the steps done so far are on disk and
     // summary.json says how far the run came and why it stopped.
+    try {
+      writer.finish();  // the files of the steps done; a second error adds nothing to the first
+    } catch (const std::exception&) {
+    }
     summary.converged = false;
     summary.message = e.what();
     summary.wall_s = seconds_since(t_start);
@@ -143,7 +152,7 @@ RunSummary Simulation::run(const RunOptions& options) {
 }
 
 void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
-                           RunSummary& summary) {
+                           BackgroundWriter& writer, RunSummary& summary) {
   for (int step = first_step; step <= scene_.total_steps(); ++step) {
     const auto t_step = Clock::now();
     const StepResult res = advance_step(step);
@@ -161,7 +170,7 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     }
     summary.steps_done = step;
     outputs.write_step(step, res.pass_end);
-    save_states(step, options.out_dir);  // after the step's output, so a resumed run never misses rows
+    save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
     if (options.progress) print_progress(*options.progress, *this, step, res, n_contact, wall);
   }
 }
@@ -183,12 +192,12 @@ void Simulation::start_or_resume(const RunOptions& options) {
     *options.progress << fmt::format("resuming after step {} from {}\n", steps_done_, checkpoint.string());
 }
 
-void Simulation::save_states(int step, const std::filesystem::path& out_dir) const {
+void Simulation::save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const {
   const auto& keep = scene_.output.save_states;
   if (std::find(keep.begin(), keep.end(), step) != keep.end())
-    save_state(out_dir / fmt::format("state_{:04d}.cbor", step));
+    writer.submit(state_writer(out_dir / fmt::format("state_{:04d}.cbor", step)));
   if (scene_.output.checkpoint_every > 0 && step % scene_.output.checkpoint_every == 0)
-    save_state(out_dir / "checkpoint.cbor");
+    writer.submit(state_writer(out_dir / "checkpoint.cbor"));
 }
 
 }  // namespace roller

@@ -31,8 +31,9 @@ VtuField nodal_vector(const std::string& name, const VecX& v) {
 
 }  // namespace
 
-RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume)
-    : sim_(sim), out_dir_(out_dir), series_(out_dir / "fields.pvd") {
+RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume,
+                       BackgroundWriter& writer)
+    : sim_(sim), writer_(writer), out_dir_(out_dir), series_(out_dir / "fields.pvd") {
   const int done = sim.steps_done();
   solver_csv_ = open_table(out_dir / "solver.csv",
                            {"step",
@@ -106,8 +107,14 @@ void RunOutputs::write_fields(int step) {
     f.point_data.push_back(nodal_vector("velocity", sim_.velocity()));
     f.point_data.push_back(nodal_vector("acceleration", sim_.acceleration()));
   }
-  write_vtu(vtu_path(step), sim_.model().mesh(), sim_.model().current_coordinates(), f.point_data, f.cell_data);
-  series_.add(step * scene.steps.dt, vtu_path(step));
+  // The mesh's topology never changes; the coordinates and fields are this step's copies. The
+  // series lists the file once it is complete.
+  writer_.submit([this, path = vtu_path(step), time = step * scene.steps.dt, &mesh = sim_.model().mesh(),
+                  x = sim_.model().current_coordinates(), f = std::move(f)] {
+    write_vtu(path, mesh, x, f.point_data, f.cell_data);
+    const std::lock_guard<std::mutex> lock(series_mutex_);
+    series_.add(time, path);
+  });
 }
 
 void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, const MonitorReport& monitor,

@@ -5,10 +5,12 @@
 // files in the series.
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
+#include "roller/io/background_writer.hpp"
 #include "roller/io/csv_table.hpp"
 #include "roller/io/vtu_writer.hpp"
 
@@ -18,7 +20,8 @@ class RunOutputs {
  public:
   // Opens the tables (continued after `steps_done` when resuming) and, for a fresh run, writes
   // the start state: fields of step 0 and the roller's row 0.
-  RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume);
+  // Field files go to `writer` (written while the next step is solved).
+  RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume, BackgroundWriter& writer);
 
   // The solver's row of a step, converged or not.
   void write_solver_row(int step, const Simulation::StepResult& res, const MonitorReport& monitor, double wall_s,
@@ -32,9 +35,11 @@ class RunOutputs {
   std::filesystem::path vtu_path(int step) const;
 
   const Simulation& sim_;
+  BackgroundWriter& writer_;
   std::filesystem::path out_dir_;
   std::unique_ptr<CsvTable> solver_csv_, contact_csv_, roller_csv_, passes_csv_, depth_csv_;
-  PvdSeries series_;
+  PvdSeries series_;  // added to by the writer's jobs, one at a time (series_mutex_)
+  std::mutex series_mutex_;
 };
 
 }  // namespace roller

@@ -59,7 +59,9 @@ Vec2 offset_pair(const nlohmann::json& j, const char* key) {
 
 }  // namespace
 
-void Simulation::save_state(const std::filesystem::path& file) const {
+void Simulation::save_state(const std::filesystem::path& file) const { state_writer(file)(); }
+
+std::function<void()> Simulation::state_writer(const std::filesystem::path& file) const {
   nlohmann::json j;
   j["format"] = kFormat;
   j["version"] = kVersion;
@@ -90,24 +92,26 @@ void Simulation::save_state(const std::filesystem::path& file) const {
   j["friction_history"] = friction_.save();
   dynamics_.save(j);
   j["scene_fingerprint"] = scene_fingerprint(scene_);
-  j["checksum"] = checksum(j);  // of everything above
-  // Written beside and renamed: a kill while writing leaves the previous file intact.
-  const std::filesystem::path tmp = file.string() + ".tmp";
-  bool written = false;
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    written = static_cast<bool>(out);
-  }
-  if (!written) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);  // no half-written file left behind
-    throw SystemError(
-        fmt::format("{}: cannot write the state file (disk full or folder not writable?)", file.string()));
-  }
-  std::filesystem::rename(tmp, file);
+  return [j = std::move(j), file]() mutable {
+    j["checksum"] = checksum(j);  // of everything above
+    // Written beside and renamed: a kill while writing leaves the previous file intact.
+    const std::filesystem::path tmp = file.string() + ".tmp";
+    bool written = false;
+    {
+      std::ofstream out(tmp, std::ios::binary);
+      const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
+      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+      out.close();
+      written = static_cast<bool>(out);
+    }
+    if (!written) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);  // no half-written file left behind
+      throw SystemError(
+          fmt::format("{}: cannot write the state file (disk full or folder not writable?)", file.string()));
+    }
+    std::filesystem::rename(tmp, file);
+  };
 }
 
 void Simulation::load_state(const std::filesystem::path& file, bool strip_only) {

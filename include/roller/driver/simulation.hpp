@@ -3,6 +3,7 @@
 // write). Results of completed steps are on disk before the next step starts, so a failure or
 // a kill loses nothing already done.
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -20,8 +21,9 @@
 
 namespace roller {
 
-class RunOutputs;   // driver/run_outputs.hpp
-class StepMonitor;  // driver/step_monitor.hpp
+class RunOutputs;        // driver/run_outputs.hpp
+class StepMonitor;       // driver/step_monitor.hpp
+class BackgroundWriter;  // io/background_writer.hpp
 
 struct RunOptions {
   std::filesystem::path out_dir = "out";
@@ -96,6 +98,9 @@ class Simulation {
   // state gives the same results as an uninterrupted one. load_state() restores the strip and,
   // unless strip_only, the roller, the friction history, the predictor and the step counter.
   void save_state(const std::filesystem::path& file) const;
+  // The same in two halves: the state is read now, the returned job writes it (to run on a
+  // background thread while the next step changes the model).
+  std::function<void()> state_writer(const std::filesystem::path& file) const;
   void load_state(const std::filesystem::path& file, bool strip_only);
   // Nodal contact pressures of the last increment against x measured from the roller centre;
   // open nodes count as unloaded (an interior-point solution leaves barrier-size forces there).
@@ -180,8 +185,8 @@ class Simulation {
   // The step loop's pieces (run.cpp).
   void start_or_resume(const RunOptions& options);
   void run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
-                 RunSummary& summary);
-  void save_states(int step, const std::filesystem::path& out_dir) const;
+                 BackgroundWriter& writer, RunSummary& summary);
+  void save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const;
 
   Scene scene_;
   std::unique_ptr<StripModel> model_;

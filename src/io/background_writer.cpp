@@ -1,0 +1,39 @@
+#include "roller/io/background_writer.hpp"
+
+#include <exception>
+
+namespace roller {
+
+BackgroundWriter::~BackgroundWriter() {
+  for (auto& job : running_)
+    if (job.valid()) job.wait();
+}
+
+void BackgroundWriter::submit(std::function<void()> job) {
+  if (!in_background_) {
+    job();
+    return;
+  }
+  while (static_cast<int>(running_.size()) >= kMaxInFlight) {
+    std::future<void> oldest = std::move(running_.front());
+    running_.pop_front();
+    oldest.get();
+  }
+  running_.push_back(std::async(std::launch::async, std::move(job)));
+}
+
+void BackgroundWriter::finish() {
+  std::exception_ptr first;
+  while (!running_.empty()) {
+    std::future<void> oldest = std::move(running_.front());
+    running_.pop_front();
+    try {
+      oldest.get();
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+  }
+  if (first) std::rethrow_exception(first);
+}
+
+}  // namespace roller
