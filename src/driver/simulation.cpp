@@ -7,6 +7,7 @@
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/arc_predictor.hpp"
 #include "roller/contact/contact_set.hpp"
+#include "roller/contact/rolling_predictor.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/force_control.hpp"
 #include "roller/driver/memory_estimate.hpp"
@@ -189,6 +190,9 @@ VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) c
   VecX predictor = VecX::Zero(model_->n_dofs());
   if (last_increment_.size() == model_->n_dofs() && last_length_ > 0.0)
     predictor = last_increment_ * ((s_to - s_from) / last_length_);
+  if (motion && scene_.contact.predictor == IncrementPredictor::Rolling)
+    predictor = translate_increment(model_->mesh(), model_->current_coordinates(), predictor,
+                                    motion->end.centre.x() - motion->start.centre.x());
   if (motion && scene_.contact.predictor == IncrementPredictor::Arc)
     // Nodes the extrapolation puts inside the roller start on its surface at the arc position
     // (4.25) instead (docs/model.md, Arc predictor).

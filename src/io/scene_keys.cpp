@@ -847,7 +847,8 @@ std::vector<SceneKey> make_keys() {
           "node set (or union \"top+right\") of the nodes that may touch the roller"),
       key(
           "contact.predictor", [](auto& s) -> auto& { return s.contact.predictor; },
-          "start of each increment: the previous increment scaled, or that and the thesis's arc rule"),
+          "start of each increment: the previous increment scaled, or that and the thesis's arc rule, or "
+          "it carried along with the roller (rolling)"),
       key(
           "contact.penalty.factor", [](auto& s) -> auto& { return s.contact.penalty.factor; },
           "normal penalty kappa_N = factor * E* * l_i / h_i", above(0.0)),

@@ -22,8 +22,9 @@ enum class IpoptFriction { Split, Regularized };
 // increment's F_N (the thesis's explicit variant).
 enum class FixedPointRule { Converge, Single };
 // Start of each increment: the previous increment scaled, or then the thesis's arc rule (4.25)
-// (docs/model.md, Arc predictor).
-enum class IncrementPredictor { Extrapolate, Arc };
+// (docs/model.md, Arc predictor), or the previous increment carried along with the roller
+// (contact/rolling_predictor.hpp).
+enum class IncrementPredictor { Extrapolate, Arc, Rolling };
 
 template <>
 struct EnumNames<ContactBackendKind> {
@@ -52,8 +53,10 @@ struct EnumNames<FixedPointRule> {
 };
 template <>
 struct EnumNames<IncrementPredictor> {
-  static constexpr std::array<std::pair<IncrementPredictor, const char*>, 2> names{
-      {{IncrementPredictor::Extrapolate, "extrapolate"}, {IncrementPredictor::Arc, "arc"}}};
+  static constexpr std::array<std::pair<IncrementPredictor, const char*>, 3> names{
+      {{IncrementPredictor::Extrapolate, "extrapolate"},
+       {IncrementPredictor::Arc, "arc"},
+       {IncrementPredictor::Rolling, "rolling"}}};
 };
 
 struct PenaltyOptions {
