@@ -190,7 +190,7 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
       r.final_contact_nodes = 0;
       for (const NodeContactRecord& c : sim.contact())
         if (c.contact.status != ContactStatus::Open) ++r.final_contact_nodes;
-      const StripFields f = strip_fields(sim.model());
+      const StripFields f = strip_fields(sim.model(), VecX::Zero(sim.model().n_dofs()));
       for (const VtuField& field : f.point_data) {
         if (field.name == "sqrt_I2_nodal") r.sqrt_i2 = grid_field(sim.model().mesh(), field.values, 1, 0);
         if (field.name == "stress_nodal") r.tau_xx = grid_field(sim.model().mesh(), field.values, 4, 0);

@@ -9,6 +9,19 @@
 
 namespace roller {
 
+namespace {
+
+// Green-Lagrange strain [xx, yy, zz, 2xy] of a deformation gradient; linearised for small
+// kinematics.
+Vec4 green_lagrange(const Mat2& f, bool finite) {
+  const Mat2 h = f - Mat2::Identity();
+  Mat2 strain = 0.5 * (h + h.transpose());
+  if (finite) strain += 0.5 * h.transpose() * h;
+  return Vec4(strain(0, 0), strain(1, 1), 0.0, 2.0 * strain(0, 1));
+}
+
+}  // namespace
+
 StripModel::StripModel(Mesh mesh, MaterialParams material, ElementOptions options)
     : mesh_(std::move(mesh)),
       material_(material),
@@ -245,14 +258,20 @@ std::vector<Vec4> StripModel::total_strain(Index e) const {
   std::vector<Vec2> x0;
   for (Index a : mesh_.elements[e]) x0.push_back(mesh_.nodes[a]);
   const auto g0 = element_geometry(mesh_.element_type, x0, e);
-  const auto f = deformation_gradients(g0, element_values(e, total_displacement_));
   std::vector<Vec4> out;
-  for (const Mat2& fq : f) {
-    const Mat2 h = fq - Mat2::Identity();
-    Mat2 strain = 0.5 * (h + h.transpose());
-    if (options_.kinematics == Kinematics::Finite) strain += 0.5 * h.transpose() * h;
-    out.emplace_back(strain(0, 0), strain(1, 1), 0.0, 2.0 * strain(0, 1));
-  }
+  for (const Mat2& f : deformation_gradients(g0, element_values(e, total_displacement_)))
+    out.push_back(green_lagrange(f, options_.kinematics == Kinematics::Finite));
+  return out;
+}
+
+std::vector<Vec4> StripModel::increment_strain(Index e, const VecX& du) const {
+  const bool finite = options_.kinematics == Kinematics::Finite;
+  std::vector<Vec2> xs;
+  for (Index a : mesh_.elements[e])
+    xs.push_back(finite ? Vec2(reference_[a] - Vec2(du(2 * a), du(2 * a + 1))) : mesh_.nodes[a]);
+  const auto g = element_geometry(mesh_.element_type, xs, e);
+  std::vector<Vec4> out;
+  for (const Mat2& f : deformation_gradients(g, element_values(e, du))) out.push_back(green_lagrange(f, finite));
   return out;
 }
 

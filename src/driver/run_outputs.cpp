@@ -29,11 +29,39 @@ VtuField nodal_vector(const std::string& name, const VecX& v) {
   return f;
 }
 
+// Contact pressure and tangential traction [MPa] (nodal force over tributary length, as in
+// contact.csv) and status (0 open or not a candidate, 1 stick, 2 slip) at the nodes.
+void append_contact_fields(const std::vector<NodeContactRecord>& contact, Index n_nodes,
+                           std::vector<VtuField>& point_data) {
+  VtuField pressure, traction, status;
+  pressure.name = "contact_pressure";
+  traction.name = "contact_traction";
+  status.name = "contact_status";
+  for (VtuField* f : {&pressure, &traction, &status}) {
+    f->n_components = 1;
+    f->values.assign(n_nodes, 0.0);
+  }
+  for (const NodeContactRecord& c : contact) {
+    pressure.values[c.node] = c.contact.normal_force / c.tributary_length;
+    traction.values[c.node] = c.contact.tangential_force / c.tributary_length;
+    status.values[c.node] = c.contact.status == ContactStatus::Stick  ? 1.0
+                            : c.contact.status == ContactStatus::Slip ? 2.0
+                                                                      : 0.0;
+  }
+  point_data.push_back(std::move(pressure));
+  point_data.push_back(std::move(traction));
+  point_data.push_back(std::move(status));
+}
+
 }  // namespace
 
 RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume,
                        BackgroundWriter& writer)
-    : sim_(sim), writer_(writer), out_dir_(out_dir), series_(out_dir / "fields.pvd") {
+    : sim_(sim),
+      writer_(writer),
+      out_dir_(out_dir),
+      step_start_displacement_(sim.model().total_displacement()),
+      series_(out_dir / "fields.pvd") {
   const int done = sim.steps_done();
   solver_csv_ = open_table(out_dir / "solver.csv",
                            {"step",
@@ -102,7 +130,8 @@ std::filesystem::path RunOutputs::vtu_path(int step) const { return out_dir_ / f
 void RunOutputs::write_fields(int step) {
   const Scene& scene = sim_.scene();
   if (!scene.output.vtu) return;
-  StripFields f = strip_fields(sim_.model());
+  StripFields f = strip_fields(sim_.model(), sim_.model().total_displacement() - step_start_displacement_);
+  if (scene.roller) append_contact_fields(sim_.contact(), sim_.model().mesh().n_nodes(), f.point_data);
   if (scene.dynamics.strip_inertia) {
     f.point_data.push_back(nodal_vector("velocity", sim_.velocity()));
     f.point_data.push_back(nodal_vector("acceleration", sim_.acceleration()));
@@ -188,6 +217,7 @@ void RunOutputs::write_step(int step, const std::optional<Simulation::StepResult
                           sim_.load_offset().x(), sim_.load_offset().y()});
   }
   if (step % scene.output.every == 0 || step == scene.total_steps()) write_fields(step);
+  step_start_displacement_ = sim_.model().total_displacement();
 }
 
 }  // namespace roller

@@ -19,7 +19,7 @@ VtuField field(std::string name, int n_components, Index n_items, std::vector<st
 
 }  // namespace
 
-StripFields strip_fields(const StripModel& model) {
+StripFields strip_fields(const StripModel& model, const VecX& step_increment) {
   const Mesh& mesh = model.mesh();
   const Index n_el = mesh.n_elements();
   const Index n_nodes = mesh.n_nodes();
@@ -34,26 +34,31 @@ StripFields strip_fields(const StripModel& model) {
 
   VtuField stress = field("stress", 4, n_el, kTensorComponents);
   VtuField strain = field("strain", 4, n_el, kTensorComponents);
+  VtuField strain_inc = field("strain_increment", 4, n_el, kTensorComponents);
   VtuField sqrt_i2 = field("sqrt_I2", 1, n_el);
   VtuField mises = field("von_mises", 1, n_el);
   VtuField eps_p = field("eq_plastic_strain", 1, n_el);
   VtuField w_pl = field("plastic_work", 1, n_el);
   for (Index e = 0; e < n_el; ++e) {
-    Vec4 s_avg = Vec4::Zero(), e_avg = Vec4::Zero();
+    Vec4 s_avg = Vec4::Zero(), e_avg = Vec4::Zero(), de_avg = Vec4::Zero();
     const auto total = model.total_strain(e);
+    const auto increment = model.increment_strain(e, step_increment);
     for (int q = 0; q < n_q; ++q) {
       const MaterialState& st = model.state(e, q);
       s_avg += st.stress / n_q;
       e_avg += total[q] / n_q;
+      de_avg += increment[q] / n_q;
       sqrt_i2.values[e] += sqrt_j2(st.stress) / n_q;
       mises.values[e] += von_mises(st.stress) / n_q;
       eps_p.values[e] += st.eq_plastic_strain / n_q;
       w_pl.values[e] += st.plastic_work / n_q;
     }
     e_avg(3) *= 0.5;  // output the tensor shear component, like the stress
+    de_avg(3) *= 0.5;
     for (int c = 0; c < 4; ++c) {
       stress.values[4 * e + c] = s_avg(c);
       strain.values[4 * e + c] = e_avg(c);
+      strain_inc.values[4 * e + c] = de_avg(c);
     }
   }
 
@@ -62,6 +67,7 @@ StripFields strip_fields(const StripModel& model) {
   VtuField stress_n = field("stress_nodal", 4, n_nodes, kTensorComponents);
   VtuField sqrt_i2_n = field("sqrt_I2_nodal", 1, n_nodes);
   VtuField strain_n = field("strain_nodal", 4, n_nodes, kTensorComponents);
+  VtuField strain_inc_n = field("strain_increment_nodal", 4, n_nodes, kTensorComponents);
   for (Index e = 0; e < n_el; ++e)
     for (Index a : mesh.elements[e]) {
       count[a] += 1.0;
@@ -69,6 +75,7 @@ StripFields strip_fields(const StripModel& model) {
       for (int c = 0; c < 4; ++c) {
         stress_n.values[4 * a + c] += stress.values[4 * e + c];
         strain_n.values[4 * a + c] += strain.values[4 * e + c];
+        strain_inc_n.values[4 * a + c] += strain_inc.values[4 * e + c];
       }
     }
   for (Index a = 0; a < n_nodes; ++a) {
@@ -77,11 +84,12 @@ StripFields strip_fields(const StripModel& model) {
     for (int c = 0; c < 4; ++c) {
       stress_n.values[4 * a + c] /= count[a];
       strain_n.values[4 * a + c] /= count[a];
+      strain_inc_n.values[4 * a + c] /= count[a];
     }
   }
 
-  out.point_data = {displacement, stress_n, sqrt_i2_n, strain_n};
-  out.cell_data = {stress, strain, sqrt_i2, mises, eps_p, w_pl};
+  out.point_data = {displacement, stress_n, sqrt_i2_n, strain_n, strain_inc_n};
+  out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl};
   return out;
 }
 

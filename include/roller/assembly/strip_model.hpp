@@ -65,6 +65,12 @@ class StripModel {
   // Total Green-Lagrange strain [xx, yy, zz, 2xy] of each integration point of element e with
   // respect to the initial mesh (linearised for small kinematics), from the total displacement.
   std::vector<Vec4> total_strain(Index e) const;
+  // Green-Lagrange strain [xx, yy, zz, 2xy] of the committed increment `du` (all dofs) at each
+  // integration point of element e, with respect to the configuration before it: the thesis's
+  // updated-Lagrangian strain of one step. Finite kinematics: E = (H + H^T + H^T H)/2 with
+  // H = d(du)/dX over the start-of-increment configuration (reference - du); small: the
+  // linearised strain over the initial mesh, so that it is the difference of two total_strain().
+  std::vector<Vec4> increment_strain(Index e, const VecX& du) const;
 
   // Mass matrix over all dofs (rho from the material); lumped = diagonal row-sum lumping.
   SparseMatrix mass_matrix(bool lumped) const;

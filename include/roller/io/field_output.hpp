@@ -1,8 +1,9 @@
 #pragma once
 // Fields of the strip written per step (docs/scenes.md, Outputs): displacement at nodes; per
 // element the integration-point averages of stress, sqrt(I2), von Mises stress, total strain,
-// equivalent plastic strain and plastic work; the same stress quantities averaged to the nodes
-// (for smooth contour maps).
+// equivalent plastic strain and plastic work, and the strain of the step's increment (the
+// thesis's updated-Lagrangian strain, StripModel::increment_strain); stress and strains averaged
+// to the nodes (for smooth contour maps).
 #include <vector>
 
 #include "roller/assembly/strip_model.hpp"
@@ -15,6 +16,7 @@ struct StripFields {
   std::vector<VtuField> cell_data;
 };
 
-StripFields strip_fields(const StripModel& model);
+// `step_increment`: the step's displacement increment over all dofs (zero at step 0).
+StripFields strip_fields(const StripModel& model, const VecX& step_increment);
 
 }  // namespace roller
