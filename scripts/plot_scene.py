@@ -6,13 +6,23 @@ usage: /usr/bin/python3 scripts/plot_scene.py OUT_DIR [--steps 4,7] [--profile-s
                                               [--fields sqrt_I2,tau_xy] [--pairs 23/47,63/71]
                                               [--compare OTHER_OUT --compare-steps 47]
                                               [--spacing sqrt_I2=10] [--label NAME]
+                                              [--levels 50 | --levels=-50,-30,10,50] [--values element]
+                                              [--xlim 80,160] [--ylim 30,50] [--whole]
 
 Reads fields.pvd / step_NNNN.vtu, contact.csv, roller.csv and scene.resolved.toml of a run and
 writes into OUT_DIR/figures/:
   map_<field>_step<N>.png   contour maps of sqrt(I2) (thesis: the von Mises value, so the plastic
-                            zone is bounded by the yield stress), tau_xx, tau_yy, tau_xy, eps_xy, u_y
+                            zone is bounded by the yield stress), tau_xx, tau_yy, tau_xy, the total
+                            strains eps_xx, eps_yy, eps_xy, the strains of the step's increment
+                            deps_xx, deps_yy, deps_xy (the thesis's updated-Lagrangian strain), u_y.
+                            The window is the contact region of that step (six contact half-widths
+                            around it, down to that depth; --whole: the whole strip; --xlim/--ylim:
+                            your own). --values element draws the element (integration-point
+                            mean) values unsmoothed, which keeps peaks that nodal averaging blunts;
+                            --levels sets the contour lines: a spacing (50) or a list of values
   profile.png               top-surface profile over the steps, u_y magnified x100
-  pressure.png              contact pressure p_n (and p_t) along x at the chosen steps
+  pressure.png              contact pressure p_n (and p_t) along x at the chosen steps, around the
+                            nodes in contact
   mesh_step<N>.png          deformed mesh (true scale and u magnified)
   hertz.png                 (--hertz) the last step's pressure against the Hertz solution
   overlay_<field>_steps<A>-<B>.png
@@ -123,37 +133,105 @@ def available_steps(out):
     return sorted(int(f[5:9]) for f in os.listdir(out) if f.startswith("step_") and f.endswith(".vtu"))
 
 
-FIELDS = {  # name: (label, value per node from the VTU point data)
-    "sqrt_I2": ("√I2 (von Mises) [MPa]", lambda pd: von_mises(pd["stress_nodal"])),
-    "tau_xx": ("τ_xx [MPa]", lambda pd: pd["stress_nodal"][:, 0]),
-    "tau_yy": ("τ_yy [MPa]", lambda pd: pd["stress_nodal"][:, 1]),
-    "tau_xy": ("τ_xy [MPa]", lambda pd: pd["stress_nodal"][:, 3]),
-    "eps_xy": ("ε_xy [-]", lambda pd: pd["strain_nodal"][:, 3]),
-    "u_y": ("u_y [mm]", lambda pd: pd["displacement"][:, 1]),
+FIELDS = {  # name: (label, nodal value from the VTU point data, element value from the cell data)
+    "sqrt_I2": ("√I2 (von Mises) [MPa]", lambda pd: von_mises(pd["stress_nodal"]), lambda cd: cd["von_mises"]),
+    "tau_xx": ("τ_xx [MPa]", lambda pd: pd["stress_nodal"][:, 0], lambda cd: cd["stress"][:, 0]),
+    "tau_yy": ("τ_yy [MPa]", lambda pd: pd["stress_nodal"][:, 1], lambda cd: cd["stress"][:, 1]),
+    "tau_xy": ("τ_xy [MPa]", lambda pd: pd["stress_nodal"][:, 3], lambda cd: cd["stress"][:, 3]),
+    "eps_xx": ("ε_xx [-]", lambda pd: pd["strain_nodal"][:, 0], lambda cd: cd["strain"][:, 0]),
+    "eps_yy": ("ε_yy [-]", lambda pd: pd["strain_nodal"][:, 1], lambda cd: cd["strain"][:, 1]),
+    "eps_xy": ("ε_xy [-]", lambda pd: pd["strain_nodal"][:, 3], lambda cd: cd["strain"][:, 3]),
+    "deps_xx": ("Δε_xx of the step [-]", lambda pd: pd["strain_increment_nodal"][:, 0],
+                lambda cd: cd["strain_increment"][:, 0]),
+    "deps_yy": ("Δε_yy of the step [-]", lambda pd: pd["strain_increment_nodal"][:, 1],
+                lambda cd: cd["strain_increment"][:, 1]),
+    "deps_xy": ("Δε_xy of the step [-]", lambda pd: pd["strain_increment_nodal"][:, 3],
+                lambda cd: cd["strain_increment"][:, 3]),
+    "u_y": ("u_y [mm]", lambda pd: pd["displacement"][:, 1], None),
 }
 STRESSES = ["sqrt_I2", "tau_xx", "tau_yy", "tau_xy"]
 
 
-def strip_figure(points, extra):
-    """A figure whose height follows the strip's aspect ratio, plus `extra` inches for labels."""
+def strip_figure(points, extra, window=None):
+    """A figure whose height follows the aspect ratio of the strip (or of the window
+    ((x0, x1), (y0, y1))), plus `extra` inches for labels."""
     span = points.max(axis=0) - points.min(axis=0)
-    return plt.subplots(figsize=(11, extra + 9.0 * span[1] / span[0]), layout="constrained")
+    if window:
+        span = np.array([window[0][1] - window[0][0], window[1][1] - window[1][0]])
+    return plt.subplots(figsize=(11, extra + min(9.0 * span[1] / span[0], 9.0)), layout="constrained")
 
 
-def contour_maps(out, figs, steps, fields):
+def contact_window(out, step, points):
+    """The map window of a step: the nodes in contact (contact.csv) and six contact half-widths
+    around them, down to that depth (at least 2 mm, at most the strip); without contact at that
+    step the roller's centre (roller.csv) plus and minus the strip's height; None without a roller."""
+    top, bottom = points[:, 1].max(), points[:, 1].min()
+    left, right = points[:, 0].min(), points[:, 0].max()
+    xs = []
+    if os.path.exists(os.path.join(out, "contact.csv")):
+        xs = [float(r["x"]) for r in read_contact(out) if int(r["step"]) == step and r["status"] != "open"]
+    if xs:
+        centre, half = 0.5 * (min(xs) + max(xs)), max(0.5 * (max(xs) - min(xs)), 1.0)
+        reach = 6.0 * half
+    elif os.path.exists(os.path.join(out, "roller.csv")):
+        rows = [r for r in csv.DictReader(open(os.path.join(out, "roller.csv"))) if int(r["step"]) == step]
+        if not rows:
+            return None
+        centre, reach = float(rows[-1]["xc"]), top - bottom
+    else:
+        return None
+    x0, x1 = max(left, centre - reach), min(right, centre + reach)
+    y0 = max(bottom, top - max(reach, 2.0))
+    return (x0, x1), (y0, top + 0.02 * (top - y0))
+
+
+def contour_levels(values, levels):
+    """Explicit levels: a list of values, or a spacing (one number) turned into the multiples of
+    it inside the data's range; None: about ten round values."""
+    lo, hi = float(np.min(values)), float(np.max(values))
+    if levels is None:
+        return [v for v in MaxNLocator(nbins=10).tick_values(lo, hi) if lo < v < hi]
+    if len(levels) == 1:
+        step = levels[0]
+        return [k * step for k in range(math.floor(lo / step), math.ceil(hi / step) + 1) if lo < k * step < hi]
+    return [v for v in levels if lo < v < hi]
+
+
+def label_lines(ax, cs):
+    """Contour labels that stay readable: every other level when there are many, inline, small."""
+    shown = cs.levels if len(cs.levels) <= 8 else cs.levels[::2]
+    ax.clabel(cs, shown, inline=True, fmt="%g", fontsize=7, inline_spacing=3)
+
+
+def contour_maps(out, figs, steps, fields, levels=None, element_values=False, xlim=None, ylim=None, whole=False):
     for step in steps:
-        points, elements, pd, _ = read_vtu(vtu_path(out, step))
-        tri = mtri.Triangulation(points[:, 0], points[:, 1], triangles(elements))
+        points, elements, pd, cd = read_vtu(vtu_path(out, step))
+        tris = triangles(elements)
+        tri = mtri.Triangulation(points[:, 0], points[:, 1], tris)
+        # The element each triangle came from (Q4: two triangles per element).
+        owner = np.repeat(np.arange(len(elements)), [1 if len(e) == 3 else 2 for e in elements])
+        window = None if whole else contact_window(out, step, points)
+        if xlim or ylim:
+            window = (xlim or (points[:, 0].min(), points[:, 0].max()), ylim or (points[:, 1].min(), points[:, 1].max()))
         for name in fields:
-            label, get = FIELDS[name]
-            values = get(pd)
-            fig, ax = strip_figure(points, 2.0)
-            cs = ax.tricontourf(tri, values, levels=20, cmap="viridis")
-            ax.tricontour(tri, values, levels=10, colors="k", linewidths=0.3)
+            label, nodal, element = FIELDS[name]
+            use_elements = element_values and element is not None
+            values = element(cd)[owner] if use_elements else nodal(pd)
+            fig, ax = strip_figure(points, 2.0, window)
+            if use_elements:
+                cs = ax.tripcolor(tri, facecolors=values, cmap="viridis", shading="flat")
+            else:
+                cs = ax.tricontourf(tri, values, levels=20, cmap="viridis")
+                lines = contour_levels(values, levels)
+                if lines:
+                    label_lines(ax, ax.tricontour(tri, values, levels=lines, colors="k", linewidths=0.4))
             ax.set_aspect("equal")
+            if window:
+                ax.set_xlim(*window[0])
+                ax.set_ylim(*window[1])
             ax.set_xlabel("x [mm]")
             ax.set_ylabel("y [mm]")
-            ax.set_title("%s, step %d" % (label, step))
+            ax.set_title("%s, step %d%s" % (label, step, ", element values" if use_elements else ""))
             fig.colorbar(cs, ax=ax, label=label, location="bottom", aspect=60, shrink=0.7)
             fig.savefig(os.path.join(figs, "map_%s_step%d.png" % (name, step)), dpi=110, bbox_inches="tight")
             plt.close(fig)
@@ -172,29 +250,26 @@ def boundary_edges(points, elements):
 LINES = [("solid", "k"), ("dashed", "C3"), ("dashdot", "C0"), ("dotted", "C2")]
 
 
-def overlay(path, name, curves, title, spacing=None):
+def overlay(path, name, curves, title, spacing=None, levels=None):
     """Contour lines of one field from several (out, step, legend) in one map, the thesis's way:
     the same levels (every `spacing`, or about ten round values), the first solid, then dashed,
     dash-dot, dotted; lines labelled with values. Each curve is drawn on its own deformed mesh;
     the outline is the first curve's."""
-    label, get = FIELDS[name]
+    label, get, _ = FIELDS[name]
     data = []
     for out, step, _ in curves:
         points, elements, pd, _ = read_vtu(vtu_path(out, step))
         tri = mtri.Triangulation(points[:, 0], points[:, 1], triangles(elements))
         data.append((tri, get(pd), points, elements))
     values = np.concatenate([d[1] for d in data])
-    lo, hi = values.min(), values.max()
-    ticks = np.arange(math.floor(lo / spacing), math.ceil(hi / spacing) + 1) * spacing if spacing \
-        else MaxNLocator(nbins=10).tick_values(lo, hi)
-    levels = [v for v in ticks if lo < v < hi]
+    levels = contour_levels(values, [spacing] if spacing else levels)
     points, elements = data[0][2], data[0][3]
     fig, ax = strip_figure(points, 1.2)
     ax.add_collection(LineCollection(boundary_edges(points, elements), colors="0.5", linewidths=0.8))
     handles = []
     for (tri, v, _, _), (_, _, legend), (style, color) in zip(data, curves, LINES):
         cs = ax.tricontour(tri, v, levels=levels, colors=color, linestyles=style, linewidths=0.9)
-        ax.clabel(cs, fmt="%g", fontsize=6)
+        label_lines(ax, cs)
         handles.append(Line2D([], [], color=color, linestyle=style, label=legend))
     ax.set_aspect("equal")
     ax.autoscale_view()
@@ -202,27 +277,28 @@ def overlay(path, name, curves, title, spacing=None):
     ax.set_ylabel("y [mm]")
     ax.set_title("%s: %s" % (label, title), fontsize=10)
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
-              title="levels every %g %s" % (levels[1] - levels[0], label.split("[")[-1].rstrip("]"))
+              title="levels: %s %s" % (", ".join("%g" % v for v in levels) if len(levels) <= 6 else
+                                       "every %g" % (levels[1] - levels[0]), label.split("[")[-1].rstrip("]"))
               if len(levels) > 1 else None,
               title_fontsize=7)
     fig.savefig(path, dpi=130, bbox_inches="tight")
     plt.close(fig)
 
 
-def step_overlays(out, figs, groups, fields, run, spacing):
+def step_overlays(out, figs, groups, fields, run, spacing, levels=None):
     for group in groups:
         for name in fields:
             overlay(os.path.join(figs, "overlay_%s_steps%s.png" % (name, "-".join(map(str, group)))), name,
                     [(out, step, "step %d" % step) for step in group],
-                    "%s, steps %s" % (run, ", ".join(map(str, group))), spacing.get(name))
+                    "%s, steps %s" % (run, ", ".join(map(str, group))), spacing.get(name), levels)
 
 
-def run_comparison(out, other, figs, steps, fields, label, other_label, spacing):
+def run_comparison(out, other, figs, steps, fields, label, other_label, spacing, levels=None):
     for step in steps:
         for name in fields:
             overlay(os.path.join(figs, "compare_%s_step%d.png" % (name, step)), name,
                     [(other, step, other_label), (out, step, label)],
-                    "%s vs %s, step %d" % (other_label, label, step), spacing.get(name))
+                    "%s vs %s, step %d" % (other_label, label, step), spacing.get(name), levels)
 
 
 def reference_mesh(out):
@@ -242,18 +318,27 @@ def profile(out, figs, steps):
     top = top_nodes(points0)
     order = top[np.argsort(points0[top, 0])]
     fig, ax = plt.subplots(figsize=(10, 4))
-    for step in steps:
+    colours = curve_colours(len(steps))
+    for step, colour in zip(steps, colours):
         _, _, pd, _ = read_vtu(vtu_path(out, step))
         u = pd["displacement"]
-        ax.plot(points0[order, 0] + u[order, 0], 100.0 * u[order, 1], label="step %d" % step, lw=1)
+        ax.plot(points0[order, 0] + u[order, 0], 100.0 * u[order, 1], label="step %d" % step, lw=1, color=colour)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("u_y × 100 [mm]")
     ax.set_title("top surface profile (u_y magnified ×100)")
-    ax.legend(fontsize=7, ncol=2)
+    ax.legend(fontsize=7, ncol=max(1, len(steps) // 12 + 1))
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(os.path.join(figs, "profile.png"), dpi=110)
     plt.close(fig)
+
+
+def curve_colours(n):
+    """n distinguishable colours: the tab10 cycle up to ten curves, a continuous map beyond (no
+    colour repeats)."""
+    if n <= 10:
+        return ["C%d" % i for i in range(n)]
+    return [plt.get_cmap("turbo")(v) for v in np.linspace(0.05, 0.95, n)]
 
 
 def read_contact(out):
@@ -264,16 +349,23 @@ def read_contact(out):
 def pressure(out, figs, steps):
     rows = read_contact(out)
     fig, ax = plt.subplots(figsize=(8, 4))
-    for step in steps:
+    touching = []
+    for step, colour in zip(steps, curve_colours(len(steps))):
         r = sorted((row for row in rows if int(row["step"]) == step), key=lambda row: float(row["x"]))
         if not r:
             continue
         x = [float(row["x"]) for row in r]
-        ax.plot(x, [float(row["p_n"]) for row in r], "o-", ms=3, label="p_n, step %d" % step)
-        ax.plot(x, [float(row["p_t"]) for row in r], "s--", ms=2, label="p_t, step %d" % step)
+        touching += [float(row["x"]) for row in r if row["status"] != "open"]
+        ax.plot(x, [float(row["p_n"]) for row in r], "o-", ms=3, color=colour, label="step %d" % step)
+        ax.plot(x, [float(row["p_t"]) for row in r], "s--", ms=2, color=colour)
+    if touching:  # around the nodes in contact: a few nodes of a long strip
+        lo, hi = min(touching), max(touching)
+        margin = max(hi - lo, 1.0)
+        ax.set_xlim(lo - margin, hi + margin)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("contact pressure [MPa]")
-    ax.legend(fontsize=8)
+    ax.set_title("p_n (solid) and p_t (dashed)", fontsize=10)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=max(1, (len(steps) + 15) // 16))
     ax.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(os.path.join(figs, "pressure.png"), dpi=110)
@@ -329,6 +421,19 @@ def hertz(out, figs):
     plt.close(fig)
 
 
+def number_list(option, text, count=None):
+    """A comma-separated list of numbers (None when empty); exits naming the option otherwise."""
+    if not text:
+        return None
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        sys.exit("plot_scene: %s %s: expected numbers separated by commas" % (option, text))
+    if count is not None and len(values) != count:
+        sys.exit("plot_scene: %s %s: expected %d numbers" % (option, text, count))
+    return values
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out")
@@ -351,6 +456,14 @@ def main():
                          "(default: about ten round levels)")
     ap.add_argument("--label", help="this run's name in titles and legends (default: the folder name)")
     ap.add_argument("--compare-label", help="OTHER_OUT's name in the legend (default: its folder name)")
+    ap.add_argument("--levels", default="",
+                    help="contour lines of maps, overlays and comparisons: a spacing (50) or a list of values "
+                         "(--levels=-50,-30,10,50: with = when the list starts with a minus); default: about ten round values (--spacing FIELD=... wins for its field)")
+    ap.add_argument("--values", choices=["nodal", "element"], default="nodal",
+                    help="maps of nodal averages (smooth contours) or of element values (unsmoothed peaks)")
+    ap.add_argument("--xlim", default="", help="map window in x, e.g. 80,160 [mm] (default: the contact region)")
+    ap.add_argument("--ylim", default="", help="map window in y, e.g. 30,50 [mm] (default: the contact region)")
+    ap.add_argument("--whole", action="store_true", help="maps of the whole strip instead of the contact region")
     args = ap.parse_args()
     steps = available_steps(args.out)
     if not steps:
@@ -368,13 +481,21 @@ def main():
     if set(spacing) - set(FIELDS) or any(v <= 0 for v in spacing.values()):
         sys.exit("plot_scene: --spacing: FIELD=positive value, fields %s" % ", ".join(FIELDS))
     label = args.label or os.path.basename(os.path.normpath(args.out))
-    contour_maps(args.out, figs, parse_steps(args.steps, last) or [last], fields or list(FIELDS))
-    step_overlays(args.out, figs, groups, fields or STRESSES, label, spacing)
+    levels, xlim, ylim = number_list("--levels", args.levels), number_list("--xlim", args.xlim, 2), \
+        number_list("--ylim", args.ylim, 2)
+    if levels is not None and len(levels) == 1 and levels[0] <= 0:
+        sys.exit("plot_scene: --levels %s: a spacing must be positive" % args.levels)
+    for name, lim in (("--xlim", xlim), ("--ylim", ylim)):
+        if lim is not None and not lim[0] < lim[1]:
+            sys.exit("plot_scene: %s %g,%g: expected LOW,HIGH with LOW < HIGH" % (name, lim[0], lim[1]))
+    contour_maps(args.out, figs, parse_steps(args.steps, last) or [last], fields or list(FIELDS), levels,
+                 args.values == "element", xlim, ylim, args.whole)
+    step_overlays(args.out, figs, groups, fields or STRESSES, label, spacing, levels)
     if args.compare:
         other = available_steps(args.compare)
         both = [n for n in parse_steps(args.compare_steps, last) or [last] if n in other]
         run_comparison(args.out, args.compare, figs, both, fields or STRESSES, label,
-                       args.compare_label or os.path.basename(os.path.normpath(args.compare)), spacing)
+                       args.compare_label or os.path.basename(os.path.normpath(args.compare)), spacing, levels)
     profile(args.out, figs, parse_steps(args.profile_steps, last) or steps)
     if os.path.exists(os.path.join(args.out, "contact.csv")):
         pressure(args.out, figs, parse_steps(args.pressure_steps, last) or [last])
