@@ -3,6 +3,7 @@
 // step, and DATA02 starts from DATA01's final state.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -32,17 +33,35 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
     Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml"));
     Simulation penalty(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml",
                                   {{"contact.backend", "\"penalty\""}}));
+    // Node 101 (thesis numbering), the corner the roller strikes: its per-step increment D_y.
+    const Index corner = 2 * 100 + 1;
+    Real previous_uy = 0.0, largest = 0.0;
+    int largest_step = 0;
     for (int step = 1; step <= sim.scene().steps.n_steps; ++step) {
       INFO("step " << step);
       REQUIRE(sim.advance_step(step).converged);
       REQUIRE(penalty.advance_step(step).converged);
       const Real fy = sim.roller_force().y();
-      CHECK(std::abs(suspension_imbalance(sim)) <= 1e-5 * std::abs(fy));
-      // The roller is pushed up by the strip from the first step (it touches the corner at t = 0).
-      CHECK(fy > 0.0);
-      CHECK(sim.suspension()->deflection() > 0.0);
-      CHECK(penalty.roller_force().y() == Approx(fy).epsilon(0.01));
+      // Before contact the coupling's own tolerance (k x 1e-10 R) is the scale, not the force.
+      const Real coupling_tol = 2.0 * sim.scene().roller->suspension->stiffness * 1e-10 * sim.scene().roller->radius;
+      CHECK(std::abs(suspension_imbalance(sim)) <= std::max(1e-5 * std::abs(fy), coupling_tol));
+      if (step >= 4) {
+        // Contact begins in step 4 (the scene starts the roller 3.5 steps before the corner).
+        CHECK(fy > 0.0);
+        CHECK(sim.suspension()->deflection() > 0.0);
+        CHECK(penalty.roller_force().y() == Approx(fy).epsilon(0.01));
+      } else {
+        CHECK(std::abs(fy) <= 1e-4);  // the interior point's barrier force on a node not yet touched
+      }
+      const Real uy = sim.model().total_displacement()(corner);
+      if (std::abs(uy - previous_uy) > largest) {
+        largest = std::abs(uy - previous_uy);
+        largest_step = step;
+      }
+      previous_uy = uy;
     }
+    // The thesis (its figure 5.21): D_y of node 101 is largest at step 5 for all speeds.
+    CHECK(largest_step == 5);
     // Strip inertia is on: the strip moves.
     CHECK(sim.kinetic_energy() > 0.0);
   }
