@@ -49,6 +49,10 @@ Simulation::Simulation(Scene scene)
     pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
   }
   if (!scene_.initial_state.empty()) load_state(scene_.initial_state, /*strip_only=*/true);
+  if (scene_.roller && scene_.roller->touch_strip) {
+    start_lift_ = touching_lift();
+    pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
+  }
   if (scene_.roller) check_roller_starts_outside();
   // After the initial state: a restarted strip starts at rest in its new configuration.
   dynamics_ = DynamicsState(*model_, scene_.dynamics.strip_inertia, scene_.dynamics.lumped_mass,
@@ -81,9 +85,30 @@ void Simulation::check_roller_starts_outside() const {
 }
 
 Vec2 Simulation::start_centre() const {
-  if (scene_.roller->start_centre) return *scene_.roller->start_centre;
   // Default: touching the top of the strip at mid-length.
-  return Vec2(0.5 * scene_.mesh.length, scene_.mesh.height + scene_.roller->radius);
+  const Vec2 given =
+      scene_.roller->start_centre.value_or(Vec2(0.5 * scene_.mesh.length, scene_.mesh.height + scene_.roller->radius));
+  return given + Vec2(0.0, start_lift_);
+}
+
+Real Simulation::touching_lift() const {
+  // The lowest centre height at the start's x for which no candidate lies inside the circle.
+  const std::vector<Vec2> x = model_->current_coordinates();
+  const Real radius = scene_.roller->radius;
+  const Vec2 given = start_centre() - Vec2(0.0, start_lift_);
+  std::optional<Real> touch;
+  for (Index a : candidate_nodes_) {
+    const Real dx = x[a].x() - given.x();
+    if (std::abs(dx) >= radius) continue;
+    const Real y = x[a].y() + std::sqrt(radius * radius - dx * dx);
+    touch = std::max(touch.value_or(y), y);
+  }
+  if (!touch)
+    throw InputError(
+        fmt::format("{}: roller.touch_strip = true: no contact candidate lies under the roller at x = {} "
+                    "(within its radius {} mm); move roller.centre over the strip",
+                    scene_.file.string(), given.x(), radius));
+  return *touch - given.y();
 }
 
 Vec2 Simulation::roller_force() const {

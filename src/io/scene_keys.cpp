@@ -725,6 +725,10 @@ std::vector<SceneKey> make_keys() {
           "roller.angle", [](auto& s) -> auto& { return s.roller->start_angle; },
           "rotation angle at the start [rad], counter-clockwise positive"),
       key(
+          "roller.touch_strip", [](auto& s) -> auto& { return s.roller->touch_strip; },
+          "move the start centre vertically (at its x) until the roller touches the strip as it is at the "
+          "start (after [restart]): the path's dy become depths below the present surface"),
+      key(
           "roller.suspension.mass", [](auto& s) -> auto& { return s.roller->suspension->mass; },
           "m [t per mm of roller length]", closed(0.0, kMaxSuspension)),
       key(

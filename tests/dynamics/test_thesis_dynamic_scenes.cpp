@@ -71,11 +71,13 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
   Simulation first(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z3_data01.toml"));
   const Real force_scale = 1e5;  // N/mm: the largest roller force of the pass (measured 9.6e4)
   bool touched_at_step_1 = false;
+  Real first_force_47 = 0.0;
   for (int step = 1; step <= first.scene().steps.n_steps; ++step) {
     INFO("DATA01 step " << step);
     REQUIRE(first.advance_step(step).converged);
     CHECK(std::abs(suspension_imbalance(first)) <= 1e-5 * force_scale);
     if (step == 1) touched_at_step_1 = first.roller_force().y() > 0.0;
+    if (step == 47) first_force_47 = first.roller_force().y();
   }
   CHECK(touched_at_step_1);
   const std::filesystem::path state =
@@ -87,12 +89,17 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
   // The second pass starts on the deformed strip with its residual stresses.
   CHECK((second.model().total_displacement() - first.model().total_displacement()).norm() == 0.0);
   CHECK(second.model().state(0, 0).stress == first.model().state(0, 0).stress);
+  // Its depths are measured from the surface pass 1 left (roller.touch_strip): the roller starts
+  // touching the groove, 0.95 mm below the original top at its x.
+  CHECK(second.pose().centre.y() < first.scene().roller->start_centre->y() - 0.5);
   for (int step = 1; step <= second.scene().steps.n_steps; ++step) {
     INFO("DATA02 step " << step);
     REQUIRE(second.advance_step(step).converged);
-    // The groove left by pass 1 is deeper than the first lowering step (0.2 mm): no contact yet.
-    if (step == 1) CHECK(second.roller_force().norm() < 1e-3);  // barrier-size forces only
-    CHECK(std::abs(suspension_imbalance(second)) <= 1e-5 * force_scale);
+    if (step == 1) CHECK(second.roller_force().y() > 0.0);  // pressing into the groove at once
+    CHECK(std::abs(suspension_imbalance(second)) <= 1e-5 * 2.0 * force_scale);
+    // The thesis (its figures 5.18, 5.19): the second pass leaves larger stresses; it needs a
+    // larger force at the same step.
+    if (step == 47) CHECK(second.roller_force().y() > 1.2 * first_force_47);
   }
   std::filesystem::remove(state);
 }

@@ -54,6 +54,10 @@ struct RollerSpec {
   Real radius = 300.0;               // R [mm]
   std::optional<Vec2> start_centre;  // default: above the strip's top at x = length/2, touching
   Real start_angle = 0.0;
+  // Start height from the strip as it is at the start (after a restart): the centre, at its x,
+  // is moved vertically until the roller touches the highest contact candidate under it, so
+  // that the path's dy are depths below the strip's present surface (a second pass over a groove).
+  bool touch_strip = false;
   std::vector<PathSegment> path;             // steps not covered by a segment keep the roller still
   std::optional<SuspensionSpec> suspension;  // absent: the centre follows the path exactly
   bool is_valid(std::string* why) const;

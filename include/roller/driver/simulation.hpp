@@ -146,6 +146,9 @@ class Simulation {
 
  private:
   Vec2 start_centre() const;
+  // roller.touch_strip: how far the start centre moves up (> 0) or down to touch the strip as it
+  // is after the initial state; InputError when no contact candidate lies under the roller.
+  Real touching_lift() const;
   // Before the first step of pass `pass` > 1: the roller, clear of the strip, returns to the
   // pass's start; a message (and nothing changed) when it is not clear.
   std::string return_for_pass(int pass);
@@ -194,6 +197,7 @@ class Simulation {
   std::unique_ptr<ContactBackend> backend_;
   std::vector<Index> candidate_nodes_;
   VecX last_increment_;     // last converged increment (all dofs), for the predictor
+  Real start_lift_ = 0.0;   // roller.touch_strip: vertical shift of the start centre [mm]
   Real last_length_ = 0.0;  // its length in steps
   RollerPose pose_;
   std::vector<NodeContactRecord> contact_;
