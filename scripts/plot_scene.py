@@ -8,6 +8,7 @@ usage: /usr/bin/python3 scripts/plot_scene.py OUT_DIR [--steps 4,7] [--profile-s
                                               [--spacing sqrt_I2=10] [--label NAME]
                                               [--levels 50 | --levels=-50,-30,10,50] [--values element]
                                               [--xlim 80,160] [--ylim 30,50] [--whole]
+                                              [--mesh-pairs 3/6] [--mark-nodes 5,101]
 
 Reads fields.pvd / step_NNNN.vtu, contact.csv, roller.csv and scene.resolved.toml of a run and
 writes into OUT_DIR/figures/:
@@ -23,7 +24,11 @@ writes into OUT_DIR/figures/:
   profile.png               top-surface profile over the steps, u_y magnified x100
   pressure.png              contact pressure p_n (and p_t) along x at the chosen steps, around the
                             nodes in contact
-  mesh_step<N>.png          deformed mesh (true scale and u magnified)
+  mesh_step<N>.png          deformed mesh (true scale and u magnified), with the roller's circle
+                            and the nodes of --mark-nodes labelled
+  mesh_steps<A>-<B>.png     (--mesh-pairs A/B) the deformed meshes of steps A (solid) and B
+                            (dashed) in one figure
+  compare_pressure.png      (--compare) p_n of both runs at the comparison steps
   hertz.png                 (--hertz) the last step's pressure against the Hertz solution
   overlay_<field>_steps<A>-<B>.png
                             (--pairs A/B) the contour lines of steps A (solid) and B (dashed) in one
@@ -372,7 +377,34 @@ def pressure(out, figs, steps):
     plt.close(fig)
 
 
-def deformed_mesh(out, figs, steps):
+def roller_at(out, step):
+    """(xc, yc, radius) of the roller at a step, or None for a run without one."""
+    path = os.path.join(out, "roller.csv")
+    if not os.path.exists(path):
+        return None
+    import tomllib  # Python 3.11
+    radius = tomllib.load(open(os.path.join(out, "scene.resolved.toml"), "rb")).get("roller", {}).get("radius")
+    rows = [r for r in csv.DictReader(open(path)) if int(r["step"]) == step]
+    return (float(rows[-1]["xc"]), float(rows[-1]["yc"]), float(radius)) if rows and radius else None
+
+
+def draw_extras(ax, out, step, points, marks):
+    """The roller's circle at that step and the marked nodes (thesis numbers), on mesh figures."""
+    roller = roller_at(out, step)
+    if roller:
+        ax.add_patch(plt.Circle(roller[:2], roller[2], fill=False, color="C0", lw=1.0))
+    for node in marks:
+        if 1 <= node <= len(points):
+            x, y = points[node - 1]
+            ax.plot(x, y, "o", color="C3", ms=5)
+            ax.annotate(str(node), (x, y), xytext=(4, 4), textcoords="offset points", fontsize=8, color="C3")
+
+
+def mesh_lines(ax, x, elements, **style):
+    ax.add_collection(LineCollection([x[list(e) + [e[0]]] for e in elements], **style))
+
+
+def deformed_mesh(out, figs, steps, marks=()):
     points0, elements = reference_mesh(out)
     for step in steps:
         _, _, pd, _ = read_vtu(vtu_path(out, step))
@@ -380,15 +412,67 @@ def deformed_mesh(out, figs, steps):
         fig, axes = plt.subplots(1, 2, figsize=(12, 4))
         for ax, scale in zip(axes, (1.0, 10.0)):
             x = points0 + scale * u
-            for e in elements:
-                loop = list(e) + [e[0]]
-                ax.plot(points0[loop, 0], points0[loop, 1], color="0.8", lw=0.5)
-                ax.plot(x[loop, 0], x[loop, 1], color="k", lw=0.7)
+            mesh_lines(ax, points0, elements, colors="0.8", linewidths=0.5)
+            mesh_lines(ax, x, elements, colors="k", linewidths=0.7)
+            draw_extras(ax, out, step, x, marks)
             ax.set_aspect("equal")
+            span = points0.max(axis=0) - points0.min(axis=0)
+            ax.set_xlim(points0[:, 0].min() - 0.05 * span[0], points0[:, 0].max() + 0.05 * span[0])
+            ax.set_ylim(points0[:, 1].min() - 0.05 * span[1], points0[:, 1].max() + 0.3 * span[1])
             ax.set_title("step %d, displacement ×%g (grey: initial)" % (step, scale))
         fig.tight_layout()
         fig.savefig(os.path.join(figs, "mesh_step%d.png" % step), dpi=110)
         plt.close(fig)
+
+
+def mesh_overlay(out, figs, group, marks=()):
+    """The deformed meshes of two to four steps in one figure (the thesis's 5.8 ii: steps 3 and 6),
+    at true scale and with displacements ×10, the first solid, then dashed, dash-dot, dotted."""
+    points0, elements = reference_mesh(out)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4))
+    for ax, scale in zip(axes, (1.0, 10.0)):
+        handles = []
+        for step, (style, colour) in zip(group, LINES):
+            _, _, pd, _ = read_vtu(vtu_path(out, step))
+            x = points0 + scale * pd["displacement"][:, :2]
+            mesh_lines(ax, x, elements, colors=colour, linestyles=style, linewidths=0.7)
+            handles.append(Line2D([], [], color=colour, linestyle=style, label="step %d" % step))
+        draw_extras(ax, out, group[-1], points0, marks)
+        ax.set_aspect("equal")
+        ax.autoscale_view()
+        ax.set_title("displacement ×%g" % scale)
+        ax.legend(handles=handles, fontsize=8, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(os.path.join(figs, "mesh_steps%s.png" % "-".join(map(str, group))), dpi=110)
+    plt.close(fig)
+
+
+def pressure_comparison(out, other, figs, steps, label, other_label):
+    """p_n of two runs at the same steps in one plot (the thesis's 5.7: OUTF05 and OUTF10)."""
+    fig, ax = plt.subplots(figsize=(8, 4))
+    colours = curve_colours(len(steps))
+    touching = []
+    for run, name, style in ((other, other_label, "o-"), (out, label, "s--")):
+        rows = read_contact(run)
+        for step, colour in zip(steps, colours):
+            r = sorted((row for row in rows if int(row["step"]) == step), key=lambda row: float(row["x"]))
+            if not r:
+                continue
+            touching += [float(row["x"]) for row in r if row["status"] != "open"]
+            ax.plot([float(row["x"]) for row in r], [float(row["p_n"]) for row in r], style, ms=3, color=colour,
+                    label="%s, step %d" % (name, step))
+    if touching:
+        lo, hi = min(touching), max(touching)
+        margin = max(hi - lo, 1.0)
+        ax.set_xlim(lo - margin, hi + margin)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("p_n [MPa]")
+    ax.set_title("contact pressure: %s (solid) and %s (dashed)" % (other_label, label), fontsize=10)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(figs, "compare_pressure.png"), dpi=110)
+    plt.close(fig)
 
 
 def hertz(out, figs):
@@ -464,6 +548,10 @@ def main():
     ap.add_argument("--xlim", default="", help="map window in x, e.g. 80,160 [mm] (default: the contact region)")
     ap.add_argument("--ylim", default="", help="map window in y, e.g. 30,50 [mm] (default: the contact region)")
     ap.add_argument("--whole", action="store_true", help="maps of the whole strip instead of the contact region")
+    ap.add_argument("--mesh-pairs", default="",
+                    help="deformed meshes of a group of steps in one figure, e.g. 3/6 (mesh_steps3-6.png)")
+    ap.add_argument("--mark-nodes", default="",
+                    help="nodes (thesis numbers) marked and labelled on the mesh figures, e.g. 5,101")
     args = ap.parse_args()
     steps = available_steps(args.out)
     if not steps:
@@ -494,13 +582,22 @@ def main():
     if args.compare:
         other = available_steps(args.compare)
         both = [n for n in parse_steps(args.compare_steps, last) or [last] if n in other]
-        run_comparison(args.out, args.compare, figs, both, fields or STRESSES, label,
-                       args.compare_label or os.path.basename(os.path.normpath(args.compare)), spacing, levels)
+        other_label = args.compare_label or os.path.basename(os.path.normpath(args.compare))
+        run_comparison(args.out, args.compare, figs, both, fields or STRESSES, label, other_label, spacing, levels)
+        if os.path.exists(os.path.join(args.out, "contact.csv")) and \
+                os.path.exists(os.path.join(args.compare, "contact.csv")):
+            pressure_comparison(args.out, args.compare, figs, both, label, other_label)
     profile(args.out, figs, parse_steps(args.profile_steps, last) or steps)
     if os.path.exists(os.path.join(args.out, "contact.csv")):
         pressure(args.out, figs, parse_steps(args.pressure_steps, last) or [last])
+    marks = [int(v) for v in number_list("--mark-nodes", args.mark_nodes) or []]
     if args.mesh_steps:
-        deformed_mesh(args.out, figs, parse_steps(args.mesh_steps, last))
+        deformed_mesh(args.out, figs, parse_steps(args.mesh_steps, last), marks)
+    mesh_groups = [[int(n) for n in g.split("/")] for g in args.mesh_pairs.split(",") if g]
+    if any(not 2 <= len(g) <= len(LINES) or set(g) - set(steps) for g in mesh_groups):
+        sys.exit("plot_scene: --mesh-pairs: groups of 2 to %d steps that have VTU files" % len(LINES))
+    for group in mesh_groups:
+        mesh_overlay(args.out, figs, group, marks)
     if args.hertz:
         hertz(args.out, figs)
     print("plot_scene: figures in %s" % figs)

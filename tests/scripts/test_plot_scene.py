@@ -35,13 +35,15 @@ class PlotScene(unittest.TestCase):
 
     def test_the_named_figures_are_written(self):
         r = self.plot("--steps", "2,8", "--pairs", "4/8", "--levels", "100", "--mesh-steps", "8",
-                      "--pressure-steps", "1-8")
+                      "--pressure-steps", "1-8", "--mesh-pairs", "4/8", "--mark-nodes", "5,101",
+                      "--compare", self.out, "--compare-steps", "8")
         self.assertEqual(r.returncode, 0, r.stderr)
         names = ["map_%s_step%d.png" % (f, s) for s in (2, 8)
                  for f in ("sqrt_I2", "tau_xx", "tau_yy", "tau_xy", "eps_xx", "eps_yy", "eps_xy",
                            "deps_xx", "deps_yy", "deps_xy", "u_y")]
         names += ["overlay_%s_steps4-8.png" % f for f in ("sqrt_I2", "tau_xx", "tau_yy", "tau_xy")]
-        names += ["pressure.png", "profile.png", "mesh_step8.png"]
+        names += ["compare_%s_step8.png" % f for f in ("sqrt_I2", "tau_xx", "tau_yy", "tau_xy")]
+        names += ["pressure.png", "profile.png", "mesh_step8.png", "mesh_steps4-8.png", "compare_pressure.png"]
         for name in names:
             self.assertTrue(is_png(os.path.join(self.figs, name)), name)
 
@@ -59,7 +61,8 @@ class PlotScene(unittest.TestCase):
         for args, expected in ((["--levels", "0"], "--levels 0: a spacing must be positive"),
                                (["--xlim", "5,1"], "--xlim 5,1: expected LOW,HIGH"),
                                (["--ylim", "1"], "--ylim 1: expected 2 numbers"),
-                               (["--levels", "a,b"], "--levels a,b: expected numbers")):
+                               (["--levels", "a,b"], "--levels a,b: expected numbers"),
+                               (["--mesh-pairs", "4/99"], "--mesh-pairs: groups of 2 to 4 steps")):
             r = self.plot(*args)
             self.assertNotEqual(r.returncode, 0, args)
             self.assertIn(expected, r.stderr)
