@@ -8,8 +8,9 @@ usage: /usr/bin/python3 tests/scripts/test_plot_scene.py ROLLER_EXE   (CTest pas
 import os
 import subprocess
 import sys
-import tempfile
 import unittest
+
+from scene_run import run_scene
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PLOT = [sys.executable, os.path.join(ROOT, "scripts", "plot_scene.py")]
@@ -24,10 +25,7 @@ def is_png(path):
 class PlotScene(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.out = os.path.join(tempfile.mkdtemp(), "cattaneo")
-        r = subprocess.run([ROLLER, "run", os.path.join(ROOT, "problems", "cattaneo.toml"), "--out", cls.out],
-                           capture_output=True, text=True)
-        assert r.returncode == 0, r.stdout + r.stderr
+        cls.out = run_scene(ROLLER, "cattaneo")
         cls.figs = os.path.join(cls.out, "figures")
 
     def plot(self, *args):

@@ -8,9 +8,7 @@ usage: /usr/bin/python3 tests/scripts/test_vtu_fields.py ROLLER_EXE   (CTest pas
 """
 import csv
 import os
-import subprocess
 import sys
-import tempfile
 import unittest
 
 import numpy as np
@@ -18,6 +16,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from plot_scene import read_vtu  # noqa: E402
+from scene_run import run_scene  # noqa: E402
 
 ROLLER = None
 STATUS = {"open": 0, "stick": 1, "slip": 2}
@@ -26,11 +25,8 @@ STATUS = {"open": 0, "stick": 1, "slip": 2}
 class VtuFields(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.out = os.path.join(tempfile.mkdtemp(), "cattaneo")
         # Cattaneo: small kinematics, friction (stick and slip nodes), 8 steps.
-        r = subprocess.run([ROLLER, "run", os.path.join(ROOT, "problems", "cattaneo.toml"), "--out", cls.out],
-                           capture_output=True, text=True)
-        assert r.returncode == 0, r.stdout + r.stderr
+        cls.out = run_scene(ROLLER, "cattaneo")
         with open(os.path.join(cls.out, "contact.csv"), newline="") as f:
             cls.rows = list(csv.DictReader(f))
         cls.steps = sorted({int(r["step"]) for r in cls.rows})
