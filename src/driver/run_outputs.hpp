@@ -22,6 +22,10 @@ class RunOutputs {
   // the start state: fields of step 0 and the roller's row 0.
   // Field files go to `writer` (written while the next step is solved).
   RunOutputs(const Simulation& sim, const std::filesystem::path& out_dir, bool resume, BackgroundWriter& writer);
+  // The writer's jobs add to this object's series: none may outlive it.
+  ~RunOutputs() { writer_.drain(); }
+  RunOutputs(const RunOutputs&) = delete;
+  RunOutputs& operator=(const RunOutputs&) = delete;
 
   // The solver's row of a step, converged or not.
   void write_solver_row(int step, const Simulation::StepResult& res, const MonitorReport& monitor, double wall_s,

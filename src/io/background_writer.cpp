@@ -4,7 +4,7 @@
 
 namespace roller {
 
-BackgroundWriter::~BackgroundWriter() {
+void BackgroundWriter::drain() noexcept {
   for (auto& job : running_)
     if (job.valid()) job.wait();
 }

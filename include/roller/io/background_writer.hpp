@@ -24,7 +24,9 @@ class BackgroundWriter {
   BackgroundWriter(const BackgroundWriter&) = delete;
   BackgroundWriter& operator=(const BackgroundWriter&) = delete;
   // Waits for the jobs still running; their errors are lost here (call finish() to see them).
-  ~BackgroundWriter();
+  ~BackgroundWriter() { drain(); }
+  // The same wait, for an owner of data the jobs use that goes away first (its destructor).
+  void drain() noexcept;
 
   void submit(std::function<void()> job);
   // Waits for every job; rethrows the first error among them.
