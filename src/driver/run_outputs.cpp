@@ -29,8 +29,13 @@ VtuField nodal_vector(const std::string& name, const VecX& v) {
   return f;
 }
 
-// Contact pressure and tangential traction [MPa] (nodal force over tributary length, as in
-// contact.csv) and status (0 open or not a candidate, 1 stick, 2 slip) at the nodes.
+// Contact pressure and tangential traction of a node [MPa]: its forces over its tributary length
+// (contact.csv's p_n, p_t and the VTU's contact fields).
+Vec2 tractions(const NodeContactRecord& c) {
+  return Vec2(c.contact.normal_force, c.contact.tangential_force) / c.tributary_length;
+}
+
+// tractions() and the status (0 open or not a candidate, 1 stick, 2 slip) at the nodes.
 void append_contact_fields(const std::vector<NodeContactRecord>& contact, Index n_nodes,
                            std::vector<VtuField>& point_data) {
   VtuField pressure, traction, status;
@@ -42,8 +47,9 @@ void append_contact_fields(const std::vector<NodeContactRecord>& contact, Index 
     f->values.assign(n_nodes, 0.0);
   }
   for (const NodeContactRecord& c : contact) {
-    pressure.values[c.node] = c.contact.normal_force / c.tributary_length;
-    traction.values[c.node] = c.contact.tangential_force / c.tributary_length;
+    const Vec2 p = tractions(c);
+    pressure.values[c.node] = p.x();
+    traction.values[c.node] = p.y();
     status.values[c.node] = c.contact.status == ContactStatus::Stick  ? 1.0
                             : c.contact.status == ContactStatus::Slip ? 2.0
                                                                       : 0.0;
@@ -196,11 +202,11 @@ void RunOutputs::write_step(int step, const std::optional<Simulation::StepResult
   const Scene& scene = sim_.scene();
   if (scene.roller) {
     const Index pass = sim_.pass_of_step(step);
-    for (const auto& c : sim_.contact())
+    for (const auto& c : sim_.contact()) {
+      const Vec2 p = tractions(c);
       contact_csv_->add_row({static_cast<Index>(step), pass, c.node + 1, c.position.x(), c.position.y(), c.contact.gap,
-                             c.contact.normal_force / c.tributary_length,
-                             c.contact.tangential_force / c.tributary_length, std::string(to_string(c.contact.status)),
-                             c.contact.slip});
+                             p.x(), p.y(), std::string(to_string(c.contact.status)), c.contact.slip});
+    }
     const Vec2 f = sim_.roller_force();
     const RollerPose& pose = sim_.pose();
     const Vec2 v = sim_.roller_velocity();

@@ -84,18 +84,19 @@ void Simulation::check_roller_starts_outside() const {
         depth));
 }
 
-Vec2 Simulation::start_centre() const {
+Vec2 Simulation::given_start_centre() const {
   // Default: touching the top of the strip at mid-length.
-  const Vec2 given =
-      scene_.roller->start_centre.value_or(Vec2(0.5 * scene_.mesh.length, scene_.mesh.height + scene_.roller->radius));
-  return given + Vec2(0.0, start_lift_);
+  return scene_.roller->start_centre.value_or(
+      Vec2(0.5 * scene_.mesh.length, scene_.mesh.height + scene_.roller->radius));
 }
+
+Vec2 Simulation::start_centre() const { return given_start_centre() + Vec2(0.0, start_lift_); }
 
 Real Simulation::touching_lift() const {
   // The lowest centre height at the start's x for which no candidate lies inside the circle.
   const std::vector<Vec2> x = model_->current_coordinates();
   const Real radius = scene_.roller->radius;
-  const Vec2 given = start_centre() - Vec2(0.0, start_lift_);
+  const Vec2 given = given_start_centre();
   std::optional<Real> touch;
   for (Index a : candidate_nodes_) {
     const Real dx = x[a].x() - given.x();

@@ -145,6 +145,8 @@ class Simulation {
   StepResult advance_step(int step);
 
  private:
+  // The scene's start centre (roller.centre or its default), and that moved by roller.touch_strip.
+  Vec2 given_start_centre() const;
   Vec2 start_centre() const;
   // roller.touch_strip: how far the start centre moves up (> 0) or down to touch the strip as it
   // is after the initial state; InputError when no contact candidate lies under the roller.
