@@ -28,6 +28,7 @@ std::string BackendStats::brief() const {
   add("constraint_violation", constraint_violation);
   add("fixed_point_iterations", fixed_point_iterations);
   add("nlp_solves", nlp_solves);
+  add("cold_restarts", cold_restarts);
   add("nlp_variables", nlp_variables);
   add("nlp_constraints", nlp_constraints);
   add("linearisations", linearisations);

@@ -75,16 +75,28 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     const ContactRows contact(problem, rows, friction_terms(rows, fixed_point.fbar(), mu, fixed_point.force_tol(), o),
                               objective.n());
     // Pass 1 warm-starts only on request (its guesses may be poor); later passes always start
-    // from the previous pass's primal-dual solution, which is close.
-    set_warm_start(app, pass > 1 || warm_first);
-    Ipopt::SmartPtr<ContactTnlp> nlp = new ContactTnlp(objective, contact, start);
-    const auto t0 = std::chrono::steady_clock::now();
-    const Ipopt::ApplicationReturnStatus status = app.OptimizeTNLP(GetRawPtr(nlp));
-    out.ipopt_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    out.passes = pass;
+    // from the previous pass's primal-dual solution, which is close. A warm start that fails
+    // (a poor guess can send Ipopt into restoration) is repeated once from a cold start.
+    const bool warm = pass > 1 || warm_first;
+    Ipopt::SmartPtr<ContactTnlp> nlp;
+    Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
     int iterations = 0;
-    if (IsValid(app.Statistics())) iterations = app.Statistics()->IterationCount();
-    out.iterations += iterations;
+    for (const bool warm_here : {warm, false}) {
+      set_warm_start(app, warm_here);
+      nlp = new ContactTnlp(objective, contact, start);
+      const auto t0 = std::chrono::steady_clock::now();
+      status = app.OptimizeTNLP(GetRawPtr(nlp));
+      out.ipopt_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      ++out.nlp_solves;
+      iterations = IsValid(app.Statistics()) ? app.Statistics()->IterationCount() : 0;
+      out.iterations += iterations;
+      const bool solved = (status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level) &&
+                          nlp->solution().finalized;
+      // The iteration limit is the user's (contact.ipopt.max_iter): reported, not retried.
+      if (solved || !warm_here || status == Ipopt::Maximum_Iterations_Exceeded) break;
+      ++out.cold_restarts;
+    }
+    out.passes = pass;
     out.nlp_variables = contact.n_variables();
     out.nlp_constraints = contact.n_constraints();
     if (nlp->solution().finalized) out.last = nlp->solution();

@@ -58,8 +58,10 @@ class NormalForceFixedPoint {
 struct FrictionPasses {
   ContactTermination status = ContactTermination::Converged;  // not Converged: a pass's NLP failed (message)
   std::string message;
-  int passes = 0;      // passes run, the failed one included
-  int iterations = 0;  // interior-point iterations of all passes
+  int passes = 0;         // passes run, the failed one included
+  int nlp_solves = 0;     // NLPs solved: the passes and their cold restarts
+  int cold_restarts = 0;  // warm-started passes that failed and were solved again from a cold start
+  int iterations = 0;     // interior-point iterations of all passes
   double ipopt_time_s = 0.0;
   bool acceptable_level = false;
   bool fixed_point_converged = false;

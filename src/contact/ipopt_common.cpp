@@ -69,6 +69,14 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
   set(*app, "tol", o.tol);
   set(*app, "max_iter", o.max_iter);
   set(*app, "mu_strategy", std::string(enum_name(o.mu_strategy)));
+  // Small NLPs (a few to a few hundred variables, solved hundreds of times per run) pay per
+  // linear solve: Debian's MUMPS 5.5 walks its whole structure on every call. The probing
+  // (Mehrotra) barrier oracle needs one extra solve per iteration where the quality function
+  // needs several, and no forced refinement step saves a solve whenever the first is accurate
+  // (Ipopt still refines when the residual asks for it). Measured: docs/benchmarks.md, "The
+  // thesis scenes at refine 1".
+  set(*app, "mu_oracle", std::string("probing"));
+  set(*app, "min_refinement_steps", 0);
   set(*app, "obj_scaling_factor", 1.0 / scales.force);
   // The unscaled dual safety tolerance (default 1 N/mm) must not be stricter than tol on the
   // scaled problem for large force scales. The unscaled complementarity max F_N g [N mm] is held

@@ -246,7 +246,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       const FrictionPasses passes = solve_friction_passes(*app, model, problem, rows, fixed_point, std::move(start),
                                                           passes_here, outer > 1 && o.warm_start, o);
       result.iterations += passes.iterations;
-      result.stats.nlp_solves += passes.passes;
+      result.stats.nlp_solves += passes.nlp_solves;
+      result.stats.cold_restarts += passes.cold_restarts;
       result.stats.ipopt_time_s += passes.ipopt_time_s;
       result.stats.acceptable_level = result.stats.acceptable_level || passes.acceptable_level;
       if (passes.status != ContactTermination::Converged) {

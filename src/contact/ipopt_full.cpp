@@ -147,7 +147,8 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
                                                       full_start(problem, rows, x0), max_passes, o.warm_start, o);
   result.iterations = passes.iterations;
   result.stats.fixed_point_iterations = passes.passes;
-  result.stats.nlp_solves = passes.passes;
+  result.stats.nlp_solves = passes.nlp_solves;
+  result.stats.cold_restarts = passes.cold_restarts;
   result.stats.nlp_variables = passes.nlp_variables;
   result.stats.nlp_constraints = passes.nlp_constraints;
   result.stats.ipopt_time_s = passes.ipopt_time_s;

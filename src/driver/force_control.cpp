@@ -48,6 +48,10 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
   std::optional<Sample> last_touching;  // for the secant slope: only samples in contact (the
                                         // force law has a kink where contact is lost)
   Real slope = settings.stiffness_guess;
+  // Newton's step is multiplied by `growth`, doubled each time a sample in contact moves the force
+  // away from the target or not at all (a sliding roller's force stays at the Coulomb bound), so
+  // that a load nothing carries reaches max_offset_change in a few solves instead of a crawl.
+  Real growth = 1.0;
   Real search_step = 0.0;  // above the strip: the last step down, doubled each time
   Real w = w0;
   for (int it = 1; it <= settings.max_iterations; ++it) {
@@ -69,7 +73,12 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
     if (now.touching) {
       if (last_touching && last_touching->w != now.w) {
         const Real secant = -(now.r - last_touching->r) / (now.w - last_touching->w);
-        if (secant > 0.0 && std::isfinite(secant)) slope = secant;
+        if (secant > 0.0 && std::isfinite(secant)) {
+          slope = secant;
+          growth = 1.0;
+        } else {
+          growth *= 2.0;
+        }
       }
       last_touching = now;
     }
@@ -88,7 +97,7 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
     Real w_next;
     if (now.touching || last_touching) {
       const Sample& from = now.touching ? now : *last_touching;
-      w_next = from.w + from.r / slope;
+      w_next = from.w + growth * from.r / slope;
     } else {
       search_step = search_step == 0.0 ? now.r / slope : 2.0 * search_step;
       w_next = now.w + search_step;

@@ -96,6 +96,7 @@ RunOutputs::RunOutputs(const Simulation& sim, const std::filesystem::path& out_d
                             "nlp_solves",
                             "condensed_dofs",
                             "ipopt_time_s",
+                            "cold_restarts",
                             "status"},
                            resume, done);
   if (sim.scene().roller) {
@@ -184,6 +185,7 @@ void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, c
        static_cast<Real>(stats.nlp_solves),
        static_cast<Real>(stats.condensed_dofs),
        stats.ipopt_time_s,
+       static_cast<Real>(stats.cold_restarts),
        std::string(res.converged ? "converged" : "failed")});
 }
 

@@ -38,7 +38,8 @@ struct BackendStats {
   Real complementarity = 0.0;       // ipopt: max |F_N g| / F_ref
   Real constraint_violation = 0.0;  // ipopt: max penetration of the constrained candidates [mm]
   int fixed_point_iterations = 0;   // ipopt: friction passes (condensed: on the last linearisation)
-  int nlp_solves = 0;               // ipopt: NLP solves of the increment
+  int nlp_solves = 0;               // ipopt: NLP solves of the increment (cold restarts included)
+  int cold_restarts = 0;            // ipopt: warm-started NLPs that failed and were solved again cold
   int nlp_variables = 0;            // ipopt: size of the last NLP
   int nlp_constraints = 0;
   int linearisations = 0;           // ipopt, condensed formulation: linearisations of the strip

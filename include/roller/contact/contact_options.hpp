@@ -80,7 +80,10 @@ struct IpoptOptions {
   int max_iter = 500;
   MuStrategy mu_strategy = MuStrategy::Adaptive;
   int print_level = 0;
-  bool warm_start = false;
+  // Warm-start the first Ipopt pass of a linearisation from the last forces (condensed: from the
+  // second linearisation on; full: the increment's first pass); later friction passes always do.
+  // A warm-started pass that fails is repeated cold (src/contact/friction_passes.cpp).
+  bool warm_start = true;
   IpoptFriction friction = IpoptFriction::Split;
   Real regularization = 1e-8;  // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only
   FixedPointRule fixed_point = FixedPointRule::Converge;
