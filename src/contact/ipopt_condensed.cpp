@@ -244,7 +244,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       QuadraticModel model(cond);
       const int passes_here = outer > 1 && model_error <= 1e-3 ? max_passes : 1;
       const FrictionPasses passes = solve_friction_passes(*app, model, problem, rows, fixed_point, std::move(start),
-                                                          passes_here, outer > 1 && o.warm_start, o);
+                                                          passes_here, o.warm_start, o);
       result.iterations += passes.iterations;
       result.stats.nlp_solves += passes.nlp_solves;
       result.stats.cold_restarts += passes.cold_restarts;

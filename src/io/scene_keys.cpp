@@ -876,8 +876,8 @@ std::vector<SceneKey> make_keys() {
           "Ipopt's output level", closed(0, 12)),
       key(
           "contact.ipopt.warm_start", [](auto& s) -> auto& { return s.contact.ipopt.warm_start; },
-          "warm-start the first Ipopt pass of a linearisation from the last forces (condensed: from the second "
-          "linearisation on; full: the increment's first pass); a failed warm start is repeated cold"),
+          "warm-start the first Ipopt pass of each linearisation from the last forces (the first one from the "
+          "previous increment's); a failed warm start is repeated cold"),
       key(
           "contact.ipopt.friction", [](auto& s) -> auto& { return s.contact.ipopt.friction; },
           "split: v_T = s+ - s-, exact; regularized: sqrt(v_T^2 + eps^2)"),

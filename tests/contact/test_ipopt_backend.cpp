@@ -476,8 +476,8 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     CHECK(f.x() > 0.1 * mu * std::abs(f.y()));  // the roller drags the strip along +x
     CHECK((f + reaction).norm() <= 1e-6 * f.norm());
 
-    // The default warm start (from the previous increment's forces and, condensed, from the
-    // last linearisation's) reaches the solution of cold starts.
+    // The default warm start (each linearisation's first pass from the last forces, the first
+    // from the press's) reaches the solution of cold starts.
     REQUIRE(o.ipopt.warm_start);
     CHECK(r.stats.cold_restarts == 0);
     ContactOptions cold = o;

@@ -80,8 +80,8 @@ struct IpoptOptions {
   int max_iter = 500;
   MuStrategy mu_strategy = MuStrategy::Adaptive;
   int print_level = 0;
-  // Warm-start the first Ipopt pass of a linearisation from the last forces (condensed: from the
-  // second linearisation on; full: the increment's first pass); later friction passes always do.
+  // Warm-start the first Ipopt pass of each linearisation from the last forces (the increment's
+  // first from the previous increment's); later friction passes always do.
   // A warm-started pass that fails is repeated cold (src/contact/friction_passes.cpp).
   bool warm_start = true;
   IpoptFriction friction = IpoptFriction::Split;
