@@ -41,6 +41,19 @@ std::string BackendStats::brief() const {
   return s;
 }
 
+void BackendStats::add(const BackendStats& later) {
+  const BackendStats work = *this;
+  *this = later;
+  nlp_solves += work.nlp_solves;
+  cold_restarts += work.cold_restarts;
+  linearisations += work.linearisations;
+  ipopt_time_s += work.ipopt_time_s;
+  active_set_passes += work.active_set_passes;
+  penalty_stages += work.penalty_stages;
+  acceptable_level = acceptable_level || work.acceptable_level;
+  condensed_fallback = condensed_fallback || work.condensed_fallback;
+}
+
 std::string BackendResult::brief_report() const {
   std::string s = fmt::format("{} in {} iterations, |r|/F {:.2e}, max penetration {:.2e} mm",
                               converged() ? "converged" : "FAILED", iterations, residual, max_penetration);

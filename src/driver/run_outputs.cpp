@@ -155,7 +155,7 @@ void RunOutputs::write_fields(int step) {
 
 void RunOutputs::write_solver_row(int step, const Simulation::StepResult& res, const MonitorReport& monitor,
                                   double wall_s, Index n_contact) {
-  const BackendStats& stats = res.last.stats;
+  const BackendStats& stats = res.stats;
   const StripMonotonicity& mono = monitor.pointwise;
   const Index not_checked = -1;
   solver_csv_->add_row(

@@ -28,6 +28,12 @@ void add_solve(Simulation::Increment& inc, const Report& r) {
   inc.message = r.message;
 }
 
+// A contact solve also adds its backend's work counters (solver.csv).
+void add_solve(Simulation::Increment& inc, const BackendResult& r) {
+  add_solve<BackendResult>(inc, r);
+  inc.stats.add(r.stats);
+}
+
 // The mesh, once the machine is known to hold the run it starts (else a SystemError with advice).
 Mesh make_mesh_that_fits(const Scene& scene) {
   if (const auto available = available_memory_bytes()) check_run_memory(scene.mesh, scene.newton.linear, *available);
@@ -246,7 +252,6 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
     add_solve(inc, solution.contact);
   }
   inc.max_penetration = solution.contact.max_penetration;
-  inc.stats = solution.contact.stats;
   if (inc.converged) solution.u = energy.full_increment(solution.contact.x);
   return solution;
 }
@@ -479,6 +484,7 @@ Simulation::StepResult Simulation::advance_step(int step) {
     Increment inc = advance(s, s + ds);
     res.iterations += inc.iterations;
     res.factorizations += inc.factorizations;
+    res.stats.add(inc.stats);
     res.last = inc;
     if (inc.converged) {
       s += ds;

@@ -50,6 +50,10 @@ struct BackendStats {
   int active_set_passes = 0;        // penalty: passes of the frozen-status Newton
   int penalty_stages = 0;           // penalty: stages of the raised penalty
   std::string brief() const;        // the non-zero fields, for messages
+  // The stats of several solves of one increment or step (a suspended or force-controlled roller
+  // solves the contact several times, a cut step several sub-increments), `later` solved last: the
+  // work (NLP solves, linearisations, time, restarts, passes, stages) summed, the rest `later`'s.
+  void add(const BackendStats& later);
 };
 
 struct BackendResult {

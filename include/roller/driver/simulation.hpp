@@ -115,7 +115,7 @@ class Simulation {
     Real residual = 0.0;
     Real max_penetration = 0.0;
     Index n_yielded = 0;        // integration points that yielded in the committed increment
-    BackendStats stats;         // of the last contact solve
+    BackendStats stats;         // the contact solves' work summed, the rest of the last one
     int suspension_passes = 0;  // passes coupling the suspension with the contact
     int load_passes = 0;        // contact solves finding the height that carries the prescribed force
     std::string message;
@@ -129,6 +129,7 @@ class Simulation {
     int cuts = 0;
     int iterations = 0;
     int factorizations = 0;
+    BackendStats stats;  // of the step's sub-increments: their work summed, the rest of the last one
     Real max_penetration = 0.0;
     Index n_yielded = 0;  // integration points that yielded in the step's last converged increment
     Increment last;       // the last increment tried
