@@ -6,14 +6,15 @@ where docs/thesis-figures.md shows them.
 usage: /usr/bin/python3 scripts/thesis_figures.py [--roller PATH] [--work DIR] [--no-copy]
   --roller  the roller binary the block's `./build/roller` stands for (default: build/roller)
   --work    the folder to run in (default: the repository; out/ is created there). Another folder
-            gets links to problems/, scripts/ and the binary, so a test can run the block in a
-            scratch folder.
+            gets a copy of problems/ and links to scripts/ and the binary, so a test can run the
+            block in a scratch folder.
   --no-copy check that every figure was drawn, copy nothing.
 The block is run by bash with `set -euo pipefail`: the first failing command stops it and this
 script exits 1; a figure that was not drawn is named and exits 1 too.
 """
 import argparse
 import os
+import shutil
 import subprocess
 import sys
 
@@ -78,12 +79,14 @@ def block():
 
 
 def prepare(work, roller):
-    """Links the repository's problems/ and scripts/ and the binary into a scratch folder."""
+    """A scratch folder as the block expects it: a copy of problems/ (a scene's relative paths,
+    such as z3_data02's ../out/z3_data01/state_final.cbor, must resolve inside the scratch folder,
+    which through a link to problems/ they would not), links to scripts/ and the binary."""
     os.makedirs(os.path.join(work, "build"), exist_ok=True)
-    for name in ("problems", "scripts"):
-        link = os.path.join(work, name)
-        if not os.path.exists(link):
-            os.symlink(os.path.join(ROOT, name), link)
+    if not os.path.exists(os.path.join(work, "problems")):
+        shutil.copytree(os.path.join(ROOT, "problems"), os.path.join(work, "problems"))
+    if not os.path.exists(os.path.join(work, "scripts")):
+        os.symlink(os.path.join(ROOT, "scripts"), os.path.join(work, "scripts"))
     link = os.path.join(work, "build", "roller")
     if not os.path.exists(link):
         os.symlink(os.path.abspath(roller), link)
