@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -339,11 +340,15 @@ void PvdSeries::add(Real time, const std::filesystem::path& vtu_file) {
   const fs::path file = fs::absolute(vtu_file).lexically_normal();
   const fs::path relative = file.lexically_relative(folder);
   const bool inside = !relative.empty() && *relative.begin() != "..";
-  entries_.emplace_back(time, inside ? relative.generic_string() : file.generic_string());
+  // In time order whatever order the files come in (the background writer finishes step n+1's
+  // file before step n's when step n's is larger); equal times keep their order of arrival.
+  const auto at = std::upper_bound(entries_.begin(), entries_.end(), time,
+                                   [](Real t, const std::pair<Real, std::string>& e) { return t < e.first; });
+  const auto added = entries_.emplace(at, time, inside ? relative.generic_string() : file.generic_string());
   try {
     rewrite();
   } catch (...) {
-    entries_.pop_back();  // keep the in-memory series equal to the file on disk
+    entries_.erase(added);  // keep the in-memory series equal to the file on disk
     throw;
   }
 }

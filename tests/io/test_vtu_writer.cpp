@@ -507,3 +507,22 @@ TEST_CASE("PvdSeries in an unwritable place throws naming the path", "[io]") {
   const auto msg = thrown_message<std::runtime_error>([&] { PvdSeries series(pvd); });
   CHECK_THAT(msg, Contains(pvd.string()));
 }
+
+TEST_CASE("PvdSeries lists its datasets in time order whatever order they are added in", "[io]") {
+  // The background writer may finish step 1's file before step 0's.
+  test::TempDir dir("roller_vtu_test");
+  PvdSeries series(dir.path() / "series.pvd");
+  series.add(1.0, dir.path() / "step_1.vtu");
+  series.add(0.0, dir.path() / "step_0.vtu");
+  series.add(3.0, dir.path() / "step_3.vtu");
+  series.add(2.0, dir.path() / "step_2.vtu");
+  const std::string xml = read_text(series.path());
+  INFO(xml);
+  std::size_t last = 0;
+  for (int i = 0; i <= 3; ++i) {
+    const std::size_t at = xml.find("step_" + std::to_string(i) + ".vtu");
+    REQUIRE(at != std::string::npos);
+    CHECK(at > last);
+    last = at;
+  }
+}

@@ -33,8 +33,8 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
                const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
                VtuCompression compression = VtuCompression::ZLib);
 
-// A .pvd collection. Each add() appends a dataset entry and rewrites the .pvd file at once, so
-// a run that stops early leaves a valid series of the steps already written.
+// A .pvd collection. Each add() inserts a dataset entry in time order and rewrites the .pvd file
+// at once, so a run that stops early leaves a valid series of the steps already written.
 class PvdSeries {
  public:
   explicit PvdSeries(std::filesystem::path pvd_path);
