@@ -80,7 +80,7 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     const bool warm = pass > 1 || warm_first;
     Ipopt::SmartPtr<ContactTnlp> nlp;
     Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
-    int iterations = 0;
+    StatusText st{ContactTermination::Failed, ""};
     for (const bool warm_here : {warm, false}) {
       set_warm_start(app, warm_here);
       nlp = new ContactTnlp(objective, contact, start);
@@ -88,10 +88,10 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
       status = app.OptimizeTNLP(GetRawPtr(nlp));
       out.ipopt_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       ++out.nlp_solves;
-      iterations = IsValid(app.Statistics()) ? app.Statistics()->IterationCount() : 0;
+      const int iterations = IsValid(app.Statistics()) ? app.Statistics()->IterationCount() : 0;
       out.iterations += iterations;
-      const bool solved = (status == Ipopt::Solve_Succeeded || status == Ipopt::Solved_To_Acceptable_Level) &&
-                          nlp->solution().finalized;
+      st = map_status(status, iterations, o, objective.evaluation_error());
+      const bool solved = st.status == ContactTermination::Converged && nlp->solution().finalized;
       // The iteration limit is the user's (contact.ipopt.max_iter): reported, not retried.
       if (solved || !warm_here || status == Ipopt::Maximum_Iterations_Exceeded) break;
       ++out.cold_restarts;
@@ -101,7 +101,6 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     out.nlp_constraints = contact.n_constraints();
     if (nlp->solution().finalized) out.last = nlp->solution();
     if (status == Ipopt::Solved_To_Acceptable_Level) out.acceptable_level = true;
-    const StatusText st = map_status(status, iterations, o, objective.evaluation_error());
     if (st.status != ContactTermination::Converged || !nlp->solution().finalized) {
       out.status = st.status == ContactTermination::Converged ? ContactTermination::Failed : st.status;
       out.message = st.status == ContactTermination::Converged ? "Ipopt returned no solution" : st.message;
