@@ -86,9 +86,9 @@ def z1_uy_ellipse(out, step):
 def z1_fold(out, steps):
     """Figure 5.6: a fold (a raised bump of the top surface) forms behind the roller at step 4,
     when it moves up and to the left, and grows when it is pressed in again at step 5."""
+    top = top_nodes(reference_mesh(out)[0])
     for step in steps:
         current, _, pd, _ = read_vtu(vtu_path(out, step))
-        top = top_nodes(reference_mesh(out)[0])
         xs = contact_nodes(out, step)
         x = current[top, 0]
         uy = pd["displacement"][top, 1]
