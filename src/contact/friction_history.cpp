@@ -17,6 +17,17 @@ void FrictionHistory::record(const std::vector<ContactCandidate>& candidates, co
     if (contact[i].status != ContactStatus::Open) nodes_[candidates[i].node] = contact[i];
 }
 
+void seed_normal_forces(std::vector<ContactCandidate>& candidates, const std::vector<ContactCandidate>& last,
+                        const std::vector<NodeContact>& contact) {
+  std::map<Index, Real> normal;
+  for (std::size_t i = 0; i < last.size() && i < contact.size(); ++i)
+    normal[last[i].node] = contact[i].status == ContactStatus::Open ? 0.0 : contact[i].normal_force;
+  for (auto& c : candidates) {
+    const auto f = normal.find(c.node);
+    if (f != normal.end()) c.normal_force_guess = f->second;
+  }
+}
+
 nlohmann::json FrictionHistory::save() const {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& [node, c] : nodes_)

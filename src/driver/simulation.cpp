@@ -153,13 +153,17 @@ std::vector<PressureSample> Simulation::pressure_profile() const {
   return out;
 }
 
-BackendResult Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
-                                        RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates) {
+void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
+                               RollerMotion& motion, VecX& x, Solution& solution) {
   // Nodes farther from the roller than it can travel within the increment cannot touch it.
   const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
-  candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor, motion.end.centre,
-                                       motion.radius, reach);
+  std::vector<ContactCandidate> candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor,
+                                                                     motion.end.centre, motion.radius, reach);
   friction_.seed(candidates);
+  // A later pass of the same increment (the suspension's or the load's coupling) moved the roller
+  // only a little: its friction fixed point starts from the last pass's normal forces, not from
+  // the previous increment's, and so needs no more linearisations than the move itself.
+  if (solution.contact.converged()) seed_normal_forces(candidates, solution.candidates, solution.contact.contact);
   IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus, scene_.material.poisson_ratio);
   BackendResult result = backend_->solve(problem, x);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
@@ -170,7 +174,8 @@ BackendResult Simulation::solve_contact(IncrementEnergy& energy, const VecX& pre
     result.iterations += spent;
   }
   if (result.converged()) x = result.x;
-  return result;
+  solution.candidates = std::move(candidates);
+  solution.contact = std::move(result);
 }
 
 void Simulation::record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result,
@@ -248,7 +253,7 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
   } else if (force.any()) {
     solution = solve_loaded(force, energy, prescribed, predictor, motion, x, inc);
   } else {
-    solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+    solve_contact(energy, prescribed, predictor, motion, x, solution);
     add_solve(inc, solution.contact);
   }
   inc.max_penetration = solution.contact.max_penetration;
@@ -263,7 +268,7 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   const Vec2 anchor = motion.end.centre;
   auto force_at = [&](Real w) -> std::optional<Real> {
     motion.end.centre = anchor + Vec2(0.0, w);
-    solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+    solve_contact(energy, prescribed, predictor, motion, x, solution);
     add_solve(inc, solution.contact);
     if (!solution.contact.converged()) return std::nullopt;
     return strip_force(solution, motion, energy).y();
@@ -271,8 +276,8 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
   const Real max_deflection = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
-  const CouplingResult cr =
-      couple_suspension(suspension, suspension.deflection(), force_at, 1e-10 * motion.radius, max_deflection, 40);
+  const CouplingResult cr = couple_suspension(suspension, suspension.predicted_deflection(), force_at,
+                                              1e-10 * motion.radius, max_deflection, 40);
   inc.suspension_passes = cr.iterations;
   if (!cr.converged) {
     inc.converged = false;
@@ -341,7 +346,7 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
   // the strip's force on the roller, or nullopt.
   auto solve_at_x = [&]() -> std::optional<Vec2> {
     auto solve = [&]() -> std::optional<Vec2> {
-      solution.contact = solve_contact(energy, prescribed, predictor, motion, x, solution.candidates);
+      solve_contact(energy, prescribed, predictor, motion, x, solution);
       add_solve(inc, solution.contact);
       if (!solution.contact.converged()) return std::nullopt;
       return strip_force(solution, motion, energy);

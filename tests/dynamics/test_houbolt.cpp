@@ -145,3 +145,14 @@ TEST_CASE("Suspension coupling converges to the equilibrium with a linear contac
   CHECK(std::isfinite(g.deflection));
   CHECK(g.message.find("too soft") != std::string::npos);
 }
+
+TEST_CASE("Suspension coupling starts from the deflection's last increment carried on", "[dynamics][suspension]") {
+  // Linear motion w = 0.2 + 0.05 n: the prediction of step n + 1 is exact.
+  const Real dt = 1e-3;
+  auto w = [](Real n) { return VecX::Constant(1, 0.2 + 0.05 * n); };
+  const Suspension s(SuspensionSpec{}, HouboltHistory::from_values(w(0), w(-1), w(-2), dt));
+  CHECK(s.predicted_deflection() == Approx(w(1)(0)).epsilon(1e-14));
+  // At rest it stays where it is.
+  const Suspension rest(SuspensionSpec{}, HouboltHistory::at_rest(VecX::Constant(1, 0.3), dt));
+  CHECK(rest.predicted_deflection() == Approx(0.3).epsilon(1e-14));
+}

@@ -28,4 +28,11 @@ class FrictionHistory {
   std::map<Index, NodeContact> nodes_;
 };
 
+// Within one increment: gives each candidate the normal force of the same node in an earlier
+// solve (`last`, with its result `contact`, same order), open nodes zero; nodes that were no
+// candidate keep their seed. Only the ipopt fixed point's start changes (normal_force_guess):
+// the committed tangential forces stay the penalty return map's history.
+void seed_normal_forces(std::vector<ContactCandidate>& candidates, const std::vector<ContactCandidate>& last,
+                        const std::vector<NodeContact>& contact);
+
 }  // namespace roller

@@ -174,8 +174,11 @@ class Simulation {
   // `force`: the forces prescribed on the roller (none: its motion is prescribed).
   Solution solve_increment(IncrementEnergy& energy, const VecX& prescribed, VecX predictor, RollerMotion& motion,
                            const PrescribedForce& force, Increment& inc);
-  BackendResult solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
-                              RollerMotion& motion, VecX& x, std::vector<ContactCandidate>& candidates);
+  // One contact solve of the increment with the roller at `motion`: the candidates and the
+  // backend's result replace `solution`'s (which, when converged, is the last pass's and seeds
+  // this one).
+  void solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
+                     VecX& x, Solution& solution);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
   Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
                            VecX& x, Increment& inc);

@@ -26,6 +26,9 @@ class Suspension {
   HouboltHistory& history() { return history_; }
   const HouboltHistory& history() const { return history_; }
   Real deflection() const { return history_.u_n()(0); }
+  // Where the coupling starts: w_n + (w_n - w_{n-1}), the deflection's last increment carried on,
+  // as the strip's own predictor carries on its last increment.
+  Real predicted_deflection() const { return 2.0 * history_.u_n()(0) - history_.u_nm1()(0); }
 
   Real effective_stiffness() const;
   Real history_force() const;  // h above
