@@ -67,11 +67,14 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
   if (x0.size() != problem.n_free())
     throw std::logic_error(fmt::format("{} backend: start vector has {} entries, the problem {} free dofs", name(),
                                        x0.size(), problem.n_free()));
+  if (problem.suspended() && !solves_suspended_roller())
+    throw std::logic_error(fmt::format("{} backend: a suspended roller's position is not among its unknowns", name()));
   const auto t0 = std::chrono::steady_clock::now();
   BackendResult r = do_solve(problem, x0);
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // Nothing non-finite leaves a backend: a converged result with NaN is a failure.
-  bool finite = r.x.size() == problem.n_free() && r.x.allFinite();
+  bool finite =
+      r.x.size() == problem.n_free() && r.x.allFinite() && (!r.roller_offset || std::isfinite(*r.roller_offset));
   for (const auto& c : r.contact)
     finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) && std::isfinite(c.gap) &&
              std::isfinite(c.slip);

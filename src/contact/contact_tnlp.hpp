@@ -31,6 +31,8 @@ class NlpObjective {
   virtual int hessian_position(int r, int c) const = 0;
   // The cause of the last failed evaluation ("" if none).
   virtual std::string evaluation_error() const { return ""; }
+  // The variable of the suspended roller's vertical step among d, -1 when the roller is given.
+  virtual int roller_slot() const { return -1; }
 };
 
 // Start values of one NLP solve.

@@ -125,7 +125,9 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
   }
   if (options_.ipopt.formulation == IpoptFormulation::Full) return solve_full(problem, x0, options_);
   CondensedOutcome condensed = solve_condensed(problem, x0, options_, linear_);
-  if (!condensed.formulation_failed) return std::move(condensed.result);
+  // The full formulation has no roller variable: a suspended roller's failure goes back to the
+  // driver, which couples the suspension by passes with the roller placed instead.
+  if (!condensed.formulation_failed || problem.suspended()) return std::move(condensed.result);
   // The condensed formulation itself failed (singular interior tangent, no descent, the
   // linearisations ran out): the full formulation solves the increment from the same start.
   BackendResult full = solve_full(problem, x0, options_);
@@ -177,7 +179,9 @@ struct FirstPassNlp {
     } else {
       if (!condense(problem, initial_working_set(problem, x0, scales.length), x0, g, k, solver, &condensation))
         throw NumericalError("FirstPassNlp: the condensation failed: " + solver.message());
-      objective = std::make_unique<QuadraticModel>(condensation);
+      objective = problem.suspended()
+                      ? std::make_unique<QuadraticModel>(condensation, *problem.suspended(), problem.roller_offset())
+                      : std::make_unique<QuadraticModel>(condensation);
       rows = condensation.rows;
       start.primal = VecX::Zero(objective->n());
       for (const RowMap& r : rows) {
@@ -189,7 +193,7 @@ struct FirstPassNlp {
     contact = std::make_unique<ContactRows>(
         problem, rows,
         friction_terms(rows, fixed_point.fbar(), problem.roller().friction, fixed_point.force_tol(), options.ipopt),
-        objective->n());
+        objective->n(), objective->roller_slot());
     tnlp = new ContactTnlp(*objective, *contact, start);
   }
   MumpsSolver solver;

@@ -32,6 +32,13 @@
 // (the inner NLP holds grad q = contact forces to Ipopt's tol, so grad Pi(x_{k+1}) = contact
 // forces to tol as well: the full problem's KKT conditions).
 //
+// Suspended roller (IncrementProblem::suspended). The roller's vertical offset w is one more
+// unknown: the NLP gets its step dw as a last variable (the contact rows see the node's increment
+// relative to the roller, u - dw e_y) and the model its spring P(w + dw) - P(w), which is exact,
+// so the model error stays the strip's. The line search moves (x, w) together. One solve then
+// finds the strip, the contact and the suspension in equilibrium, where the driver's coupling
+// loop (dynamics/suspension.hpp) needs three or four contact solves.
+//
 // Working set. Candidates with a free dof whose gap at the start vector is within kReach l_step
 // (l_step the increment's length scale, ipopt_common.hpp), or that carried a normal force in the
 // previous increment. After each step every other candidate's gap is checked; a penetrating one
@@ -107,13 +114,17 @@ CondensedOutcome formulation_failed(BackendResult result, ContactTermination sta
 }  // namespace
 
 bool QuadraticModel::value(const Real* d, Real& f) {
-  const Eigen::Map<const VecX> dv(d, n());
+  const auto m = static_cast<Index>(c_.gradient.size());
+  const Eigen::Map<const VecX> dv(d, m);
   f = c_.gradient.dot(dv) + 0.5 * dv.dot(c_.schur * dv);
+  if (roller_) f += roller_gradient_ * d[m] + 0.5 * roller_->stiffness * d[m] * d[m];
   return true;
 }
 
 bool QuadraticModel::gradient(const Real* d, Real* g) {
-  Eigen::Map<VecX>(g, n()) = c_.gradient + c_.schur * Eigen::Map<const VecX>(d, n());
+  const auto m = static_cast<Index>(c_.gradient.size());
+  Eigen::Map<VecX>(g, m) = c_.gradient + c_.schur * Eigen::Map<const VecX>(d, m);
+  if (roller_) g[m] = roller_gradient_ + roller_->stiffness * d[m];
   return true;
 }
 
@@ -127,9 +138,14 @@ void QuadraticModel::hessian_structure(int* row, int* col) const {
 }
 
 bool QuadraticModel::hessian_values(const Real* /*d*/, Real obj_factor, Real* values) {
+  const auto m = static_cast<int>(c_.gradient.size());
   int e = 0;
-  for (int r = 0; r < n(); ++r)
+  for (int r = 0; r < m; ++r)
     for (int c = 0; c <= r; ++c, ++e) values[e] = obj_factor * c_.schur(r, c);
+  if (roller_) {  // the roller's row: no strip coupling, its spring on the diagonal
+    for (int c = 0; c < m; ++c, ++e) values[e] = 0.0;
+    values[e] = obj_factor * roller_->stiffness;
+  }
   return true;
 }
 
@@ -201,6 +217,9 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   }
   MumpsSolver solver(MumpsSolver::Symmetry::Symmetric, linear);
   std::vector<int> working = initial_working_set(problem, x, scales.length);
+  // A suspended roller: its offset w is the last unknown (header comment, "Suspended roller").
+  const std::optional<SuspendedRoller> spring = problem.suspended();
+  auto roller_energy = [&spring](Real w) { return spring ? spring->energy(w) : 0.0; };
   Condensation cond;
   const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
   int linearisations = 0, passes_last = 0;
@@ -227,7 +246,9 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     fixed_point.restart();
     VecX d_c = VecX::Zero(m);
     FrictionTerms friction;
-    if (m == 0) {  // no working candidate: the strip alone
+    Real dw = 0.0;  // the suspended roller's step
+    if (m == 0) {   // no working candidate: the strip alone (and the roller hangs free)
+      if (spring) dw = -spring->derivative(problem.roller_offset()) / spring->stiffness;
       fixed_point_converged = true;
       std::fill(normal.begin(), normal.end(), 0.0);
       std::fill(tangential.begin(), tangential.end(), 0.0);
@@ -236,12 +257,12 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       result.stats.nlp_constraints = 0;
     } else {
       NlpStart start;
-      start.primal = VecX::Zero(m);
       for (const RowMap& r : rows) {
         start.guess.normal.push_back(normal[r.candidate]);
         start.guess.tangential.push_back(tangential[r.candidate]);
       }
-      QuadraticModel model(cond);
+      QuadraticModel model = spring ? QuadraticModel(cond, *spring, problem.roller_offset()) : QuadraticModel(cond);
+      start.primal = VecX::Zero(model.n());
       const int passes_here = outer > 1 && model_error <= 1e-3 ? max_passes : 1;
       const FrictionPasses passes = solve_friction_passes(*app, model, problem, rows, fixed_point, std::move(start),
                                                           passes_here, o.warm_start, o);
@@ -266,6 +287,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       fbar_used = passes.fbar;
       friction = passes.friction;
       d_c = passes.last.z.head(m);
+      if (spring) dw = passes.last.z(m);
       result.stats.nlp_variables = passes.nlp_variables;
       result.stats.nlp_constraints = passes.nlp_constraints;
     }
@@ -278,15 +300,19 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     const VecX ke = k_eff * e;
     VecX d = solver.solve_interior(-g - ke) + e;
     const VecX kd = k_eff * d;
-    const Real model_change = g.dot(d) + 0.5 * d.dot(kd);
+    const Real w0 = problem.roller_offset();
+    const Real model_change = g.dot(d) + 0.5 * d.dot(kd) + roller_energy(w0 + dw) - roller_energy(w0);
 
     // Backtracking on the merit function.
     const Real nu = 2.0 * std::max(fn_max, 1e-6 * scales.force);
-    const Real phi0 = merit(problem, rows, friction, energy, x, nu);
+    const Real phi0 = merit(problem, rows, friction, energy + roller_energy(w0), x, nu);
     Real pred = -model_change;
     {
       VecX x1 = x + d;
-      pred += merit(problem, rows, friction, 0.0, x, nu) - merit(problem, rows, friction, 0.0, x1, nu);
+      pred += merit(problem, rows, friction, 0.0, x, nu);
+      problem.move_roller(w0 + dw);
+      pred -= merit(problem, rows, friction, 0.0, x1, nu);
+      problem.move_roller(w0);
     }
     const Real roundoff = 1e-10 * (std::abs(energy) + scales.force * scales.length);
     Real alpha = 1.0;
@@ -304,7 +330,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
         evaluation_error = error.what();
         continue;
       }
-      const Real phi = merit(problem, rows, friction, energy_new, x_new, nu);
+      problem.move_roller(w0 + alpha * dw);
+      const Real phi = merit(problem, rows, friction, energy_new + roller_energy(w0 + alpha * dw), x_new, nu);
       accepted = std::isfinite(phi) &&
                  (pred <= roundoff || phi <= phi0 - 1e-4 * alpha * pred || (alpha == 1.0 && phi <= phi0 + roundoff));
       // Minimiser of the parabola through phi0 (slope -pred) and phi(alpha), kept in [0.1, 0.9] alpha.
@@ -314,6 +341,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       }
       if (accepted) break;
     }
+    if (!accepted) problem.move_roller(w0);
     if (!accepted)
       return formulation_failed(result, ContactTermination::LimitReached,
                                 fmt::format("ipopt backend (condensed): no descent along the step of linearisation "
@@ -347,6 +375,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     }
   }
   result.x = x;
+  if (spring) result.roller_offset = problem.roller_offset();
   result.stats.fixed_point_iterations = passes_last;  // Coulomb passes on the last linearisation
   result.stats.linearisations = linearisations;
   result.stats.condensed_dofs = static_cast<int>(cond.dofs.size());

@@ -1,6 +1,7 @@
 #pragma once
 // The "condensed" formulation of the interior-point backend (contact.ipopt.formulation; the
 // default). See ipopt_condensed.cpp.
+#include <optional>
 #include <vector>
 
 #include "contact_tnlp.hpp"
@@ -27,11 +28,16 @@ bool condense(const IncrementProblem& problem, const std::vector<int>& working, 
               const SparseMatrix& k, MumpsSolver& solver, Condensation* out);
 
 // The condensed model q_C(d_C) = gc.d_C + d_C.S.d_C/2 as the NLP's objective; its dense lower
-// triangle, row by row, holds the contact curvature too.
+// triangle, row by row, holds the contact curvature too. With a suspended roller at w the last
+// variable is its step dw, and the model adds P(w + dw) - P(w) = P'(w) dw + stiffness dw^2/2
+// (exact: P is quadratic).
 class QuadraticModel : public NlpObjective {
  public:
   explicit QuadraticModel(const Condensation& c) : c_(c) {}
-  int n() const override { return static_cast<int>(c_.gradient.size()); }
+  QuadraticModel(const Condensation& c, const SuspendedRoller& roller, Real w)
+      : c_(c), roller_(roller), roller_gradient_(roller.derivative(w)) {}
+  int n() const override { return static_cast<int>(c_.gradient.size()) + (roller_ ? 1 : 0); }
+  int roller_slot() const override { return roller_ ? static_cast<int>(c_.gradient.size()) : -1; }
   bool value(const Real* d, Real& f) override;
   bool gradient(const Real* d, Real* g) override;
   int hessian_nnz() const override { return n() * (n() + 1) / 2; }
@@ -41,6 +47,8 @@ class QuadraticModel : public NlpObjective {
 
  private:
   const Condensation& c_;
+  std::optional<SuspendedRoller> roller_;
+  Real roller_gradient_ = 0.0;  // P'(w) at the linearisation
 };
 
 // The working set at the start of an increment (ipopt_condensed.cpp, header comment).

@@ -21,20 +21,22 @@ FrictionTerms friction_terms(const std::vector<RowMap>& rows, const std::vector<
 }
 
 ContactRows::ContactRows(const IncrementProblem& problem, std::vector<RowMap> rows, FrictionTerms friction,
-                         int n_primal)
+                         int n_primal, int roller_slot)
     : problem_(problem),
       rows_(std::move(rows)),
       friction_(std::move(friction)),
       n_primal_(n_primal),
+      roller_slot_(roller_slot),
       n_slack_(friction_.split() ? static_cast<int>(friction_.rows.size()) : 0) {
   friction_of_.assign(rows_.size(), -1);
   for (std::size_t j = 0; j < friction_.rows.size(); ++j) friction_of_[friction_.rows[j]] = static_cast<int>(j);
   for (std::size_t k = 0; k < rows_.size(); ++k) {
-    const auto& slot = rows_[k].slot;
-    for (int a = 0; a < 2; ++a)
+    const int row = static_cast<int>(k);
+    for (int a = 0; a < 3; ++a)
       for (int b = 0; b <= a; ++b) {
-        if (slot[a] < 0 || slot[b] < 0) continue;
-        hessian_entries_.push_back({static_cast<int>(k), a, b, std::max(slot[a], slot[b]), std::min(slot[a], slot[b])});
+        const int sa = slot_of(row, a), sb = slot_of(row, b);
+        if (sa < 0 || sb < 0) continue;
+        hessian_entries_.push_back({row, a, b, std::max(sa, sb), std::min(sa, sb)});
       }
   }
 }
@@ -43,6 +45,7 @@ Vec2 ContactRows::increment(int k, const Real* z) const {
   Vec2 u = rows_[k].base;
   for (int a = 0; a < 2; ++a)
     if (rows_[k].slot[a] >= 0) u(a) += z[rows_[k].slot[a]];
+  if (roller_slot_ >= 0) u.y() -= z[roller_slot_];
   return u;
 }
 
@@ -57,9 +60,10 @@ Real ContactRows::regularized_force(int j, const Real* z) const {
 
 int ContactRows::jacobian_nnz() const {
   auto n_free = [this](int k) { return (rows_[k].slot[0] >= 0 ? 1 : 0) + (rows_[k].slot[1] >= 0 ? 1 : 0); };
+  const int roller = roller_slot_ >= 0 ? 1 : 0;
   int nnz = 0;
-  for (std::size_t k = 0; k < rows_.size(); ++k) nnz += n_free(static_cast<int>(k));
-  for (int j = 0; j < n_slack_; ++j) nnz += n_free(friction_.rows[j]) + 2;
+  for (std::size_t k = 0; k < rows_.size(); ++k) nnz += n_free(static_cast<int>(k)) + roller;
+  for (int j = 0; j < n_slack_; ++j) nnz += n_free(friction_.rows[j]) + roller + 2;
   return nnz;
 }
 
@@ -124,6 +128,7 @@ void ContactRows::add_friction_gradient(const Real* z, Real* gradient) const {
       const Vec2 v = regularized_force(static_cast<int>(j), z) * problem_.candidates()[rows_[k].candidate].tangent;
       for (int a = 0; a < 2; ++a)
         if (rows_[k].slot[a] >= 0) gradient[rows_[k].slot[a]] += v(a);
+      if (roller_slot_ >= 0) gradient[roller_slot_] -= v.y();
     }
   }
 }
@@ -139,12 +144,17 @@ void ContactRows::constraints(const Real* z, Real* g) const {
 void ContactRows::jacobian_structure(int* row, int* col) const {
   const int n_rows = static_cast<int>(rows_.size());
   int e = 0;
-  for (int k = 0; k < n_rows; ++k)
+  for (int k = 0; k < n_rows; ++k) {
     for (int a = 0; a < 2; ++a)
       if (rows_[k].slot[a] >= 0) {
         row[e] = k;
         col[e++] = rows_[k].slot[a];
       }
+    if (roller_slot_ >= 0) {
+      row[e] = k;
+      col[e++] = roller_slot_;
+    }
+  }
   for (int j = 0; j < n_slack_; ++j) {
     const RowMap& m = rows_[friction_.rows[j]];
     for (int a = 0; a < 2; ++a)
@@ -152,6 +162,10 @@ void ContactRows::jacobian_structure(int* row, int* col) const {
         row[e] = n_rows + j;
         col[e++] = m.slot[a];
       }
+    if (roller_slot_ >= 0) {
+      row[e] = n_rows + j;
+      col[e++] = roller_slot_;
+    }
     row[e] = n_rows + j;
     col[e++] = n_primal_ + j;
     row[e] = n_rows + j;
@@ -166,12 +180,14 @@ void ContactRows::jacobian_values(const Real* z, Real* values) const {
     const Vec2 n = problem_.normal_for(cands[rows_[k].candidate], increment(static_cast<int>(k), z));
     for (int a = 0; a < 2; ++a)
       if (rows_[k].slot[a] >= 0) values[e++] = n(a);
+    if (roller_slot_ >= 0) values[e++] = -n.y();
   }
   for (int j = 0; j < n_slack_; ++j) {
     const RowMap& m = rows_[friction_.rows[j]];
     const Vec2& t = cands[m.candidate].tangent;
     for (int a = 0; a < 2; ++a)
       if (m.slot[a] >= 0) values[e++] = t(a);
+    if (roller_slot_ >= 0) values[e++] = -t.y();
     values[e++] = -1.0;
     values[e++] = 1.0;
   }
@@ -202,8 +218,14 @@ void ContactRows::add_hessian(const Real* z, Real obj_factor, const Real* lambda
       const Real curvature = friction_.weight[j] * friction_.eps * friction_.eps / (q * std::sqrt(q));
       block += obj_factor * curvature * c.tangent * c.tangent.transpose();
     }
+    // The block is the curvature in the node's increment relative to the roller; the roller's
+    // step enters that increment as -e_y (component 2: the y row and column, negated).
+    auto entry = [&block](int a, int b) {
+      const Real sign = (a == 2) != (b == 2) ? -1.0 : 1.0;
+      return sign * block(a == 2 ? 1 : a, b == 2 ? 1 : b);
+    };
     for (; e < hessian_entries_.size() && hessian_entries_[e].row_map == static_cast<int>(k); ++e)
-      values[position[e]] += block(hessian_entries_[e].a, hessian_entries_[e].b);
+      values[position[e]] += entry(hessian_entries_[e].a, hessian_entries_[e].b);
   }
 }
 

@@ -9,7 +9,10 @@
 //
 // Variables  z = [d, s+, s-]: d the formulation's primal variables, and for the "split" friction
 //            one pair s+_j, s-_j >= 0 per friction row j.
-// Node       u_k(d) = base_k + sum_a d[slot_k(a)] e_a   (a = x, y; slot -1: not a variable)
+// Node       u_k(d) = base_k + sum_a d[slot_k(a)] e_a - d[w] e_y   (a = x, y; slot -1: not a
+//            variable; d[w]: the suspended roller's vertical step, when the formulation has one
+//            (IncrementProblem::suspended): moving the roller up is moving every node down
+//            relative to it)
 // Rows       gap  g_k = |x_k^n + u_k - c| - R >= 0                       (one per RowMap)
 //            slip slip_j(d) - s+_j + s-_j = 0                              ("split" only)
 // Friction   sum_j w_j (s+_j + s-_j)  ("split")  or  sum_j w_j sqrt(slip_j^2 + eps^2)
@@ -53,7 +56,9 @@ struct RowForces {
 
 class ContactRows {
  public:
-  ContactRows(const IncrementProblem& problem, std::vector<RowMap> rows, FrictionTerms friction, int n_primal);
+  // roller_slot: the primal variable of the suspended roller's step, -1: the roller is given.
+  ContactRows(const IncrementProblem& problem, std::vector<RowMap> rows, FrictionTerms friction, int n_primal,
+              int roller_slot = -1);
 
   const std::vector<RowMap>& rows() const { return rows_; }
   const FrictionTerms& friction() const { return friction_; }
@@ -89,9 +94,10 @@ class ContactRows {
 
  private:
   struct HessianEntry {
-    int row_map, a, b;  // row, components a >= b
+    int row_map, a, b;  // row, components a >= b (0: x, 1: y, 2: the roller's step)
     int r, c;           // primal indices, r >= c
   };
+  int slot_of(int k, int component) const { return component == 2 ? roller_slot_ : rows_[k].slot[component]; }
   Vec2 increment(int k, const Real* z) const;
   Real slip(int k, const Real* z) const;
   Real regularized_force(int j, const Real* z) const;  // w slip / sqrt(slip^2 + eps^2)
@@ -100,6 +106,7 @@ class ContactRows {
   std::vector<RowMap> rows_;
   FrictionTerms friction_;
   int n_primal_;
+  int roller_slot_;
   int n_slack_;
   std::vector<int> friction_of_;  // per row: friction index or -1
   std::vector<HessianEntry> hessian_entries_;

@@ -154,7 +154,8 @@ std::vector<PressureSample> Simulation::pressure_profile() const {
 }
 
 void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
-                               RollerMotion& motion, VecX& x, Solution& solution) {
+                               RollerMotion& motion, VecX& x, Solution& solution,
+                               const std::optional<SuspendedRoller>& spring) {
   // Nodes farther from the roller than it can travel within the increment cannot touch it.
   const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
   std::vector<ContactCandidate> candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor,
@@ -165,15 +166,18 @@ void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, 
   // the previous increment's, and so needs no more linearisations than the move itself.
   if (solution.contact.converged()) seed_normal_forces(candidates, solution.candidates, solution.contact.contact);
   IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus, scene_.material.poisson_ratio);
+  if (spring) problem.suspend(*spring, 0.0);  // w measured from where `motion` puts the centre
   BackendResult result = backend_->solve(problem, x);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
   // harmonic's crests): retry once from the start-of-step configuration before giving up.
   if (!result.converged() && x.squaredNorm() > 0.0) {
     const int spent = result.iterations;
+    problem.move_roller(0.0);
     result = backend_->solve(problem, VecX::Zero(x.size()));
     result.iterations += spent;
   }
   if (result.converged()) x = result.x;
+  if (result.converged() && spring) motion.end.centre.y() += result.roller_offset.value_or(0.0);
   solution.candidates = std::move(candidates);
   solution.contact = std::move(result);
 }
@@ -276,6 +280,28 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
   const Real max_deflection = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
+  if (scene_.contact.suspension == SuspensionCoupling::Joint && backend_->solves_suspended_roller()) {
+    // The deflection as an unknown of the contact solve (IncrementProblem::suspend): the roller's
+    // potential k_eff w^2/2 + h w in w = w0 + offset.
+    const Real w0 = suspension.predicted_deflection();
+    motion.end.centre = anchor + Vec2(0.0, w0);
+    SuspendedRoller spring;
+    spring.stiffness = suspension.effective_stiffness();
+    spring.load = suspension.effective_stiffness() * w0 + suspension.history_force();
+    const VecX x0 = x;
+    solve_contact(energy, prescribed, predictor, motion, x, solution, spring);
+    add_solve(inc, solution.contact);
+    const Real w = motion.end.centre.y() - anchor.y();
+    if (solution.contact.converged() && solution.contact.roller_offset && std::abs(w) <= max_deflection) {
+      inc.suspension_passes = 1;
+      solution.deflection = w;
+      return solution;
+    }
+    // Not solved jointly (the condensed formulation failed): the coupling passes below, from the
+    // increment's start, with the roller placed.
+    x = x0;
+    solution.contact = BackendResult{};
+  }
   const CouplingResult cr = couple_suspension(suspension, suspension.predicted_deflection(), force_at,
                                               1e-10 * motion.radius, max_deflection, 40);
   inc.suspension_passes = cr.iterations;

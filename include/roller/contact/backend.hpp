@@ -3,6 +3,7 @@
 // solve() validates, times and checks the result (no NaN leaves a backend); the private
 // do_solve() is backend specific. Backends report failure; the driver decides to cut the step.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,8 @@ struct BackendStats {
 struct BackendResult {
   ContactTermination status = ContactTermination::Failed;
   std::string message;
-  VecX x;  // free-dof increment
+  VecX x;                             // free-dof increment
+  std::optional<Real> roller_offset;  // a suspended roller's offset w at the solution (IncrementProblem::suspend)
   std::vector<NodeContact> contact;
   int iterations = 0;  // Newton or interior-point iterations (all passes)
   int factorizations = 0;
@@ -76,6 +78,9 @@ class ContactBackend {
   virtual ~ContactBackend() = default;
   BackendResult solve(IncrementProblem& problem, const VecX& x0);
   virtual std::string name() const = 0;
+  // Whether solve() finds a suspended roller's position with the strip (IncrementProblem::suspend);
+  // a backend that does not is given problems whose roller is placed.
+  virtual bool solves_suspended_roller() const { return false; }
 
  private:
   virtual BackendResult do_solve(IncrementProblem& problem, const VecX& x0) = 0;

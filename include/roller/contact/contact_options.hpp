@@ -25,6 +25,10 @@ enum class FixedPointRule { Converge, Single };
 // (docs/model.md, Arc predictor), or the previous increment carried along with the roller
 // (contact/rolling_predictor.hpp).
 enum class IncrementPredictor { Extrapolate, Arc, Rolling };
+// A suspended roller's position in each increment: Joint: an unknown of the contact solve itself
+// (backends that support it: ipopt, condensed), Passes: found by the driver's coupling loop, one
+// contact solve per pass with the roller placed (dynamics/suspension.hpp; every backend).
+enum class SuspensionCoupling { Joint, Passes };
 
 template <>
 struct EnumNames<ContactBackendKind> {
@@ -50,6 +54,11 @@ template <>
 struct EnumNames<FixedPointRule> {
   static constexpr std::array<std::pair<FixedPointRule, const char*>, 2> names{
       {{FixedPointRule::Converge, "converge"}, {FixedPointRule::Single, "single"}}};
+};
+template <>
+struct EnumNames<SuspensionCoupling> {
+  static constexpr std::array<std::pair<SuspensionCoupling, const char*>, 2> names{
+      {{SuspensionCoupling::Joint, "joint"}, {SuspensionCoupling::Passes, "passes"}}};
 };
 template <>
 struct EnumNames<IncrementPredictor> {
@@ -99,6 +108,7 @@ struct ContactOptions {
   Real friction = 0.0;                                     // Coulomb mu
   std::string candidates = "contact";                      // node set of contact candidates
   IncrementPredictor predictor = IncrementPredictor::Extrapolate;
+  SuspensionCoupling suspension = SuspensionCoupling::Joint;
   PenaltyOptions penalty;
   IpoptOptions ipopt;
   bool is_valid(std::string* why) const;

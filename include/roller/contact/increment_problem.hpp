@@ -11,6 +11,7 @@
 //   slip     s_i(u) = t_i . (u_i - dc) - R dphi   (relative tangential motion of the node against
 //            the roller's surface material point; the roller surface moves R dphi along t)
 // Forces on the strip node: F_N n_i + F_T t_i with F_N >= 0 (compression) and |F_T| <= mu F_N.
+#include <optional>
 #include <vector>
 
 #include "roller/assembly/increment_energy.hpp"
@@ -45,6 +46,18 @@ inline Vec2 contact_force(Real normal_force, Real tangential_force, const Vec2& 
   return normal_force * normal + tangential_force * tangent;
 }
 
+// A roller hanging on its suspension as an unknown of the increment: its centre is the motion's
+// end centre plus w e_y, and w carries the potential P(w) = stiffness w^2/2 + load w (for the
+// suspension's Houbolt equation k_eff w + h = F_y: stiffness k_eff, load h; docs/model.md,
+// "Roller suspension"). A backend that solves for w (IpoptBackend's condensed formulation) finds
+// the strip and the roller in equilibrium together; the others are given the roller's position.
+struct SuspendedRoller {
+  Real stiffness = 0.0;
+  Real load = 0.0;
+  Real energy(Real w) const { return 0.5 * stiffness * w * w + load * w; }
+  Real derivative(Real w) const { return stiffness * w + load; }
+};
+
 class IncrementProblem {
  public:
   IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates, RollerMotion roller,
@@ -61,6 +74,19 @@ class IncrementProblem {
   const std::vector<ContactCandidate>& candidates() const { return candidates_; }
   std::vector<ContactCandidate>& candidates() { return candidates_; }
   const RollerMotion& roller() const { return roller_; }
+
+  // The roller's vertical position as an unknown (SuspendedRoller): w0 is where the motion's end
+  // centre puts it now. move_roller sets w, and with it the centre every kinematic function uses.
+  void suspend(const SuspendedRoller& spring, Real w0) {
+    suspended_ = spring;
+    w_ = w0;
+  }
+  const std::optional<SuspendedRoller>& suspended() const { return suspended_; }
+  Real roller_offset() const { return w_; }
+  void move_roller(Real w) {
+    roller_.end.centre.y() += w - w_;
+    w_ = w;
+  }
   Real youngs_modulus() const { return youngs_modulus_; }
   Real plane_strain_modulus() const;  // E* = E / (1 - nu^2)
 
@@ -84,6 +110,8 @@ class IncrementProblem {
   IncrementEnergy& strip_;
   std::vector<ContactCandidate> candidates_;
   RollerMotion roller_;
+  std::optional<SuspendedRoller> suspended_;
+  Real w_ = 0.0;  // the suspended roller's offset w (its centre: roller_.end.centre)
   Real youngs_modulus_;
   Real poisson_ratio_;
   Index n_free_;

@@ -12,6 +12,8 @@ class IpoptBackend : public ContactBackend {
  public:
   explicit IpoptBackend(ContactOptions options, LinearSolverOptions linear = {});
   std::string name() const override { return "ipopt"; }
+  // The condensed formulation solves for a suspended roller's position; the full one does not.
+  bool solves_suspended_roller() const override { return options_.ipopt.formulation == IpoptFormulation::Condensed; }
 
  private:
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
