@@ -127,7 +127,7 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
   CondensedOutcome condensed = solve_condensed(problem, x0, options_, linear_);
   // The full formulation has no roller variable: a suspended roller's failure goes back to the
   // driver, which couples the suspension by passes with the roller placed instead.
-  if (!condensed.formulation_failed || problem.suspended()) return std::move(condensed.result);
+  if (!condensed.formulation_failed || problem.roller_potential()) return std::move(condensed.result);
   // The condensed formulation itself failed (singular interior tangent, no descent, the
   // linearisations ran out): the full formulation solves the increment from the same start.
   BackendResult full = solve_full(problem, x0, options_);
@@ -179,9 +179,9 @@ struct FirstPassNlp {
     } else {
       if (!condense(problem, initial_working_set(problem, x0, scales.length), x0, g, k, solver, &condensation))
         throw NumericalError("FirstPassNlp: the condensation failed: " + solver.message());
-      objective = problem.suspended()
-                      ? std::make_unique<QuadraticModel>(condensation, *problem.suspended(), problem.roller_offset())
-                      : std::make_unique<QuadraticModel>(condensation);
+      objective = problem.roller_potential() ? std::make_unique<QuadraticModel>(
+                                                   condensation, *problem.roller_potential(), problem.roller_offset())
+                                             : std::make_unique<QuadraticModel>(condensation);
       rows = condensation.rows;
       start.primal = VecX::Zero(objective->n());
       for (const RowMap& r : rows) {

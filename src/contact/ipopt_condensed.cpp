@@ -218,7 +218,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   MumpsSolver solver(MumpsSolver::Symmetry::Symmetric, linear);
   std::vector<int> working = initial_working_set(problem, x, scales.length);
   // A suspended roller: its offset w is the last unknown (header comment, "Suspended roller").
-  const std::optional<SuspendedRoller> spring = problem.suspended();
+  const std::optional<RollerPotential> spring = problem.roller_potential();
   auto roller_energy = [&spring](Real w) { return spring ? spring->energy(w) : 0.0; };
   Condensation cond;
   const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
@@ -248,6 +248,10 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     FrictionTerms friction;
     Real dw = 0.0;  // the suspended roller's step
     if (m == 0) {   // no working candidate: the strip alone (and the roller hangs free)
+      if (spring && !(spring->stiffness > 0.0))
+        return formulation_failed(result, ContactTermination::Failed,
+                                  "ipopt backend (condensed): the roller carries a prescribed force but touches no "
+                                  "candidate: nothing holds it");
       if (spring) dw = -spring->derivative(problem.roller_offset()) / spring->stiffness;
       fixed_point_converged = true;
       std::fill(normal.begin(), normal.end(), 0.0);

@@ -34,7 +34,7 @@ bool condense(const IncrementProblem& problem, const std::vector<int>& working, 
 class QuadraticModel : public NlpObjective {
  public:
   explicit QuadraticModel(const Condensation& c) : c_(c) {}
-  QuadraticModel(const Condensation& c, const SuspendedRoller& roller, Real w)
+  QuadraticModel(const Condensation& c, const RollerPotential& roller, Real w)
       : c_(c), roller_(roller), roller_gradient_(roller.derivative(w)) {}
   int n() const override { return static_cast<int>(c_.gradient.size()) + (roller_ ? 1 : 0); }
   int roller_slot() const override { return roller_ ? static_cast<int>(c_.gradient.size()) : -1; }
@@ -47,7 +47,7 @@ class QuadraticModel : public NlpObjective {
 
  private:
   const Condensation& c_;
-  std::optional<SuspendedRoller> roller_;
+  std::optional<RollerPotential> roller_;
   Real roller_gradient_ = 0.0;  // P'(w) at the linearisation
 };
 

@@ -1,5 +1,6 @@
 #include "roller/driver/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -155,7 +156,7 @@ std::vector<PressureSample> Simulation::pressure_profile() const {
 
 void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
                                RollerMotion& motion, VecX& x, Solution& solution,
-                               const std::optional<SuspendedRoller>& spring) {
+                               const std::optional<RollerPotential>& spring) {
   // Nodes farther from the roller than it can travel within the increment cannot touch it.
   const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
   std::vector<ContactCandidate> candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor,
@@ -166,7 +167,7 @@ void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, 
   // the previous increment's, and so needs no more linearisations than the move itself.
   if (solution.contact.converged()) seed_normal_forces(candidates, solution.candidates, solution.contact.contact);
   IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus, scene_.material.poisson_ratio);
-  if (spring) problem.suspend(*spring, 0.0);  // w measured from where `motion` puts the centre
+  if (spring) problem.free_roller(*spring, 0.0);  // w measured from where `motion` puts the centre
   BackendResult result = backend_->solve(problem, x);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
   // harmonic's crests): retry once from the start-of-step configuration before giving up.
@@ -280,12 +281,12 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
   const Real max_deflection = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
-  if (scene_.contact.suspension == SuspensionCoupling::Joint && backend_->solves_suspended_roller()) {
+  if (scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_potential_roller()) {
     // The deflection as an unknown of the contact solve (IncrementProblem::suspend): the roller's
     // potential k_eff w^2/2 + h w in w = w0 + offset.
     const Real w0 = suspension.predicted_deflection();
     motion.end.centre = anchor + Vec2(0.0, w0);
-    SuspendedRoller spring;
+    RollerPotential spring;
     spring.stiffness = suspension.effective_stiffness();
     spring.load = suspension.effective_stiffness() * w0 + suspension.history_force();
     const VecX x0 = x;
@@ -381,6 +382,33 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
       const std::optional<Vec2> f = solve();
       if (!f) return fail(fmt::format("the contact solve failed: {}", solution.contact.message));
       return f;
+    }
+    // The roller on the strip already (the last increment's contact): the height as an unknown of
+    // the contact solve, the load's potential F w (IncrementProblem::suspend with stiffness 0), so
+    // F_y = F at the solution. A roller still to meet the strip finds it by passes: nothing sets
+    // the joint solve's length scale and working set before contact.
+    const bool on_strip = std::any_of(contact_.begin(), contact_.end(), [](const NodeContactRecord& c) {
+      return c.contact.status != ContactStatus::Open;
+    });
+    if (on_strip && scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_potential_roller()) {
+      const Real w0 = solution.load_offset.y();
+      motion.end.centre.y() = path.y() + w0;
+      RollerPotential load;
+      load.load = *force.fy;
+      const VecX x0 = x;
+      solve_contact(energy, prescribed, predictor, motion, x, solution, load);
+      add_solve(inc, solution.contact);
+      ++inc.load_passes;
+      const Real w = motion.end.centre.y() - path.y();
+      if (solution.contact.converged() && solution.contact.roller_offset &&
+          std::abs(w - w0) <= settings(ForceAxis::Vertical).max_offset_change) {
+        solution.load_offset.y() = w;
+        return strip_force(solution, motion, energy);
+      }
+      // Not solved jointly (e.g. the roller touches nothing yet): the passes below.
+      x = x0;
+      solution.contact = BackendResult{};
+      motion.end.centre.y() = path.y() + w0;
     }
     std::optional<Vec2> last;
     auto fy_at = [&](Real w) -> std::optional<Real> {

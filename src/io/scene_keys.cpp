@@ -854,9 +854,9 @@ std::vector<SceneKey> make_keys() {
           "start of each increment: the previous increment scaled, or that and the thesis's arc rule, or "
           "it carried along with the roller (rolling)"),
       key(
-          "contact.suspension", [](auto& s) -> auto& { return s.contact.suspension; },
-          "a suspended roller's position: solved with the strip in one contact solve (joint; ipopt's condensed "
-          "formulation, the penalty backend always uses passes) or by coupling passes with the roller placed"),
+          "contact.roller_coupling", [](auto& s) -> auto& { return s.contact.roller_coupling; },
+          "the height of a suspended or force-loaded roller: solved with the strip in one contact solve (joint; "
+          "ipopt's condensed formulation, the penalty backend always uses passes) or by coupling passes"),
       key(
           "contact.penalty.factor", [](auto& s) -> auto& { return s.contact.penalty.factor; },
           "normal penalty kappa_N = factor * E* * l_i / h_i", above(0.0)),

@@ -158,7 +158,7 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
                                        formulation == "full" ? "full" : "condensed");
       o.ipopt.regularization = 1e-2;  // resolvable by the difference step below
       IncrementProblem& p = s.inc.problem;
-      if (suspended) p.suspend(SuspendedRoller{3e4, -50.0}, 1e-3);
+      if (suspended) p.free_roller(RollerPotential{3e4, -50.0}, 1e-3);
       long n = 0, m = 0;
       double f = 0.0;
       VecX grad, g;

@@ -16,8 +16,8 @@ TEST_CASE("step counters: a suspended roller's linearisations and NLP solves sum
   // tangent once, so the step's factorisations and linearisations agree when both are summed
   // (the last contact solve's linearisations alone were a third of the factorisations). The
   // suspension coupled by passes: a joint solve is one contact solve a step.
-  Simulation sim(
-      load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z3_data01.toml", {{"contact.suspension", "\"passes\""}}));
+  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z3_data01.toml",
+                            {{"contact.roller_coupling", "\"passes\""}}));
   int steps_with_several_passes = 0;
   for (int step = 1; step <= 6; ++step) {
     const Simulation::StepResult r = sim.advance_step(step);

@@ -1,7 +1,8 @@
-// A suspended roller solved with the strip (contact.suspension = "joint": its vertical offset an
-// unknown of the condensed NLP, contact/ipopt_condensed.cpp) against the driver's coupling passes
-// (dynamics/suspension.hpp) on the thesis's Z4 impact at refine 1: the same deflection and forces
-// step by step, one contact solve per step instead of three or four, and fewer linearisations.
+// A roller whose height is not prescribed, solved with the strip (contact.roller_coupling =
+// "joint": its height an unknown of the condensed NLP, contact/ipopt_condensed.cpp), against the
+// driver's coupling passes (dynamics/suspension.hpp, driver/force_control.hpp): the thesis's Z4
+// impact (suspended) and burnishing (force-loaded) at refine 1 give the same answers step by step
+// with one contact solve per step instead of two to four, and fewer linearisations.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -15,8 +16,8 @@ using namespace roller;
 TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes", "[dynamics][suspension]") {
   const std::string scene = std::string(ROLLER_SOURCE_DIR) + "/problems/z4_v25.toml";
   Simulation joint(load_scene(scene));
-  Simulation passes(load_scene(scene, {{"contact.suspension", "\"passes\""}}));
-  REQUIRE(joint.scene().contact.suspension == SuspensionCoupling::Joint);
+  Simulation passes(load_scene(scene, {{"contact.roller_coupling", "\"passes\""}}));
+  REQUIRE(joint.scene().contact.roller_coupling == RollerCoupling::Joint);
   // The passes stop when w changes by less than 1e-10 R: that, and the contact forces' own
   // accuracy (the solver's tol), bound the difference.
   const Real w_tol = 10.0 * 1e-10 * joint.scene().roller->radius;
@@ -52,10 +53,44 @@ TEST_CASE("Suspended roller: the penalty backend couples by passes whatever the 
           "[dynamics][suspension]") {
   const std::string scene = std::string(ROLLER_SOURCE_DIR) + "/problems/z4_v25.toml";
   Simulation penalty(load_scene(scene, {{"contact.backend", "\"penalty\""}}));
-  REQUIRE(penalty.scene().contact.suspension == SuspensionCoupling::Joint);
+  REQUIRE(penalty.scene().contact.roller_coupling == RollerCoupling::Joint);
   for (int step = 1; step <= 6; ++step) {
     const Simulation::StepResult r = penalty.advance_step(step);
     REQUIRE(r.converged);
     if (step >= 5) CHECK(r.last.suspension_passes >= 2);  // in contact from step 4 on
   }
+}
+
+TEST_CASE("Force-loaded roller: one joint solve per increment on the strip equals the force passes",
+          "[contact][force]") {
+  // Burnishing's first pass at refine 1: pressed to P = 420 N/mm (steps 1-3, frictionless), then
+  // rolled under P with mu = 0.1. From the second increment on the strip the height is an unknown
+  // of the contact solve; the passes find it by a root search to 1e-6 of P.
+  const std::string scene = std::string(ROLLER_SOURCE_DIR) + "/problems/burnishing.toml";
+  Simulation joint(load_scene(scene, {{"mesh.refine", "1"}}));
+  Simulation passes(load_scene(scene, {{"mesh.refine", "1"}, {"contact.roller_coupling", "\"passes\""}}));
+  const Real p = 420.0;
+  int joint_linearisations = 0, passes_linearisations = 0;
+  for (int step = 1; step <= 10; ++step) {
+    INFO("step " << step);
+    const Simulation::StepResult a = joint.advance_step(step);
+    const Simulation::StepResult b = passes.advance_step(step);
+    REQUIRE(a.converged);
+    REQUIRE(b.converged);
+    joint_linearisations += a.stats.linearisations;
+    passes_linearisations += b.stats.linearisations;
+    if (step >= 2) {
+      CHECK(a.last.load_passes == 1);
+      CHECK(b.last.load_passes >= 2);
+    }
+    const Real p_step = p * std::min(step, 3) / 3.0;  // the press ramps P over steps 1-3
+    if (step >= 2) CHECK(std::abs(joint.roller_force().y() - p_step) <= 1e-7 * p);
+    CHECK(std::abs(passes.roller_force().y() - joint.roller_force().y()) <= 2e-6 * p);
+    // The friction force follows the path of the load: within 1e-3 of it.
+    CHECK(std::abs(passes.roller_force().x() - joint.roller_force().x()) <=
+          1e-3 * std::max(1.0, std::abs(passes.roller_force().x())));
+    CHECK(std::abs(joint.pose().centre.y() - passes.pose().centre.y()) <= 1e-5);
+  }
+  INFO("linearisations: joint " << joint_linearisations << ", passes " << passes_linearisations);
+  CHECK(joint_linearisations < passes_linearisations);
 }

@@ -80,7 +80,7 @@ class ContactBackend {
   virtual std::string name() const = 0;
   // Whether solve() finds a suspended roller's position with the strip (IncrementProblem::suspend);
   // a backend that does not is given problems whose roller is placed.
-  virtual bool solves_suspended_roller() const { return false; }
+  virtual bool solves_potential_roller() const { return false; }
 
  private:
   virtual BackendResult do_solve(IncrementProblem& problem, const VecX& x0) = 0;

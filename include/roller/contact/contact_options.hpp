@@ -25,10 +25,12 @@ enum class FixedPointRule { Converge, Single };
 // (docs/model.md, Arc predictor), or the previous increment carried along with the roller
 // (contact/rolling_predictor.hpp).
 enum class IncrementPredictor { Extrapolate, Arc, Rolling };
-// A suspended roller's position in each increment: Joint: an unknown of the contact solve itself
+// The height of a roller that is not prescribed (hanging on its suspension, or carrying a
+// prescribed vertical force) in each increment: Joint: an unknown of the contact solve itself
 // (backends that support it: ipopt, condensed), Passes: found by the driver's coupling loop, one
-// contact solve per pass with the roller placed (dynamics/suspension.hpp; every backend).
-enum class SuspensionCoupling { Joint, Passes };
+// contact solve per pass with the roller placed (dynamics/suspension.hpp, driver/force_control.hpp;
+// every backend).
+enum class RollerCoupling { Joint, Passes };
 
 template <>
 struct EnumNames<ContactBackendKind> {
@@ -56,9 +58,9 @@ struct EnumNames<FixedPointRule> {
       {{FixedPointRule::Converge, "converge"}, {FixedPointRule::Single, "single"}}};
 };
 template <>
-struct EnumNames<SuspensionCoupling> {
-  static constexpr std::array<std::pair<SuspensionCoupling, const char*>, 2> names{
-      {{SuspensionCoupling::Joint, "joint"}, {SuspensionCoupling::Passes, "passes"}}};
+struct EnumNames<RollerCoupling> {
+  static constexpr std::array<std::pair<RollerCoupling, const char*>, 2> names{
+      {{RollerCoupling::Joint, "joint"}, {RollerCoupling::Passes, "passes"}}};
 };
 template <>
 struct EnumNames<IncrementPredictor> {
@@ -108,7 +110,7 @@ struct ContactOptions {
   Real friction = 0.0;                                     // Coulomb mu
   std::string candidates = "contact";                      // node set of contact candidates
   IncrementPredictor predictor = IncrementPredictor::Extrapolate;
-  SuspensionCoupling suspension = SuspensionCoupling::Joint;
+  RollerCoupling roller_coupling = RollerCoupling::Joint;
   PenaltyOptions penalty;
   IpoptOptions ipopt;
   bool is_valid(std::string* why) const;

@@ -46,12 +46,14 @@ inline Vec2 contact_force(Real normal_force, Real tangential_force, const Vec2& 
   return normal_force * normal + tangential_force * tangent;
 }
 
-// A roller hanging on its suspension as an unknown of the increment: its centre is the motion's
-// end centre plus w e_y, and w carries the potential P(w) = stiffness w^2/2 + load w (for the
-// suspension's Houbolt equation k_eff w + h = F_y: stiffness k_eff, load h; docs/model.md,
-// "Roller suspension"). A backend that solves for w (IpoptBackend's condensed formulation) finds
-// the strip and the roller in equilibrium together; the others are given the roller's position.
-struct SuspendedRoller {
+// A roller free to move vertically, as an unknown of the increment: its centre is the motion's
+// end centre plus w e_y, and w carries the potential P(w) = stiffness w^2/2 + load w, so that
+// P'(w) = F_y (the strip's force on the roller) at equilibrium: for the suspension's Houbolt
+// equation k_eff w + h = F_y stiffness k_eff and load h (docs/model.md, "Roller suspension"), for a
+// prescribed vertical force F stiffness 0 and load F. A backend that solves for w (IpoptBackend's
+// condensed formulation) finds the strip and the roller in equilibrium together; the others are
+// given the roller's position.
+struct RollerPotential {
   Real stiffness = 0.0;
   Real load = 0.0;
   Real energy(Real w) const { return 0.5 * stiffness * w * w + load * w; }
@@ -75,13 +77,13 @@ class IncrementProblem {
   std::vector<ContactCandidate>& candidates() { return candidates_; }
   const RollerMotion& roller() const { return roller_; }
 
-  // The roller's vertical position as an unknown (SuspendedRoller): w0 is where the motion's end
+  // The roller's vertical position as an unknown (RollerPotential): w0 is where the motion's end
   // centre puts it now. move_roller sets w, and with it the centre every kinematic function uses.
-  void suspend(const SuspendedRoller& spring, Real w0) {
-    suspended_ = spring;
+  void free_roller(const RollerPotential& spring, Real w0) {
+    potential_ = spring;
     w_ = w0;
   }
-  const std::optional<SuspendedRoller>& suspended() const { return suspended_; }
+  const std::optional<RollerPotential>& roller_potential() const { return potential_; }
   Real roller_offset() const { return w_; }
   void move_roller(Real w) {
     roller_.end.centre.y() += w - w_;
@@ -110,7 +112,7 @@ class IncrementProblem {
   IncrementEnergy& strip_;
   std::vector<ContactCandidate> candidates_;
   RollerMotion roller_;
-  std::optional<SuspendedRoller> suspended_;
+  std::optional<RollerPotential> potential_;
   Real w_ = 0.0;  // the suspended roller's offset w (its centre: roller_.end.centre)
   Real youngs_modulus_;
   Real poisson_ratio_;

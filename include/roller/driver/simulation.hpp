@@ -179,7 +179,7 @@ class Simulation {
   // this one). With `spring` the roller's vertical offset from there is an unknown of the solve
   // (IncrementProblem::suspend), and `motion` ends where the solve put the roller.
   void solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
-                     VecX& x, Solution& solution, const std::optional<SuspendedRoller>& spring = std::nullopt);
+                     VecX& x, Solution& solution, const std::optional<RollerPotential>& spring = std::nullopt);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
   Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
                            VecX& x, Increment& inc);
