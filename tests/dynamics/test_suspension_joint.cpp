@@ -7,29 +7,54 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
 
 using namespace roller;
 
-TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes", "[dynamics][suspension]") {
-  const std::string scene = std::string(ROLLER_SOURCE_DIR) + "/problems/z4_v25.toml";
-  Simulation joint(load_scene(scene));
-  Simulation passes(load_scene(scene, {{"contact.roller_coupling", "\"passes\""}}));
-  REQUIRE(joint.scene().contact.roller_coupling == RollerCoupling::Joint);
-  // The passes stop when w changes by less than 1e-10 R: that, and the contact forces' own
-  // accuracy (the solver's tol), bound the difference.
-  const Real w_tol = 10.0 * 1e-10 * joint.scene().roller->radius;
-  int joint_linearisations = 0, passes_linearisations = 0, touching_steps = 0;
-  for (int step = 1; step <= joint.scene().steps.n_steps; ++step) {
-    INFO("step " << step);
-    const Simulation::StepResult a = joint.advance_step(step);
-    const Simulation::StepResult b = passes.advance_step(step);
+namespace {
+
+// One scene run twice side by side: the roller's height joint (the default) and by passes.
+struct JointAndPasses {
+  JointAndPasses(const std::string& scene, std::vector<SceneOverride> overrides)
+      : joint(load_scene(scene, overrides)), passes(load_scene(scene, with_passes(overrides))) {}
+  static std::vector<SceneOverride> with_passes(std::vector<SceneOverride> o) {
+    o.push_back({"contact.roller_coupling", "\"passes\""});
+    return o;
+  }
+  // Advances both through `step` (each must converge) and counts their linearisations.
+  std::pair<Simulation::StepResult, Simulation::StepResult> advance(int step) {
+    auto a = joint.advance_step(step);
+    auto b = passes.advance_step(step);
     REQUIRE(a.converged);
     REQUIRE(b.converged);
     joint_linearisations += a.stats.linearisations;
     passes_linearisations += b.stats.linearisations;
+    return {a, b};
+  }
+  Simulation joint, passes;
+  int joint_linearisations = 0, passes_linearisations = 0;
+};
+
+}  // namespace
+
+TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes", "[dynamics][suspension]") {
+  const std::string scene = std::string(ROLLER_SOURCE_DIR) + "/problems/z4_v25.toml";
+  JointAndPasses run(scene, {});
+  const Simulation& joint = run.joint;
+  const Simulation& passes = run.passes;
+  REQUIRE(joint.scene().contact.roller_coupling == RollerCoupling::Joint);
+  // The passes stop when w changes by less than 1e-10 R: that, and the contact forces' own
+  // accuracy (the solver's tol), bound the difference.
+  const Real w_tol = 10.0 * 1e-10 * joint.scene().roller->radius;
+  int touching_steps = 0;
+  for (int step = 1; step <= joint.scene().steps.n_steps; ++step) {
+    INFO("step " << step);
+    const auto [a, b] = run.advance(step);
     const Real fy = passes.roller_force().y();
     CHECK(a.last.suspension_passes == 1);
     if (fy > 1.0) {  // before contact the first pass already balances the suspension
@@ -45,8 +70,8 @@ TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes
           1e-5 * std::max(0.1, passes.model().total_displacement().lpNorm<Eigen::Infinity>()));
   }
   CHECK(touching_steps >= 10);
-  INFO("linearisations: joint " << joint_linearisations << ", passes " << passes_linearisations);
-  CHECK(joint_linearisations < passes_linearisations);
+  INFO("linearisations: joint " << run.joint_linearisations << ", passes " << run.passes_linearisations);
+  CHECK(run.joint_linearisations < run.passes_linearisations);
 }
 
 TEST_CASE("Suspended roller: the penalty backend couples by passes whatever the option says",
@@ -67,18 +92,13 @@ TEST_CASE("Force-loaded roller: one joint solve per increment on the strip equal
   // rolled under P with mu = 0.1. From the second increment on the strip the height is an unknown
   // of the contact solve; the passes find it by a root search to 1e-6 of P.
   const std::string scene = std::string(ROLLER_SOURCE_DIR) + "/problems/burnishing.toml";
-  Simulation joint(load_scene(scene, {{"mesh.refine", "1"}}));
-  Simulation passes(load_scene(scene, {{"mesh.refine", "1"}, {"contact.roller_coupling", "\"passes\""}}));
+  JointAndPasses run(scene, {{"mesh.refine", "1"}});
+  const Simulation& joint = run.joint;
+  const Simulation& passes = run.passes;
   const Real p = 420.0;
-  int joint_linearisations = 0, passes_linearisations = 0;
   for (int step = 1; step <= 10; ++step) {
     INFO("step " << step);
-    const Simulation::StepResult a = joint.advance_step(step);
-    const Simulation::StepResult b = passes.advance_step(step);
-    REQUIRE(a.converged);
-    REQUIRE(b.converged);
-    joint_linearisations += a.stats.linearisations;
-    passes_linearisations += b.stats.linearisations;
+    const auto [a, b] = run.advance(step);
     if (step >= 2) {
       CHECK(a.last.load_passes == 1);
       CHECK(b.last.load_passes >= 2);
@@ -91,6 +111,6 @@ TEST_CASE("Force-loaded roller: one joint solve per increment on the strip equal
           1e-3 * std::max(1.0, std::abs(passes.roller_force().x())));
     CHECK(std::abs(joint.pose().centre.y() - passes.pose().centre.y()) <= 1e-5);
   }
-  INFO("linearisations: joint " << joint_linearisations << ", passes " << passes_linearisations);
-  CHECK(joint_linearisations < passes_linearisations);
+  INFO("linearisations: joint " << run.joint_linearisations << ", passes " << run.passes_linearisations);
+  CHECK(run.joint_linearisations < run.passes_linearisations);
 }
