@@ -67,7 +67,7 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
   if (x0.size() != problem.n_free())
     throw std::logic_error(fmt::format("{} backend: start vector has {} entries, the problem {} free dofs", name(),
                                        x0.size(), problem.n_free()));
-  if (problem.roller_potential() && !solves_potential_roller())
+  if (problem.roller_potential() && !solves_roller_height())
     throw std::logic_error(fmt::format("{} backend: a suspended roller's position is not among its unknowns", name()));
   const auto t0 = std::chrono::steady_clock::now();
   BackendResult r = do_solve(problem, x0);

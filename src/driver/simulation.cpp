@@ -1,6 +1,5 @@
 #include "roller/driver/simulation.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -281,8 +280,8 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
   const Real max_deflection = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
-  if (scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_potential_roller()) {
-    // The deflection as an unknown of the contact solve (IncrementProblem::suspend): the roller's
+  if (scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_roller_height()) {
+    // The deflection as an unknown of the contact solve (IncrementProblem::free_roller): the roller's
     // potential k_eff w^2/2 + h w in w = w0 + offset.
     const Real w0 = suspension.predicted_deflection();
     motion.end.centre = anchor + Vec2(0.0, w0);
@@ -384,13 +383,11 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
       return f;
     }
     // The roller on the strip already (the last increment's contact): the height as an unknown of
-    // the contact solve, the load's potential F w (IncrementProblem::suspend with stiffness 0), so
+    // the contact solve, the load's potential F w (IncrementProblem::free_roller with stiffness 0), so
     // F_y = F at the solution. A roller still to meet the strip finds it by passes: nothing sets
     // the joint solve's length scale and working set before contact.
-    const bool on_strip = std::any_of(contact_.begin(), contact_.end(), [](const NodeContactRecord& c) {
-      return c.contact.status != ContactStatus::Open;
-    });
-    if (on_strip && scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_potential_roller()) {
+    if (friction_.touching() && scene_.contact.roller_coupling == RollerCoupling::Joint &&
+        backend_->solves_roller_height()) {
       const Real w0 = solution.load_offset.y();
       motion.end.centre.y() = path.y() + w0;
       RollerPotential load;

@@ -101,6 +101,27 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   CHECK(resumed_summary["passes"] == summary["passes"]);
 }
 
+TEST_CASE("a force-loaded roller resumes on the strip to the same bytes", "[contact][passes][force]") {
+  // Burnishing: pressed to P in steps 1-3, rolled under P. The joint height solve runs once the
+  // roller was on the strip in the previous increment; a resumed run must know that from its
+  // checkpoint, or its first increment takes the passes and the answers drift at 1e-6.
+  test::TempDir dir("roller_force_resume");
+  const fs::path whole = dir.path() / "whole", split = dir.path() / "split";
+  const std::string run =
+      "run problems/burnishing.toml --steps 8 --set passes.count=1 --set output.save_states=[5] --set output.vtu=false "
+      "--out ";
+  const test::Run r = test::run_roller(run + whole.string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  fs::copy(whole, split);
+  fs::copy_file(whole / "state_0005.cbor", split / "checkpoint.cbor", fs::copy_options::overwrite_existing);
+  const test::Run resumed = test::run_roller(run + split.string() + " --resume");
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK_THAT(resumed.output, Catch::Contains("resuming after step 5"));
+  for (const char* f : {"roller.csv", "contact.csv"}) CHECK(test::read_text(split / f) == test::read_text(whole / f));
+}
+
 TEST_CASE("passes: alternating passes run the path mirrored, horizontal forces reversed with it", "[contact][passes]") {
   RollerSpec spec;
   spec.radius = 50.0;

@@ -61,7 +61,7 @@ struct BackendResult {
   ContactTermination status = ContactTermination::Failed;
   std::string message;
   VecX x;                             // free-dof increment
-  std::optional<Real> roller_offset;  // a suspended roller's offset w at the solution (IncrementProblem::suspend)
+  std::optional<Real> roller_offset;  // a suspended roller's offset w at the solution (IncrementProblem::free_roller)
   std::vector<NodeContact> contact;
   int iterations = 0;  // Newton or interior-point iterations (all passes)
   int factorizations = 0;
@@ -78,9 +78,9 @@ class ContactBackend {
   virtual ~ContactBackend() = default;
   BackendResult solve(IncrementProblem& problem, const VecX& x0);
   virtual std::string name() const = 0;
-  // Whether solve() finds a suspended roller's position with the strip (IncrementProblem::suspend);
+  // Whether solve() finds a suspended roller's position with the strip (IncrementProblem::free_roller);
   // a backend that does not is given problems whose roller is placed.
-  virtual bool solves_potential_roller() const { return false; }
+  virtual bool solves_roller_height() const { return false; }
 
  private:
   virtual BackendResult do_solve(IncrementProblem& problem, const VecX& x0) = 0;

@@ -18,6 +18,9 @@ class FrictionHistory {
   void seed(std::vector<ContactCandidate>& candidates) const;
   // Replaces the history by the contact of a converged increment (same order as candidates).
   void record(const std::vector<ContactCandidate>& candidates, const std::vector<NodeContact>& contact);
+  // Whether any node touched the roller at the end of the last converged increment (kept in the
+  // state files, so a resumed run knows it too).
+  bool touching() const { return !nodes_.empty(); }
 
   // State files: [node, F_N, F_T, gap, slip, status] per node, and back (throws
   // nlohmann::json::exception on a damaged list).

@@ -13,7 +13,7 @@ class IpoptBackend : public ContactBackend {
   explicit IpoptBackend(ContactOptions options, LinearSolverOptions linear = {});
   std::string name() const override { return "ipopt"; }
   // The condensed formulation solves for a suspended roller's position; the full one does not.
-  bool solves_potential_roller() const override { return options_.ipopt.formulation == IpoptFormulation::Condensed; }
+  bool solves_roller_height() const override { return options_.ipopt.formulation == IpoptFormulation::Condensed; }
 
  private:
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;

@@ -177,7 +177,7 @@ class Simulation {
   // One contact solve of the increment with the roller at `motion`: the candidates and the
   // backend's result replace `solution`'s (which, when converged, is the last pass's and seeds
   // this one). With `spring` the roller's vertical offset from there is an unknown of the solve
-  // (IncrementProblem::suspend), and `motion` ends where the solve put the roller.
+  // (IncrementProblem::free_roller), and `motion` ends where the solve put the roller.
   void solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
                      VecX& x, Solution& solution, const std::optional<RollerPotential>& spring = std::nullopt);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
