@@ -155,7 +155,7 @@ std::vector<PressureSample> Simulation::pressure_profile() const {
 
 void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
                                RollerMotion& motion, VecX& x, Solution& solution,
-                               const std::optional<RollerPotential>& spring) {
+                               const std::optional<RollerPotential>& potential) {
   // Nodes farther from the roller than it can travel within the increment cannot touch it.
   const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
   std::vector<ContactCandidate> candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor,
@@ -166,7 +166,7 @@ void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, 
   // the previous increment's, and so needs no more linearisations than the move itself.
   if (solution.contact.converged()) seed_normal_forces(candidates, solution.candidates, solution.contact.contact);
   IncrementProblem problem(energy, candidates, motion, scene_.material.youngs_modulus, scene_.material.poisson_ratio);
-  if (spring) problem.free_roller(*spring, 0.0);  // w measured from where `motion` puts the centre
+  if (potential) problem.free_roller(*potential, 0.0);  // w measured from where `motion` puts the centre
   BackendResult result = backend_->solve(problem, x);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
   // harmonic's crests): retry once from the start-of-step configuration before giving up.
@@ -177,9 +177,30 @@ void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, 
     result.iterations += spent;
   }
   if (result.converged()) x = result.x;
-  if (result.converged() && spring) motion.end.centre.y() += result.roller_offset.value_or(0.0);
+  if (result.converged() && potential) motion.end.centre.y() += result.roller_offset.value_or(0.0);
   solution.candidates = std::move(candidates);
   solution.contact = std::move(result);
+}
+
+bool Simulation::joint_height() const {
+  return scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_roller_height();
+}
+
+std::optional<Real> Simulation::solve_height_jointly(IncrementEnergy& energy, const VecX& prescribed,
+                                                     const VecX& predictor, RollerMotion& motion, VecX& x,
+                                                     Solution& solution, Increment& inc,
+                                                     const RollerPotential& potential, Real max_offset) {
+  const VecX x0 = x;
+  const Real y0 = motion.end.centre.y();
+  solve_contact(energy, prescribed, predictor, motion, x, solution, potential);
+  add_solve(inc, solution.contact);
+  const Real offset = motion.end.centre.y() - y0;
+  if (solution.contact.converged() && solution.contact.roller_offset && std::abs(offset) <= max_offset) return offset;
+  // Not solved jointly (the condensed formulation failed): everything as it was, for the passes.
+  x = x0;
+  solution.contact = BackendResult{};
+  motion.end.centre.y() = y0;
+  return std::nullopt;
 }
 
 void Simulation::record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result,
@@ -280,27 +301,20 @@ Simulation::Solution Simulation::solve_suspended(IncrementEnergy& energy, const 
   const Suspension& suspension = *dynamics_.suspension();
   // A deflection beyond the reach allowed for the scene's motions (docs/scenes.md, Loading rules).
   const Real max_deflection = 1e3 * std::max(scene_.mesh.length, scene_.mesh.height);
-  if (scene_.contact.roller_coupling == RollerCoupling::Joint && backend_->solves_roller_height()) {
-    // The deflection as an unknown of the contact solve (IncrementProblem::free_roller): the roller's
-    // potential k_eff w^2/2 + h w in w = w0 + offset.
+  if (joint_height()) {
+    // The deflection as an unknown of the contact solve: the roller's potential k_eff w^2/2 + h w
+    // in w = w0 + offset.
     const Real w0 = suspension.predicted_deflection();
     motion.end.centre = anchor + Vec2(0.0, w0);
     RollerPotential spring;
     spring.stiffness = suspension.effective_stiffness();
     spring.load = suspension.effective_stiffness() * w0 + suspension.history_force();
-    const VecX x0 = x;
-    solve_contact(energy, prescribed, predictor, motion, x, solution, spring);
-    add_solve(inc, solution.contact);
-    const Real w = motion.end.centre.y() - anchor.y();
-    if (solution.contact.converged() && solution.contact.roller_offset && std::abs(w) <= max_deflection) {
+    if (const auto offset =
+            solve_height_jointly(energy, prescribed, predictor, motion, x, solution, inc, spring, max_deflection)) {
       inc.suspension_passes = 1;
-      solution.deflection = w;
+      solution.deflection = w0 + *offset;
       return solution;
     }
-    // Not solved jointly (the condensed formulation failed): the coupling passes below, from the
-    // increment's start, with the roller placed.
-    x = x0;
-    solution.contact = BackendResult{};
   }
   const CouplingResult cr = couple_suspension(suspension, suspension.predicted_deflection(), force_at,
                                               1e-10 * motion.radius, max_deflection, 40);
@@ -386,26 +400,17 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
     // the contact solve, the load's potential F w (IncrementProblem::free_roller with stiffness 0), so
     // F_y = F at the solution. A roller still to meet the strip finds it by passes: nothing sets
     // the joint solve's length scale and working set before contact.
-    if (friction_.touching() && scene_.contact.roller_coupling == RollerCoupling::Joint &&
-        backend_->solves_roller_height()) {
+    if (friction_.touching() && joint_height()) {
       const Real w0 = solution.load_offset.y();
       motion.end.centre.y() = path.y() + w0;
       RollerPotential load;
       load.load = *force.fy;
-      const VecX x0 = x;
-      solve_contact(energy, prescribed, predictor, motion, x, solution, load);
-      add_solve(inc, solution.contact);
       ++inc.load_passes;
-      const Real w = motion.end.centre.y() - path.y();
-      if (solution.contact.converged() && solution.contact.roller_offset &&
-          std::abs(w - w0) <= settings(ForceAxis::Vertical).max_offset_change) {
-        solution.load_offset.y() = w;
+      if (const auto offset = solve_height_jointly(energy, prescribed, predictor, motion, x, solution, inc, load,
+                                                   settings(ForceAxis::Vertical).max_offset_change)) {
+        solution.load_offset.y() = w0 + *offset;
         return strip_force(solution, motion, energy);
       }
-      // Not solved jointly (e.g. the roller touches nothing yet): the passes below.
-      x = x0;
-      solution.contact = BackendResult{};
-      motion.end.centre.y() = path.y() + w0;
     }
     std::optional<Vec2> last;
     auto fy_at = [&](Real w) -> std::optional<Real> {

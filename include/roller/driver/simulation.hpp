@@ -176,10 +176,19 @@ class Simulation {
                            const PrescribedForce& force, Increment& inc);
   // One contact solve of the increment with the roller at `motion`: the candidates and the
   // backend's result replace `solution`'s (which, when converged, is the last pass's and seeds
-  // this one). With `spring` the roller's vertical offset from there is an unknown of the solve
+  // this one). With `potential` the roller's vertical offset from there is an unknown of the solve
   // (IncrementProblem::free_roller), and `motion` ends where the solve put the roller.
   void solve_contact(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
-                     VecX& x, Solution& solution, const std::optional<RollerPotential>& spring = std::nullopt);
+                     VecX& x, Solution& solution, const std::optional<RollerPotential>& potential = std::nullopt);
+  // Whether a roller whose height is not prescribed is solved with the strip (contact.roller_coupling
+  // and a backend that can) rather than by passes.
+  bool joint_height() const;
+  // solve_contact with the roller's height an unknown carrying `potential`: the offset the solve
+  // moved the roller by, or nullopt, with x, `solution` and the centre as they were, when it did not
+  // converge or moved it by more than `max_offset` (the caller then couples by passes).
+  std::optional<Real> solve_height_jointly(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor,
+                                           RollerMotion& motion, VecX& x, Solution& solution, Increment& inc,
+                                           const RollerPotential& potential, Real max_offset);
   // The suspension's vertical force balance with the contact, iterated on the deflection.
   Solution solve_suspended(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, RollerMotion& motion,
                            VecX& x, Increment& inc);
