@@ -32,8 +32,8 @@
 // (the inner NLP holds grad q = contact forces to Ipopt's tol, so grad Pi(x_{k+1}) = contact
 // forces to tol as well: the full problem's KKT conditions).
 //
-// Suspended roller (IncrementProblem::suspended). The roller's vertical offset w is one more
-// unknown: the NLP gets its step dw as a last variable (the contact rows see the node's increment
+// Free roller height (IncrementProblem::free_roller: a suspended or force-loaded roller). The
+// roller's vertical offset w is one more unknown: the NLP gets its step dw as a last variable (the contact rows see the node's increment
 // relative to the roller, u - dw e_y) and the model its spring P(w + dw) - P(w), which is exact,
 // so the model error stays the strip's. The line search moves (x, w) together. One solve then
 // finds the strip, the contact and the suspension in equilibrium, where the driver's coupling
@@ -217,7 +217,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   }
   MumpsSolver solver(MumpsSolver::Symmetry::Symmetric, linear);
   std::vector<int> working = initial_working_set(problem, x, scales.length);
-  // A suspended roller: its offset w is the last unknown (header comment, "Suspended roller").
+  // A free roller height: its offset w is the last unknown (header comment, "Free roller height").
   const std::optional<RollerPotential> spring = problem.roller_potential();
   auto roller_energy = [&spring](Real w) { return spring ? spring->energy(w) : 0.0; };
   Condensation cond;
@@ -345,12 +345,13 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       }
       if (accepted) break;
     }
-    if (!accepted) problem.move_roller(w0);
-    if (!accepted)
+    if (!accepted) {
+      problem.move_roller(w0);
       return formulation_failed(result, ContactTermination::LimitReached,
                                 fmt::format("ipopt backend (condensed): no descent along the step of linearisation "
                                             "{}{}; use smaller steps",
                                             outer, evaluation_error.empty() ? "" : " (" + evaluation_error + ")"));
+    }
     model_error = (g_new - g - alpha * kd).lpNorm<Eigen::Infinity>() / scales.force;
     x = x_new;
     g = g_new;

@@ -11,7 +11,7 @@
 //            one pair s+_j, s-_j >= 0 per friction row j.
 // Node       u_k(d) = base_k + sum_a d[slot_k(a)] e_a - d[w] e_y   (a = x, y; slot -1: not a
 //            variable; d[w]: the suspended roller's vertical step, when the formulation has one
-//            (IncrementProblem::suspended): moving the roller up is moving every node down
+//            (IncrementProblem::free_roller): moving the roller up is moving every node down
 //            relative to it)
 // Rows       gap  g_k = |x_k^n + u_k - c| - R >= 0                       (one per RowMap)
 //            slip slip_j(d) - s+_j + s-_j = 0                              ("split" only)
