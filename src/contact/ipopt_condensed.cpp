@@ -33,11 +33,11 @@
 // forces to tol as well: the full problem's KKT conditions).
 //
 // Free roller height (IncrementProblem::free_roller: a suspended or force-loaded roller). The
-// roller's vertical offset w is one more unknown: the NLP gets its step dw as a last variable (the contact rows see the node's increment
-// relative to the roller, u - dw e_y) and the model its spring P(w + dw) - P(w), which is exact,
-// so the model error stays the strip's. The line search moves (x, w) together. One solve then
-// finds the strip, the contact and the suspension in equilibrium, where the driver's coupling
-// loop (dynamics/suspension.hpp) needs three or four contact solves.
+// roller's vertical offset w is one more unknown: the NLP gets its step dw as a last variable (the contact rows see the
+// node's increment relative to the roller, u - dw e_y) and the model its spring P(w + dw) - P(w), which is exact, so
+// the model error stays the strip's. The line search moves (x, w) together. One solve then finds the strip, the contact
+// and the suspension in equilibrium, where the driver's coupling loop (dynamics/suspension.hpp) needs three or four
+// contact solves.
 //
 // Working set. Candidates with a free dof whose gap at the start vector is within kReach l_step
 // (l_step the increment's length scale, ipopt_common.hpp), or that carried a normal force in the
