@@ -97,7 +97,7 @@ namespace roller {
 using namespace ipopt_detail;
 
 IpoptBackend::IpoptBackend(ContactOptions options, LinearSolverOptions linear)
-    : options_(std::move(options)), linear_(std::move(linear)) {
+    : options_(std::move(options)), condenser_(linear) {
   std::string why;
   if (!options_.ipopt.is_valid(&why)) throw InputError(why);
   if (!options_.ipopt.raw.empty()) {
@@ -124,7 +124,9 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
     return r;
   }
   if (options_.ipopt.formulation == IpoptFormulation::Full) return solve_full(problem, x0, options_);
-  CondensedOutcome condensed = solve_condensed(problem, x0, options_, linear_);
+  CondensedOutcome condensed = solve_condensed(problem, x0, options_, condenser_);
+  // Factors are kept only for the next increment's same tangent, and never beside the full formulation's.
+  if (!problem.strip_tangent_is_constant() || condensed.formulation_failed) condenser_.release();
   // The full formulation has no roller variable: a suspended roller's failure goes back to the
   // driver, which couples the suspension by passes with the roller placed instead.
   if (!condensed.formulation_failed || problem.roller_potential()) return std::move(condensed.result);
@@ -166,8 +168,7 @@ class StringJournal : public Ipopt::Journal {
 // backend builds it: for the full formulation every free dof a variable; for the condensed one
 // the first linearisation's working set and model.
 struct FirstPassNlp {
-  FirstPassNlp(IncrementProblem& problem, const VecX& x0, const ContactOptions& options)
-      : solver(MumpsSolver::Symmetry::Symmetric) {
+  FirstPassNlp(IncrementProblem& problem, const VecX& x0, const ContactOptions& options) {
     VecX g;
     SparseMatrix k;
     scales = increment_scales(problem, x0, problem.strip_energy(x0, &g, &k).force_scale);
@@ -177,8 +178,9 @@ struct FirstPassNlp {
       rows = full_rows(problem);
       start = full_start(problem, rows, x0);
     } else {
-      if (!condense(problem, initial_working_set(problem, x0, scales.length), x0, g, k, solver, &condensation))
-        throw NumericalError("FirstPassNlp: the condensation failed: " + solver.message());
+      if (condense(problem, initial_working_set(problem, x0, scales.length), x0, g, k, condenser, &condensation) ==
+          SchurCondenser::Outcome::Failed)
+        throw NumericalError("FirstPassNlp: the condensation failed: " + condenser.message());
       objective = problem.roller_potential() ? std::make_unique<QuadraticModel>(
                                                    condensation, *problem.roller_potential(), problem.roller_offset())
                                              : std::make_unique<QuadraticModel>(condensation);
@@ -196,7 +198,7 @@ struct FirstPassNlp {
         objective->n(), objective->roller_slot());
     tnlp = new ContactTnlp(*objective, *contact, start);
   }
-  MumpsSolver solver;
+  SchurCondenser condenser;
   Condensation condensation;
   Scales scales;
   std::unique_ptr<NlpObjective> objective;

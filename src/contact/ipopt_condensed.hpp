@@ -6,8 +6,7 @@
 
 #include "contact_tnlp.hpp"
 #include "roller/contact/backend.hpp"
-#include "roller/solver/linear_solver_options.hpp"
-#include "roller/solver/mumps_factorization.hpp"
+#include "roller/solver/schur_condenser.hpp"
 
 namespace roller::ipopt_detail {
 
@@ -21,11 +20,13 @@ struct Condensation {
   VecX gradient;
 };
 
-// Condenses the strip's gradient g and tangent k at x onto the working candidates; false when
-// the tangent cannot be factorised on the interior dofs (solver.message() says why). The solver
-// keeps the factors for the interior solves of the step.
-bool condense(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x, const VecX& g,
-              const SparseMatrix& k, MumpsSolver& solver, Condensation* out);
+// Condenses the strip's gradient g and tangent k at x onto the working candidates; Failed when
+// the tangent cannot be factorised on the interior dofs (condenser.message() says why). The
+// condenser keeps the factors for the interior solves of the step, and for later increments
+// when the strip's tangent is constant: it is then factorised with its Schur complement on every
+// candidate's dofs, so that the next working sets are reduced from it (solver/schur_condenser.hpp).
+SchurCondenser::Outcome condense(const IncrementProblem& problem, const std::vector<int>& working, const VecX& x,
+                                 const VecX& g, const SparseMatrix& k, SchurCondenser& condenser, Condensation* out);
 
 // The condensed model q_C(d_C) = gc.d_C + d_C.S.d_C/2 as the NLP's objective; its dense lower
 // triangle, row by row, holds the contact curvature too. With a suspended roller at w the last
@@ -62,6 +63,6 @@ struct CondensedOutcome {
 };
 
 CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                                 const LinearSolverOptions& linear);
+                                 SchurCondenser& condenser);
 
 }  // namespace roller::ipopt_detail

@@ -12,16 +12,22 @@ namespace roller {
 namespace {
 
 constexpr Real kBytesPerDofInCore = 2.6e3;
+constexpr Real kBytesPerDofInCoreHeld = 3.65e3;
 constexpr Real kBytesPerDofOutOfCore = 1.2e3;
 constexpr Real kProgramBytes = 20e6;  // a 400-dof run peaks at 15 MiB
 constexpr Real kGiB = 1024.0 * 1024.0 * 1024.0;
 
+Real bytes_per_dof(const LinearSolverOptions& linear, HeldFactors held) {
+  if (linear.out_of_core) return kBytesPerDofOutOfCore;
+  return held == HeldFactors::WholeRun ? kBytesPerDofInCoreHeld : kBytesPerDofInCore;
+}
+
 }  // namespace
 
-MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear) {
+MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, HeldFactors held) {
   MemoryEstimate e;
   e.dofs = 2.0 * strip_node_count(mesh);
-  e.bytes = kProgramBytes + e.dofs * (linear.out_of_core ? kBytesPerDofOutOfCore : kBytesPerDofInCore);
+  e.bytes = kProgramBytes + e.dofs * bytes_per_dof(linear, held);
   return e;
 }
 
@@ -36,8 +42,8 @@ std::optional<Real> available_memory_bytes() {
   return std::nullopt;
 }
 
-void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, Real available) {
-  const MemoryEstimate need = estimate_run_memory(mesh, linear);
+void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, Real available, HeldFactors held) {
+  const MemoryEstimate need = estimate_run_memory(mesh, linear, held);
   if (need.bytes <= available) return;
   LinearSolverOptions on_disk = linear;
   on_disk.out_of_core = true;
@@ -47,12 +53,11 @@ void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& line
           : fmt::format(
                 "use a smaller mesh.refine (--refine), nx or ny, or set [linear_solver] out_of_core = true "
                 "(factors on disk: about {:.1f} GiB for this mesh)",
-                estimate_run_memory(mesh, on_disk).bytes / kGiB);
+                estimate_run_memory(mesh, on_disk, held).bytes / kGiB);
   throw SystemError(fmt::format(
       "mesh.refine = {}: the mesh has {:.3g} dofs and the run needs about {:.1f} GiB of memory ({:.1f} kB per dof "
       "{}, measured: docs/benchmarks.md), but this machine has {:.1f} GiB available: {}",
-      mesh.refine, need.dofs, need.bytes / kGiB,
-      (linear.out_of_core ? kBytesPerDofOutOfCore : kBytesPerDofInCore) / 1e3,
+      mesh.refine, need.dofs, need.bytes / kGiB, bytes_per_dof(linear, held) / 1e3,
       linear.out_of_core ? "out of core" : "in core", available / kGiB, advice));
 }
 

@@ -112,7 +112,8 @@ RunSummary Simulation::run(const RunOptions& options) {
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
   RunOutputs outputs(*this, options.out_dir, options.resume, writer);
   StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
-                      scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, options.progress);
+                      scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
+                      options.progress);
   RunSummary summary;
   summary.converged = true;
   summary.steps_done = steps_done_;

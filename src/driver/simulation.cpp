@@ -36,7 +36,13 @@ void add_solve(Simulation::Increment& inc, const BackendResult& r) {
 
 // The mesh, once the machine is known to hold the run it starts (else a SystemError with advice).
 Mesh make_mesh_that_fits(const Scene& scene) {
-  if (const auto available = available_memory_bytes()) check_run_memory(scene.mesh, scene.newton.linear, *available);
+  // The condensed ipopt solve keeps a constant tangent's factors (StripModel::tangent_is_constant).
+  const bool held = scene.roller && scene.contact.backend == ContactBackendKind::Ipopt &&
+                    scene.contact.ipopt.formulation == IpoptFormulation::Condensed &&
+                    scene.element.kinematics == Kinematics::Small && !scene.material.plastic;
+  if (const auto available = available_memory_bytes())
+    check_run_memory(scene.mesh, scene.newton.linear, *available,
+                     held ? HeldFactors::WholeRun : HeldFactors::PerIncrement);
   return make_strip_mesh(scene.mesh);
 }
 

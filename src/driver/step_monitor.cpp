@@ -7,20 +7,10 @@
 
 namespace roller {
 
-namespace {
-
-// K_eff and operator A independent of the state: no initial-stress term, no plastic branch, a
-// mesh that never moves (docs/model.md, Run-time monitor).
-bool tangent_is_constant(const StripModel& model) {
-  return model.options().kinematics == Kinematics::Small && !model.material().plastic;
-}
-
-}  // namespace
-
 MonitorReport StepMonitor::check(int step, StripModel& model) {
   MonitorReport r;
   if (!enabled_) return r;
-  const bool constant = tangent_is_constant(model);
+  const bool constant = model.tangent_is_constant();
   if (constant && constant_report_ && constant_free_dofs_ == model.dof_map().free_dofs()) {
     r = *constant_report_;
     r.reused = true;
@@ -31,7 +21,15 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
     SparseMatrix k_eff;
     model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k_eff);
     if (mass_free_) k_eff += (2.0 / (dt_ * dt_)) * *mass_free_;
-    r.assembled = sparse_definiteness(k_eff);
+    const std::optional<Inertia> held = backend_ ? backend_->held_tangent_inertia(k_eff) : std::nullopt;
+    if (held) {
+      r.assembled.factorized = true;
+      r.assembled.n_negative = held->negative;
+      r.assembled.n_zero = held->zero;
+      r.from_contact_solve = true;
+    } else {
+      r.assembled = sparse_definiteness(k_eff);
+    }
     if (constant) {
       constant_report_ = r;
       constant_free_dofs_ = model.dof_map().free_dofs();

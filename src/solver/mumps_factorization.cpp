@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <vector>
 
 #include <dmumps_c.h>
@@ -21,6 +22,7 @@ struct MumpsSolver::Impl {
   std::vector<double> schur;          // size_schur^2, by rows
   bool initialised = false;
   bool analysed = false;
+  bool factorised = false;  // the arrays above hold the matrix of valid factors
   // ICNTL(14) now: percentage added to the workspace MUMPS estimates in the analysis, for
   // delayed pivots of an indefinite K; starts at options.workspace_percent. When they overrun it
   // anyway, the factorisation is retried with twice the headroom (kept for the next
@@ -105,6 +107,7 @@ bool MumpsSolver::Impl::factorize(const SparseMatrix& a, std::vector<MUMPS_INT> 
         m.cols[e] = c;
         m.values[e++] = it.value();
       }
+  m.factorised = false;
   m.rows.shrink_to_fit();
   m.cols.shrink_to_fit();
   m.values.shrink_to_fit();
@@ -136,7 +139,8 @@ bool MumpsSolver::Impl::factorize(const SparseMatrix& a, std::vector<MUMPS_INT> 
     m.id.icntl[13] = m.workspace_percent;
     m.call(2);
   }
-  return !m.failed("factorisation");
+  m.factorised = !m.failed("factorisation");
+  return m.factorised;
 }
 
 bool MumpsSolver::factorize(const SparseMatrix& a) { return impl_->factorize(a, {}); }
@@ -165,6 +169,50 @@ VecX MumpsSolver::solve_interior(const VecX& b) {
   x = solve(x);
   for (const MUMPS_INT i : impl_->schur_list) x(i - 1) = 0.0;
   return x;
+}
+
+VecX MumpsSolver::solve_with_schur(const VecX& b, const std::function<VecX(const VecX&)>& schur_solve) {
+  Impl& m = *impl_;
+  const auto ns = static_cast<Index>(m.schur_list.size());
+  VecX x = b;
+  VecX reduced = VecX::Zero(ns);
+  m.id.rhs = x.data();
+  m.id.nrhs = 1;
+  m.id.lrhs = static_cast<MUMPS_INT>(x.size());
+  m.id.redrhs = reduced.data();
+  m.id.lredrhs = static_cast<MUMPS_INT>(ns);
+  m.id.icntl[25] = 1;  // ICNTL(26) = 1: forward elimination, reduced right-hand side in REDRHS
+  m.call(3);
+  if (m.id.infog[0] >= 0) {
+    reduced = schur_solve(reduced);
+    m.id.redrhs = reduced.data();
+    m.id.icntl[25] = 2;  // ICNTL(26) = 2: expansion of the Schur variables' values in REDRHS
+    m.call(3);
+  }
+  m.id.icntl[25] = 0;
+  m.id.redrhs = nullptr;
+  m.id.lredrhs = 0;
+  if (m.id.infog[0] < 0)
+    throw std::runtime_error(fmt::format("MUMPS reduced solve failed: INFOG(1) = {}", m.id.infog[0]));
+  for (Index s = 0; s < ns; ++s) x(m.schur_list[s] - 1) = reduced(s);
+  return x;
+}
+
+bool MumpsSolver::holds_factors_of(const SparseMatrix& a, const std::vector<Index>& schur) const {
+  const Impl& m = *impl_;
+  if (!m.factorised || a.rows() != m.id.n || schur.size() != m.schur_list.size()) return false;
+  for (std::size_t i = 0; i < schur.size(); ++i)
+    if (schur[i] + 1 != m.schur_list[i]) return false;
+  const bool lower_only = m.id.sym != 0;
+  std::size_t e = 0;
+  for (int k = 0; k < a.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
+      if (lower_only && it.row() < it.col()) continue;
+      if (e == m.values.size() || m.rows[e] != it.row() + 1 || m.cols[e] != it.col() + 1 || m.values[e] != it.value())
+        return false;
+      ++e;
+    }
+  return e == m.values.size();
 }
 
 VecX MumpsSolver::solve(const VecX& b) {

@@ -40,7 +40,7 @@ TEST_CASE("step monitor: a constant tangent's verdict is reused only while the f
   StripModel model(make_strip_mesh(test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2)), steel(false),
                    ElementOptions{Kinematics::Small, Q4Formulation::BBar});
   model.set_dof_map(bottom_held(model, true));
-  StepMonitor monitor(true, 1.0, nullptr, nullptr);
+  StepMonitor monitor(true, 1.0, nullptr, nullptr, nullptr);
   const MonitorReport first = monitor.check(1, model);
   CHECK(first.checked);
   CHECK_FALSE(first.reused);
@@ -63,7 +63,7 @@ TEST_CASE("step monitor: a tangent that depends on the state is checked at every
     StripModel model(make_strip_mesh(test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2)), steel(plastic),
                      ElementOptions{kinematics, Q4Formulation::BBar});
     model.set_dof_map(bottom_held(model, true));
-    StepMonitor monitor(true, 1.0, nullptr, nullptr);
+    StepMonitor monitor(true, 1.0, nullptr, nullptr, nullptr);
     CHECK_FALSE(monitor.check(1, model).reused);
     const MonitorReport again = monitor.check(2, model);
     CHECK_FALSE(again.reused);

@@ -4,31 +4,13 @@
 
 #include <catch2/catch.hpp>
 
+#include "../support/grid_matrix.hpp"
 #include "roller/solver/mumps_factorization.hpp"
 #include "roller/solver/sparse_solver.hpp"
 
 using namespace roller;
 
-namespace {
-
-// Symmetric matrix on the 5-point stencil of a g x g grid: `diagonal(k)` on the diagonal, `off`
-// between grid neighbours.
-template <class Diagonal>
-SparseMatrix grid_matrix(int g, Diagonal diagonal, Real off) {
-  std::vector<Triplet> t;
-  for (int i = 0; i < g; ++i)
-    for (int j = 0; j < g; ++j) {
-      const int k = i * g + j;
-      t.emplace_back(k, k, diagonal(k));
-      if (i + 1 < g) t.emplace_back(k + g, k, off), t.emplace_back(k, k + g, off);
-      if (j + 1 < g) t.emplace_back(k + 1, k, off), t.emplace_back(k, k + 1, off);
-    }
-  SparseMatrix a(g * g, g * g);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
-}
-
-}  // namespace
+using test::grid_matrix;
 
 TEST_CASE("MumpsSolver (symmetric) solves a symmetric indefinite system and counts negative pivots", "[solver]") {
   // Tridiagonal 1D Laplacian shifted by -0.5: eigenvalues 2 - 2cos(k pi/(n+1)) - 0.5, three

@@ -26,6 +26,10 @@ class StripModel {
   const MaterialParams& material() const { return material_; }
   const ElementOptions& options() const { return options_; }
   Index n_dofs() const { return mesh_.n_dofs(); }
+  // Whether the tangent cannot change with the state: no initial-stress term, no plastic branch,
+  // a mesh that never moves (a linear elastic strip with small kinematics). K is then the same
+  // matrix at every increment, which the condensed contact solve and the run-time monitor reuse.
+  bool tangent_is_constant() const { return options_.kinematics == Kinematics::Small && !material_.plastic; }
 
   // Selects the free dofs and builds the sparsity pattern of the Hessian over them. Call again
   // whenever the set of constrained dofs changes.

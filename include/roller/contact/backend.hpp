@@ -9,6 +9,7 @@
 
 #include "roller/contact/contact_options.hpp"
 #include "roller/contact/increment_problem.hpp"
+#include "roller/solver/inertia.hpp"
 #include "roller/solver/newton.hpp"
 
 namespace roller {
@@ -81,9 +82,14 @@ class ContactBackend {
   // Whether solve() finds a suspended roller's position with the strip (IncrementProblem::free_roller);
   // a backend that does not is given problems whose roller is placed.
   virtual bool solves_roller_height() const { return false; }
+  // The inertia of the strip tangent `k` when this backend still holds a factorisation of exactly
+  // that matrix (a constant tangent kept over increments), nullopt otherwise: the run-time
+  // monitor's check of the same matrix without a factorisation of its own.
+  std::optional<Inertia> held_tangent_inertia(const SparseMatrix& k) { return do_held_tangent_inertia(k); }
 
  private:
   virtual BackendResult do_solve(IncrementProblem& problem, const VecX& x0) = 0;
+  virtual std::optional<Inertia> do_held_tangent_inertia(const SparseMatrix& /*k*/) { return std::nullopt; }
 };
 
 // Throws InputError naming the option when the options are invalid. `newton` controls the

@@ -72,6 +72,8 @@ class IncrementProblem {
     return strip_.evaluate(x, gradient, hessian);
   }
   VecX full_increment(const VecX& x) const { return strip_.full_increment(x); }
+  // The strip's tangent is the same matrix at every x (StripModel::tangent_is_constant).
+  bool strip_tangent_is_constant() const { return strip_.model().tangent_is_constant(); }
 
   const std::vector<ContactCandidate>& candidates() const { return candidates_; }
   std::vector<ContactCandidate>& candidates() { return candidates_; }

@@ -5,6 +5,7 @@
 // constraints: the exact gaps g_i(u) >= 0. Contact forces are the constraint multipliers.
 // Ipopt types never appear in this header (the TNLP adapter lives in the .cpp).
 #include "roller/contact/backend.hpp"
+#include "roller/solver/schur_condenser.hpp"
 
 namespace roller {
 
@@ -17,8 +18,11 @@ class IpoptBackend : public ContactBackend {
 
  private:
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
+  std::optional<Inertia> do_held_tangent_inertia(const SparseMatrix& k) override { return condenser_.inertia_of(k); }
   ContactOptions options_;
-  LinearSolverOptions linear_;  // the condensed formulation's MUMPS
+  // The condensed formulation's factorisation of the strip tangent; kept between increments only
+  // while the tangent is constant (SchurCondenser reuses it then), freed after each otherwise.
+  SchurCondenser condenser_;
 };
 
 }  // namespace roller

@@ -16,15 +16,23 @@ struct MemoryEstimate {
   Real bytes = 0.0;  // peak resident memory of the run
 };
 
-// In core: 2.6 kB per dof (the penalty backend's 3175 MiB at 1.3e6 dofs; ipopt 2.0 kB); out of
-// core: 1.2 kB per dof (1421 MiB). Plus the program itself.
-MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear);
+// Whether the contact solve keeps the strip tangent's factors for the whole run (the ipopt
+// backend's condensed formulation on a constant tangent: contact/ipopt_condensed.cpp): they are
+// then resident beside the output and state files being written.
+enum class HeldFactors { PerIncrement, WholeRun };
+
+// In core: 2.6 kB per dof (the penalty backend's 3175 MiB at 1.3e6 dofs; ipopt 2.0 kB), 3.65 kB
+// with factors held for the run (Hertz with ipopt: 4507 MiB at 1.3e6 dofs); out of core: 1.2 kB
+// per dof (1421 MiB). Plus the program itself.
+MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear,
+                                   HeldFactors held = HeldFactors::PerIncrement);
 
 // MemAvailable of /proc/meminfo [bytes]; none where it cannot be read.
 std::optional<Real> available_memory_bytes();
 
 // Throws SystemError when the estimate exceeds `available`, naming the size and the remedies
 // (a smaller refine, out-of-core factors).
-void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, Real available);
+void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, Real available,
+                      HeldFactors held = HeldFactors::PerIncrement);
 
 }  // namespace roller

@@ -67,6 +67,9 @@ class Simulation {
   const Scene& scene() const { return scene_; }
   StripModel& model() { return *model_; }
   const StripModel& model() const { return *model_; }
+  // The contact backend of the run (nullptr without a roller); the run-time monitor asks it for
+  // the inertia of factors it holds.
+  ContactBackend* contact_backend() { return backend_.get(); }
   // Roller pose at the end of the last committed increment, and the contact of that increment.
   const RollerPose& pose() const { return pose_; }
   int pass_of_step(int step) const;  // 1-based ([passes]; 1 without)

@@ -7,19 +7,23 @@
 // Cost. The assembled check is one assembly and one LDL^T factorisation (MUMPS) of K_eff per
 // step. Where the tangent cannot change from step to step (a linear elastic strip with small
 // kinematics: K and the pointwise operator do not depend on the state), the first step's verdict
-// holds for every later step with the same free dofs and is reused, not recomputed.
+// holds for every later step with the same free dofs and is reused, not recomputed; and the
+// first step's inertia comes from the contact backend when it still holds the factors of that
+// very matrix (ContactBackend::held_tangent_inertia), so the monitor factorises nothing.
 #include <iosfwd>
 #include <optional>
 #include <vector>
 
 #include "roller/analysis/monotonicity.hpp"
 #include "roller/assembly/strip_model.hpp"
+#include "roller/contact/backend.hpp"
 
 namespace roller {
 
 struct MonitorReport {
   bool checked = false;
   bool reused = false;              // the verdict of an earlier step with the same constant tangent
+  bool from_contact_solve = false;  // the inertia of the contact backend's factors of the same K
   StripMonotonicity pointwise;      // operator A at the integration points
   SparseDefiniteness assembled;     // the effective tangent K (+ 2M/dt^2 with strip inertia)
   Vec2 worst_place = Vec2::Zero();  // centroid of the element with the worst point [mm]
@@ -27,10 +31,11 @@ struct MonitorReport {
 
 class StepMonitor {
  public:
-  // `mass_free` is the strip's mass over the free dofs (nullptr: quasistatic strip); `progress`
-  // receives the warnings (nullptr: silent).
-  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, std::ostream* progress)
-      : enabled_(enabled), dt_(dt), mass_free_(mass_free), progress_(progress) {}
+  // `mass_free` is the strip's mass over the free dofs (nullptr: quasistatic strip); `backend`
+  // the run's contact backend, asked for the inertia of factors it holds (nullptr: none);
+  // `progress` receives the warnings (nullptr: silent).
+  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, ContactBackend* backend, std::ostream* progress)
+      : enabled_(enabled), dt_(dt), mass_free_(mass_free), backend_(backend), progress_(progress) {}
 
   MonitorReport check(int step, StripModel& model);
 
@@ -38,6 +43,7 @@ class StepMonitor {
   bool enabled_;
   Real dt_;
   const SparseMatrix* mass_free_;
+  ContactBackend* backend_;
   std::ostream* progress_;
   bool pointwise_loss_reported_ = false;
   // The verdict of a state-independent tangent and the free dofs it was computed on.

@@ -8,6 +8,7 @@
 //              read), inertia from the negative pivots.
 //   General:   LU (the unsymmetric tangent of Coulomb friction).
 // The symbolic analysis is kept while the sparsity pattern stays the same (Newton iterations).
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,14 @@ class MumpsSolver {
   bool factorize_with_schur(const SparseMatrix& a, const std::vector<Index>& schur, MatX* s);
   // After factorize_with_schur: x_i = A_ii^-1 b_i on the eliminated variables, x_s = 0.
   VecX solve_interior(const VecX& b);
+  // After factorize_with_schur: the solution of A x = b for a caller who solves the Schur system
+  // itself. MUMPS reduces b onto the Schur variables (r = b_s - A_si A_ii^-1 b_i, in the order
+  // of the Schur list), `schur_solve` returns their values x_s (any: the caller may fix some),
+  // and MUMPS expands: x_i = A_ii^-1 (b_i - A_is x_s). One forward and one backward solve.
+  VecX solve_with_schur(const VecX& b, const std::function<VecX(const VecX&)>& schur_solve);
+  // Whether the factors held are those of exactly `a` (pattern and values) with this Schur list:
+  // then factorising `a` again would compute the same factors. O(nnz), no copy.
+  bool holds_factors_of(const SparseMatrix& a, const std::vector<Index>& schur) const;
   // From the next factorisation on, pivots below relative_threshold * ||A|| count as null (and
   // the factorisation goes on past them) instead of failing as singular or passing unnoticed.
   void detect_null_pivots(Real relative_threshold);
