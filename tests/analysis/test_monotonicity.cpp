@@ -520,6 +520,33 @@ TEST_CASE("check_strip flags a large compressive initial stress and a small dt r
   CHECK(slow.lambda_min > second.lambda_min);
 }
 
+TEST_CASE("check_strip: an elastic strip's one operator gives what the point-by-point check gives", "[monotonicity]") {
+  // The elastic shortcut computes A's eigenvalue once; a plastic material whose points are all
+  // elastic (a yield stress never reached) takes the point-by-point path and must agree,
+  // quasistatic and with the mass term on a graded mesh (h, so the dynamic term, varies: the
+  // worst point is the largest element's).
+  StripMeshSpec spec = test::strip_spec(ElementType::Q4, 8.0, 2.0, 8, 4);
+  spec.grading_x.kind = Grading::Kind::Geometric;
+  spec.grading_x.ratio = 5.0;
+  spec.grading_x.focus = 0.0;
+  MaterialParams never_yields = steel();
+  never_yields.yield_stress = 1e9;
+  const ElementOptions small{Kinematics::Small, Q4Formulation::Standard};
+  StripModel elastic(make_strip_mesh(spec), elastic_steel(), small);
+  StripModel plastic(make_strip_mesh(spec), never_yields, small);
+  for (const Real dt : {0.0, 1e-6}) {
+    INFO("dt " << dt);
+    const StripMonotonicity a = check_strip(elastic, dt), b = check_strip(plastic, dt);
+    CHECK(a.n_points == b.n_points);
+    CHECK(a.n_not_pd == 0);
+    CHECK(b.n_not_pd == 0);
+    CHECK(a.lambda_min == b.lambda_min);
+    CHECK(a.worst.element == b.worst.element);
+    CHECK(a.worst.point == b.worst.point);
+    if (dt > 0.0) CHECK(a.lambda_min > check_strip(elastic, 0.0).lambda_min);  // the mass term counted
+  }
+}
+
 TEST_CASE("is_positive_definite: sparse LDL^T, inertia from the pivots", "[monotonicity]") {
   // 1D Laplacian (PD) and shifted copies with a known number of negative eigenvalues.
   const int n = 30;

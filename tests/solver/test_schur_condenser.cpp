@@ -2,8 +2,8 @@
 // the inertia, against dense block formulas; factors reused only for the very matrix held.
 #include <algorithm>
 
-#include <catch2/catch.hpp>
 #include <Eigen/Eigenvalues>
+#include <catch2/catch.hpp>
 
 #include "../support/grid_matrix.hpp"
 #include "roller/solver/schur_condenser.hpp"
