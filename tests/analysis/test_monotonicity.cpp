@@ -547,6 +547,49 @@ TEST_CASE("check_strip: an elastic strip's one operator gives what the point-by-
   }
 }
 
+TEST_CASE("check_strip: the Cholesky screen changes nothing against every point's eigenvalues", "[monotonicity]") {
+  // A squeeze that rises and falls along the strip leaves points on both sides of the loss of
+  // definiteness, in no order, many close to the running minimum; the brute-force reference
+  // takes every point's smallest eigenvalue.
+  StripMeshSpec spec = test::strip_spec(ElementType::Q4, 4.0, 2.0, 24, 12);
+  StripModel model(make_strip_mesh(spec), elastic_steel(), ElementOptions{Kinematics::Finite, Q4Formulation::Standard});
+  model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));
+  const auto squeeze = [](const Vec2& x) -> Vec2 {
+    return -0.1 * (1.0 + 0.3 * std::sin(3.0 * x.x()) + 0.2 * std::sin(2.0 * x.y())) * x;
+  };
+  REQUIRE(impose_field(model, squeeze).converged());
+  REQUIRE(impose_field(model, squeeze).converged());
+  const MaterialParams& m = model.material();
+  OperatorOptions op;
+  op.initial_stress = true;
+  const Real rho = 2.0 * m.density;
+  for (const Real dt : {0.0, 2e-7}) {
+    INFO("dt " << dt);
+    Index n_not_pd = 0;
+    Real lambda_min = std::numeric_limits<Real>::infinity();
+    for (Index e = 0; e < model.mesh().n_elements(); ++e) {
+      std::vector<Vec2> xe;
+      for (Index a : model.mesh().elements[e]) xe.push_back(model.reference_coordinates()[a]);
+      const Real kappa = mass_scale(rho, inverse_estimate_length(ElementType::Q4, xe, false), dt);
+      for (int q = 0; q < model.points_per_element(); ++q) {
+        const MaterialState& s = model.state(e, q);
+        const Real lambda = sorted_eigenvalues(operator_a(m, s.stress, s.yield_stress, op))(0) + kappa;
+        lambda_min = std::min(lambda_min, lambda);
+        n_not_pd += lambda > 0.0 ? 0 : 1;
+      }
+    }
+    const StripMonotonicity screened = check_strip(model, dt);
+    INFO(screened.brief_report());
+    CHECK(screened.n_points == model.mesh().n_elements() * model.points_per_element());
+    CHECK(screened.n_not_pd == n_not_pd);
+    CHECK(screened.lambda_min == lambda_min);
+    if (dt == 0.0) {
+      CHECK(n_not_pd > 0);  // both sides present
+      CHECK(n_not_pd < screened.n_points);
+    }
+  }
+}
+
 TEST_CASE("is_positive_definite: sparse LDL^T, inertia from the pivots", "[monotonicity]") {
   // 1D Laplacian (PD) and shifted copies with a known number of negative eigenvalues.
   const int n = 30;
