@@ -28,7 +28,11 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
       r.assembled.n_zero = held->zero;
       r.from_contact_solve = true;
     } else {
-      r.assembled = sparse_definiteness(k_eff);
+      if (!ldlt_) {
+        ldlt_ = std::make_unique<MumpsSolver>(MumpsSolver::Symmetry::Symmetric);
+        ldlt_->discard_factors();
+      }
+      r.assembled = sparse_definiteness(k_eff, *ldlt_);
     }
     if (constant) {
       constant_report_ = r;

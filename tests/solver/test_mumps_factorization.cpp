@@ -34,6 +34,14 @@ TEST_CASE("MumpsSolver (symmetric) solves a symmetric indefinite system and coun
   int expected_negative = 0;
   for (int k = 1; k <= n; ++k) expected_negative += (2.0 - 2.0 * std::cos(k * M_PI / (n + 1)) - 0.5 < 0) ? 1 : 0;
   CHECK(ldlt.negative_pivots() == expected_negative);
+  // Inertia only: the factors discarded as they are computed, the pivots counted all the same,
+  // twice with one analysis.
+  MumpsSolver inertia;
+  inertia.discard_factors();
+  for (int pass = 0; pass < 2; ++pass) {
+    REQUIRE(inertia.factorize(a));
+    CHECK(inertia.negative_pivots() == expected_negative);
+  }
 }
 
 TEST_CASE("MumpsSolver (general) solves an unsymmetric system and reuses the analysis", "[solver]") {

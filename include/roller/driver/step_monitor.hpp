@@ -11,12 +11,14 @@
 // first step's inertia comes from the contact backend when it still holds the factors of that
 // very matrix (ContactBackend::held_tangent_inertia), so the monitor factorises nothing.
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "roller/analysis/monotonicity.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
+#include "roller/solver/mumps_factorization.hpp"
 
 namespace roller {
 
@@ -46,6 +48,10 @@ class StepMonitor {
   ContactBackend* backend_;
   std::ostream* progress_;
   bool pointwise_loss_reported_ = false;
+  // The LDL^T of the assembled check: one MUMPS instance for the run, so that its analysis is
+  // reused while the pattern stays, with the factors discarded as they are computed (only the
+  // inertia is wanted: no factor memory beside the contact solve's).
+  std::unique_ptr<MumpsSolver> ldlt_;
   // The verdict of a state-independent tangent and the free dofs it was computed on.
   std::optional<MonitorReport> constant_report_;
   std::vector<Index> constant_free_dofs_;

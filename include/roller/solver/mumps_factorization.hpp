@@ -48,6 +48,9 @@ class MumpsSolver {
   // From the next factorisation on, pivots below relative_threshold * ||A|| count as null (and
   // the factorisation goes on past them) instead of failing as singular or passing unnoticed.
   void detect_null_pivots(Real relative_threshold);
+  // From the next factorisation on, the factors are discarded as they are computed (ICNTL(31) = 1):
+  // the inertia (negative_pivots, null_pivots) without the factors' memory, and no solves.
+  void discard_factors();
   Index negative_pivots() const;  // Symmetric: negative eigenvalues of the last matrix (null ones excluded)
   Index null_pivots() const;      // with detect_null_pivots: the null pivots of the last factorisation
   Index memory_mb() const;        // memory MUMPS allocated for the last factorisation (INFOG(19), MB)
