@@ -176,13 +176,14 @@ SchurCondenser::Outcome condense(const IncrementProblem& problem, const std::vec
     out->rows.push_back(r);
   }
   // A constant tangent is factorised once for every candidate's dofs (the working sets to come).
-  std::vector<Index> superset;
-  if (problem.strip_tangent_is_constant())
+  std::vector<Index> superset = out->dofs;
+  if (problem.strip_tangent_is_constant()) {
+    superset.clear();
     for (const ContactCandidate& c : problem.candidates())
       for (const Index dof : c.free_dof)
         if (dof >= 0) superset.push_back(dof);
-  const SchurCondenser::Outcome outcome =
-      condenser.condense(k, out->dofs, problem.strip_tangent_is_constant() ? superset : out->dofs, &out->schur);
+  }
+  const SchurCondenser::Outcome outcome = condenser.condense(k, out->dofs, superset, &out->schur);
   if (outcome == SchurCondenser::Outcome::Failed) return outcome;
   const VecX y = condenser.solve_interior(-g);
   const VecX ky = k * y;

@@ -36,10 +36,10 @@ void add_solve(Simulation::Increment& inc, const BackendResult& r) {
 
 // The mesh, once the machine is known to hold the run it starts (else a SystemError with advice).
 Mesh make_mesh_that_fits(const Scene& scene) {
-  // The condensed ipopt solve keeps a constant tangent's factors (StripModel::tangent_is_constant).
+  // The condensed ipopt solve keeps a constant tangent's factors for the run.
   const bool held = scene.roller && scene.contact.backend == ContactBackendKind::Ipopt &&
                     scene.contact.ipopt.formulation == IpoptFormulation::Condensed &&
-                    scene.element.kinematics == Kinematics::Small && !scene.material.plastic;
+                    tangent_is_constant(scene.element.kinematics, scene.material);
   if (const auto available = available_memory_bytes())
     check_run_memory(scene.mesh, scene.newton.linear, *available,
                      held ? HeldFactors::WholeRun : HeldFactors::PerIncrement);

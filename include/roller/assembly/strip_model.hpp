@@ -16,6 +16,14 @@ struct StripEvaluation {
   Index n_yielded = 0;  // integration points that yield in this increment
 };
 
+// Whether a strip's tangent cannot change with the state: no initial-stress term, no plastic
+// branch, a mesh that never moves (a linear elastic strip with small kinematics). K is then the
+// same matrix at every increment, which the condensed contact solve keeps factorised for the run
+// and the run-time monitor checks once.
+inline bool tangent_is_constant(Kinematics kinematics, const MaterialParams& material) {
+  return kinematics == Kinematics::Small && !material.plastic;
+}
+
 class StripModel {
  public:
   StripModel(Mesh mesh, MaterialParams material, ElementOptions options);
@@ -26,10 +34,8 @@ class StripModel {
   const MaterialParams& material() const { return material_; }
   const ElementOptions& options() const { return options_; }
   Index n_dofs() const { return mesh_.n_dofs(); }
-  // Whether the tangent cannot change with the state: no initial-stress term, no plastic branch,
-  // a mesh that never moves (a linear elastic strip with small kinematics). K is then the same
-  // matrix at every increment, which the condensed contact solve and the run-time monitor reuse.
-  bool tangent_is_constant() const { return options_.kinematics == Kinematics::Small && !material_.plastic; }
+  // Whether the tangent cannot change with the state (tangent_is_constant below).
+  bool tangent_is_constant() const { return roller::tangent_is_constant(options_.kinematics, material_); }
 
   // Selects the free dofs and builds the sparsity pattern of the Hessian over them. Call again
   // whenever the set of constrained dofs changes.
