@@ -12,7 +12,16 @@ namespace roller {
 
 namespace {
 constexpr int kUseCommWorld = -987654;  // MUMPS's code for MPI_COMM_WORLD (a no-op sequentially)
+
+// Calls f(row, col, value) for each entry of `a` that MUMPS is given (the lower triangle of a
+// symmetric matrix, every entry otherwise), in the order of the arrays it is given in.
+template <class F>
+void for_each_stored_entry(const SparseMatrix& a, bool lower_only, F&& f) {
+  for (int k = 0; k < a.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(a, k); it; ++it)
+      if (!lower_only || it.row() >= it.col()) f(it.row(), it.col(), it.value());
 }
+}  // namespace
 
 struct MumpsSolver::Impl {
   DMUMPS_STRUC_C id{};
@@ -93,22 +102,19 @@ bool MumpsSolver::Impl::factorize(const SparseMatrix& a, std::vector<MUMPS_INT> 
   // comparing, so the pattern check costs no second copy (at 1.3e6 dofs a copy is 190 MB).
   const bool lower_only = m.id.sym != 0;
   std::size_t count = 0;
-  for (int k = 0; k < a.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(a, k); it; ++it) count += !lower_only || it.row() >= it.col();
+  for_each_stored_entry(a, lower_only, [&count](Index, Index, Real) { ++count; });
   bool same_pattern = m.analysed && count == m.rows.size() && m.id.n == a.rows() && schur_vars == m.schur_list;
   m.rows.resize(count);
   m.cols.resize(count);
   m.values.resize(count);
   std::size_t e = 0;
-  for (int k = 0; k < a.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(a, k); it; ++it)
-      if (!lower_only || it.row() >= it.col()) {
-        const auto r = static_cast<MUMPS_INT>(it.row() + 1), c = static_cast<MUMPS_INT>(it.col() + 1);
-        same_pattern = same_pattern && m.rows[e] == r && m.cols[e] == c;
-        m.rows[e] = r;
-        m.cols[e] = c;
-        m.values[e++] = it.value();
-      }
+  for_each_stored_entry(a, lower_only, [&](Index row, Index col, Real value) {
+    const auto r = static_cast<MUMPS_INT>(row + 1), c = static_cast<MUMPS_INT>(col + 1);
+    same_pattern = same_pattern && m.rows[e] == r && m.cols[e] == c;
+    m.rows[e] = r;
+    m.cols[e] = c;
+    m.values[e++] = value;
+  });
   m.factorised = false;
   m.rows.shrink_to_fit();
   m.cols.shrink_to_fit();
@@ -206,16 +212,13 @@ bool MumpsSolver::holds_factors_of(const SparseMatrix& a, const std::vector<Inde
   if (!m.factorised || a.rows() != m.id.n || schur.size() != m.schur_list.size()) return false;
   for (std::size_t i = 0; i < schur.size(); ++i)
     if (schur[i] + 1 != m.schur_list[i]) return false;
-  const bool lower_only = m.id.sym != 0;
   std::size_t e = 0;
-  for (int k = 0; k < a.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
-      if (lower_only && it.row() < it.col()) continue;
-      if (e == m.values.size() || m.rows[e] != it.row() + 1 || m.cols[e] != it.col() + 1 || m.values[e] != it.value())
-        return false;
-      ++e;
-    }
-  return e == m.values.size();
+  bool same = true;
+  for_each_stored_entry(a, m.id.sym != 0, [&](Index row, Index col, Real value) {
+    same = same && e < m.values.size() && m.rows[e] == row + 1 && m.cols[e] == col + 1 && m.values[e] == value;
+    ++e;
+  });
+  return same && e == m.values.size();
 }
 
 VecX MumpsSolver::solve(const VecX& b) {
