@@ -77,9 +77,11 @@ constexpr int kMaxBacktracks = 12;
 // Working-set reach in units of l_step (see the header comment). The dense NLP costs ~m^3 per
 // interior-point iteration: with 2 l_step Z1's first rolling increment (a 600 mm roller moving
 // 4 mm over a nearly flat strip) took 571 candidates into the set for 47 in contact and spent
-// most of its time in Ipopt; with 0.25 l_step 236 candidates, a fraction of the time, same result
-// (cost of the increment: docs/benchmarks.md).
-constexpr Real kReach = 0.25;
+// most of its time in Ipopt; with 0.25 l_step 236 candidates; with 0.05 l_step the condensed
+// dofs of Z1's rolling increments fall by a third more (944 -> 634 at 4.4e5 dofs, its Ipopt time
+// 7.7 -> 2.9 s) and no scene needed a linearisation more for a candidate found penetrating
+// outside the set (docs/benchmarks.md, "A smaller working set for the contact NLP").
+constexpr Real kReach = 0.05;
 
 // Candidates in the working set: a free dof and (gap at x within `reach`, or a normal force in
 // the previous increment, or already in).
