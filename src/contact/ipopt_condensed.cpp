@@ -31,6 +31,8 @@
 //   |grad Pi(x_{k+1}) - g - K d|_inf <= tol F_ref
 // (the inner NLP holds grad q = contact forces to Ipopt's tol, so grad Pi(x_{k+1}) = contact
 // forces to tol as well: the full problem's KKT conditions).
+// The full step's trial point is evaluated with its tangent: when it is taken and the increment
+// goes on, that is the next linearisation, and the strip is not evaluated twice at one point.
 //
 // Free roller height (IncrementProblem::free_roller: a suspended or force-loaded roller). The
 // roller's vertical offset w is one more unknown: the NLP gets its step dw as a last variable (the contact rows see the
@@ -337,6 +339,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     const Real roundoff = 1e-10 * (std::abs(energy) + scales.force * scales.length);
     Real alpha = 1.0;
     VecX x_new, g_new;
+    SparseMatrix k_full_step;  // the tangent at the full step, the next linearisation's if it is taken
     Real energy_new = 0.0;
     bool accepted = false;
     std::string evaluation_error;
@@ -345,7 +348,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       next_alpha = 0.5 * alpha;
       x_new = x + alpha * d;
       try {
-        energy_new = problem.strip_energy(x_new, &g_new, nullptr).value;
+        energy_new = problem.strip_energy(x_new, &g_new, alpha == 1.0 ? &k_full_step : nullptr).value;
       } catch (const NumericalError& error) {
         evaluation_error = error.what();
         continue;
@@ -384,7 +387,9 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       if (grew) working = working_set(problem, x, reach, working);
     }
     converged = alpha == 1.0 && !grew && fixed_point_converged && model_error <= o.tol;
-    if (!converged) {
+    if (!converged && alpha == 1.0 && k_full_step.size() > 0) {
+      k_eff = std::move(k_full_step);  // evaluated with the full step: energy and g are x's already
+    } else if (!converged) {
       try {
         energy = problem.strip_energy(x, &g, &k_eff).value;
       } catch (const NumericalError& error) {
