@@ -343,6 +343,42 @@ TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium, F_
   }
 }
 
+TEST_CASE("ipopt condensed: candidates that penetrate outside the working set join it; the full formulation's answer",
+          "[ipopt]") {
+  // The start vector sinks the strip's top 0.25 mm below the roller's end position, so that no
+  // candidate is within the working set's reach there (a small fraction of the step's length
+  // scale): the first linearisation sees no contact, its step lifts the strip back into the
+  // roller, and the candidates found penetrating must join the set until none is left out.
+  auto model = make_strip(40.0, 10.0, 40, 10, false);
+  Increment inc(*model, roller_motion(kTouching, kPressed, kRadius, 0.0));
+  VecX x0 = VecX::Zero(inc.problem.n_free());
+  for (Index a = 0; a < model->mesh().n_nodes(); ++a) {
+    const Index dof = model->dof_map().free_index(2 * a + 1);
+    if (dof >= 0) x0(dof) = -0.3 * model->mesh().nodes[a].y() / 10.0;
+  }
+  for (const auto& c : inc.problem.candidates()) REQUIRE(inc.problem.gap(c, x0) > 0.2);
+  IpoptBackend condensed(ipopt_options("split", "condensed")), full(ipopt_options("split", "full"));
+  const BackendResult r = condensed.solve(inc.problem, x0);
+  INFO(r.brief_report());
+  REQUIRE(r.converged());
+  CHECK(!r.stats.condensed_fallback);
+  CHECK(r.stats.linearisations >= 3);  // none in contact, then the set grows, then the answer
+  CHECK(r.stats.condensed_dofs >= 10);
+  const BackendResult f = full.solve(inc.problem, x0);
+  REQUIRE(f.converged());
+  const Real fmax = max_normal_force(f);
+  REQUIRE(fmax > 0.0);
+  int n_contact = 0;
+  for (std::size_t i = 0; i < r.contact.size(); ++i) {
+    INFO("candidate " << i);
+    CHECK(std::abs(r.contact[i].normal_force - f.contact[i].normal_force) <= 1e-5 * fmax);
+    CHECK(r.contact[i].gap >= -1e-8 * kRadius);
+    n_contact += r.contact[i].status == ContactStatus::Open ? 0 : 1;
+  }
+  CHECK(n_contact >= 5);
+  CHECK((r.x - f.x).lpNorm<Eigen::Infinity>() <= 1e-6 * 0.05);
+}
+
 TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gives no contact variables", "[ipopt]") {
   auto model = make_strip(40.0, 10.0, 40, 10, false);
   const Vec2 lifted = kTouching + Vec2(0.0, 0.1);
@@ -355,7 +391,7 @@ TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gi
     INFO(r.brief_report());
     REQUIRE(r.converged());
     REQUIRE(r.contact.size() == 41);
-    // Full: every candidate; condensed: the working set (gap within 0.25 l_step = 0.025 mm of the
+    // Full: every candidate; condensed: the working set (gap within 0.05 l_step = 0.005 mm of the
     // roller), empty here: the roller ends 0.1 mm above the strip.
     if (formulation == "full")
       CHECK(r.stats.nlp_constraints == 41);
