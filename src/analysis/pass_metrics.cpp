@@ -103,13 +103,15 @@ PassBaseline PassBaseline::of(const StripModel& strip) {
 }
 
 nlohmann::json PassBaseline::save() const {
-  return {{"plastic_strain", plastic_strain}, {"shear_strain", shear_strain}, {"displacement", to_list(displacement)}};
+  return {{"plastic_strain", to_list(plastic_strain)},
+          {"shear_strain", to_list(shear_strain)},
+          {"displacement", to_list(displacement)}};
 }
 
 PassBaseline PassBaseline::load(const nlohmann::json& j) {
   PassBaseline b;
-  b.plastic_strain = j.at("plastic_strain").get<std::vector<Real>>();
-  b.shear_strain = j.at("shear_strain").get<std::vector<Real>>();
+  b.plastic_strain = to_reals(j.at("plastic_strain"));
+  b.shear_strain = to_reals(j.at("shear_strain"));
   b.displacement = to_vec(j.at("displacement"));
   return b;
 }

@@ -21,7 +21,8 @@ namespace {
 
 constexpr const char* kFormat = "roller-state";
 // 2: a checksum of the document and the fingerprint of the scene that wrote it.
-constexpr int kVersion = 2;
+// 3: vectors as byte strings of doubles (core/json_vectors.hpp).
+constexpr int kVersion = 3;
 
 // FNV-1a, 64 bits: a checksum against damaged files (not against tampering).
 std::string fnv1a_hex(const std::uint8_t* data, std::size_t n) {
@@ -71,14 +72,14 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
   j["n_elements"] = model_->mesh().n_elements();
   std::vector<Real> reference;
   for (const Vec2& x : model_->reference_coordinates()) reference.insert(reference.end(), {x.x(), x.y()});
-  j["reference"] = reference;
+  j["reference"] = to_list(reference);
   j["total_displacement"] = to_list(model_->total_displacement());
   std::vector<Real> states;
   for (const MaterialState& s : model_->states()) {
     states.insert(states.end(), s.stress.data(), s.stress.data() + 4);
     states.insert(states.end(), {s.eq_plastic_strain, s.plastic_work, s.yield_stress});
   }
-  j["material_states"] = states;
+  j["material_states"] = to_list(states);
   j["last_increment"] = to_list(last_increment_);
   j["last_length"] = last_length_;
   j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
@@ -151,10 +152,10 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
                       file.string()));
   }
   try {
-    const auto ref = j.at("reference").get<std::vector<Real>>();
+    const auto ref = to_reals(j.at("reference"));
     std::vector<Vec2> reference;
     for (std::size_t k = 0; k + 1 < ref.size(); k += 2) reference.emplace_back(ref[k], ref[k + 1]);
-    const auto flat = j.at("material_states").get<std::vector<Real>>();
+    const auto flat = to_reals(j.at("material_states"));
     std::vector<MaterialState> states(flat.size() / 7);
     for (std::size_t k = 0; k < states.size(); ++k) {
       const Real* p = flat.data() + 7 * k;
