@@ -343,8 +343,10 @@ TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium, F_
   }
 }
 
-TEST_CASE("ipopt condensed: candidates that penetrate outside the working set join it; the full formulation's answer",
-          "[ipopt]") {
+TEST_CASE(
+    "ipopt condensed: candidates that penetrate outside the working set join it, and reach the full formulation's "
+    "answer",
+    "[ipopt]") {
   // The start vector sinks the strip's top 0.25 mm below the roller's end position, so that no
   // candidate is within the working set's reach there (a small fraction of the step's length
   // scale): the first linearisation sees no contact, its step lifts the strip back into the
