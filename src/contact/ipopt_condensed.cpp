@@ -31,8 +31,9 @@
 //   |grad Pi(x_{k+1}) - g - K d|_inf <= tol F_ref
 // (the inner NLP holds grad q = contact forces to Ipopt's tol, so grad Pi(x_{k+1}) = contact
 // forces to tol as well: the full problem's KKT conditions).
-// The full step's trial point is evaluated with its tangent: when it is taken and the increment
-// goes on, that is the next linearisation, and the strip is not evaluated twice at one point.
+// The full step's trial point is evaluated with its tangent (a strip whose tangent changes): when
+// it is taken and the increment goes on, that is the next linearisation, and the strip is not
+// evaluated twice at one point.
 //
 // Free roller height (IncrementProblem::free_roller: a suspended or force-loaded roller). The
 // roller's vertical offset w is one more unknown: the NLP gets its step dw as a last variable (the contact rows see the
@@ -239,6 +240,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   auto roller_energy = [&spring](Real w) { return spring ? spring->energy(w) : 0.0; };
   Condensation cond;
   const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
+  // A constant tangent needs no new one at the full step (its increments take one linearisation).
+  const bool tangent_changes = !problem.strip_tangent_is_constant();
   int linearisations = 0, passes_last = 0;
   bool converged = false, fixed_point_converged = false;
   Real model_error = 0.0;
@@ -322,6 +325,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     const VecX ke = k_eff * e;
     VecX d = condenser.solve_interior(-g - ke) + e;
     const VecX kd = k_eff * d;
+    k_eff = SparseMatrix();  // the next tangent comes with the full step or anew: one K in memory
     const Real w0 = problem.roller_offset();
     const Real model_change = g.dot(d) + 0.5 * d.dot(kd) + roller_energy(w0 + dw) - roller_energy(w0);
 
@@ -348,7 +352,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       next_alpha = 0.5 * alpha;
       x_new = x + alpha * d;
       try {
-        energy_new = problem.strip_energy(x_new, &g_new, alpha == 1.0 ? &k_full_step : nullptr).value;
+        energy_new =
+            problem.strip_energy(x_new, &g_new, alpha == 1.0 && tangent_changes ? &k_full_step : nullptr).value;
       } catch (const NumericalError& error) {
         evaluation_error = error.what();
         continue;

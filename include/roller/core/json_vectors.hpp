@@ -5,7 +5,6 @@
 // Number arrays are still read, so small vectors written by hand or by older code load too.
 #include <cstdint>
 #include <cstring>
-#include <stdexcept>
 #include <vector>
 
 #include <nlohmann/json.hpp>
