@@ -12,8 +12,8 @@ using namespace roller;
 
 TEST_CASE("json vectors: doubles survive CBOR exactly as byte strings, arrays still read, bad lengths refused",
           "[io]") {
-  const std::vector<Real> v{0.1, -1e-300, 3.0e300, std::nextafter(1.0, 2.0), -0.0,
-                            std::numeric_limits<Real>::denorm_min()};
+  const std::vector<Real> v{
+      0.1, -1e-300, 3.0e300, std::nextafter(1.0, 2.0), -0.0, std::numeric_limits<Real>::denorm_min()};
   nlohmann::json doc;
   doc["v"] = to_list(v);
   doc["empty"] = to_list(std::vector<Real>{});
