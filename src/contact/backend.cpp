@@ -113,6 +113,12 @@ bool IpoptOptions::is_valid(std::string* why) const {
   if (!(fixed_point_tol > 0.0))
     return bad(fmt::format("contact.ipopt.fixed_point_tol = {}: must be > 0", fixed_point_tol));
   if (fixed_point_max < 1) return bad(fmt::format("contact.ipopt.fixed_point_max = {}: must be >= 1", fixed_point_max));
+  for (const RawIpoptOption& r : raw)
+    if (r.name == "linear_solver")
+      return bad(
+          fmt::format("contact.ipopt.options.linear_solver = {}: roller chooses Ipopt's linear solver per NLP; "
+                      "use contact.ipopt.kkt_solver = \"auto\", \"dense\" or \"mumps\"",
+                      r.text));
   return true;
 }
 

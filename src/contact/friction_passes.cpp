@@ -81,6 +81,7 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     Ipopt::SmartPtr<ContactTnlp> nlp;
     Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
     StatusText st{ContactTermination::Failed, ""};
+    set(app, "linear_solver", kkt_linear_solver(o.kkt_solver, contact.n_variables(), contact.n_constraints()));
     for (const bool warm_here : {warm, false}) {
       set_warm_start(app, warm_here);
       nlp = new ContactTnlp(objective, contact, start);

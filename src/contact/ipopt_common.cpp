@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "dense_kkt_solver.hpp"
 #include "roller/core/error.hpp"
 
 namespace roller::ipopt_detail {
@@ -60,6 +61,7 @@ Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real st
 }
 
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o, const Scales& scales) {
+  register_dense_kkt_solver();
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->RethrowNonIpoptException(true);
   set(*app, "sb", std::string("yes"));
@@ -88,6 +90,18 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
   set(*app, "line_search_method", std::string("penalty"));  // ipopt_backend.cpp, header comment
   apply_raw_options(*app, o.raw);
   return app;
+}
+
+// Auto: the dense solver up to this bound on Ipopt's KKT dimension (n + 2m: the variables, the
+// constraints' multipliers and the inequalities' slacks). Measured on Z1 at refine 2-8, the
+// same Ipopt iterations with either solver: dense took 0.47 of MUMPS's time inside Ipopt at
+// ~25 condensed dofs, 0.7 at ~55, 1.0 at ~80 and 1.4 at ~110 (docs/benchmarks.md, "A dense
+// solver for Ipopt's small KKT systems").
+constexpr int kDenseKktMax = 200;
+
+std::string kkt_linear_solver(KktSolver choice, int n, int m) {
+  const bool dense = choice == KktSolver::Dense || (choice == KktSolver::Auto && n + 2 * m <= kDenseKktMax);
+  return dense ? "ma27" : "mumps";
 }
 
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,

@@ -443,6 +443,10 @@ void read_ipopt_options(TomlSection& s, Scene& scene, std::size_t) {
   // Any Ipopt option, passed through (checked by Ipopt when the backend is built).
   for (const std::string& key : raw->keys()) {
     const toml::node* v = raw->node(key);
+    if (key == "linear_solver")  // set per NLP by roller (contact/ipopt_common.cpp, kkt_linear_solver)
+      raw->fail(key,
+                "not passed through: roller chooses Ipopt's linear solver per NLP; use contact.ipopt.kkt_solver = "
+                "\"auto\", \"dense\" or \"mumps\"");
     RawIpoptOption r{key, RawIpoptOption::Kind::String, ""};
     if (v->is_integer()) {
       r.kind = RawIpoptOption::Kind::Integer;
@@ -897,6 +901,9 @@ std::vector<SceneKey> make_keys() {
       key(
           "contact.ipopt.fixed_point_max", [](auto& s) -> auto& { return s.contact.ipopt.fixed_point_max; },
           "passes of the friction fixed point at most", at_least(1)),
+      key(
+          "contact.ipopt.kkt_solver", [](auto& s) -> auto& { return s.contact.ipopt.kkt_solver; },
+          "Ipopt's linear solver: dense (LAPACK, for small NLPs), mumps (sparse), auto: dense up to 200 KKT rows"),
       custom("contact.ipopt.options", "table", "{}", "Ipopt's options",
              "any further Ipopt option, passed through after roller's own settings (booleans become yes/no)",
              read_ipopt_options, write_ipopt_options),

@@ -586,6 +586,20 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
       CHECK(std::abs(r.contact[i].tangential_force) <=
             mu * inc->problem.candidates()[i].normal_force_guess * (1 + 1e-12));
   }
+  SECTION("Ipopt's dense and MUMPS linear solvers give one answer") {
+    auto inc = s.slide(dx);
+    ContactOptions o = ipopt_options("split", formulation);
+    o.ipopt.kkt_solver = KktSolver::Dense;
+    const BackendResult dense = IpoptBackend(o).solve(inc->problem, VecX::Zero(inc->problem.n_free()));
+    auto inc2 = s.slide(dx);
+    o.ipopt.kkt_solver = KktSolver::Mumps;
+    const BackendResult mumps = IpoptBackend(o).solve(inc2->problem, VecX::Zero(inc2->problem.n_free()));
+    INFO("dense: " << dense.brief_report() << "\nmumps: " << mumps.brief_report());
+    REQUIRE(dense.converged());
+    REQUIRE(mumps.converged());
+    CHECK(dense.stats.nlp_solves == mumps.stats.nlp_solves);
+    CHECK((dense.x - mumps.x).lpNorm<Eigen::Infinity>() <= 1e-8 * mumps.x.lpNorm<Eigen::Infinity>());
+  }
   SECTION("regularized friction") {
     auto inc = s.slide(dx);
     ContactOptions o = ipopt_options("regularized", formulation);

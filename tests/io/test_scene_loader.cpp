@@ -205,6 +205,10 @@ TEST_CASE("contact.ipopt.options pass Ipopt options through and reject unknown o
   const Scene bad =
       load_scene(base, {{"contact.backend", "\"ipopt\""}, {"contact.ipopt.options.mumps_pivot_ordr", "0"}});
   CHECK_THROWS_WITH(Simulation(bad), Catch::Contains("contact.ipopt.options.mumps_pivot_ordr = 0: Ipopt rejects it"));
+  // roller picks Ipopt's linear solver per NLP: the pass-through would be overridden, so it is refused.
+  CHECK_THROWS_WITH(
+      load_scene(base, {{"contact.backend", "\"ipopt\""}, {"contact.ipopt.options.linear_solver", "\"ma57\""}}),
+      Catch::Contains("contact.ipopt.options.linear_solver") && Catch::Contains("contact.ipopt.kkt_solver"));
 }
 
 TEST_CASE("[linear_solver] selects MUMPS's ordering and out-of-core mode, checked before computing", "[io][scene]") {

@@ -21,6 +21,11 @@ enum class IpoptFriction { Split, Regularized };
 // Converge: Coulomb (the normal-force fixed point iterated); Single: one pass with the previous
 // increment's F_N (the thesis's explicit variant).
 enum class FixedPointRule { Converge, Single };
+// Ipopt's linear solver for the KKT systems of its interior-point iterations. Dense: LAPACK's
+// Bunch-Kaufman LDL^T (contact/dense_kkt_solver.hpp), no fixed cost per call, O(n^3); Mumps: the
+// sparse multifrontal solver, about 0.1 ms a call whatever the size; Auto: dense for small NLPs
+// (contact/ipopt_common.cpp, kDenseKktMax).
+enum class KktSolver { Auto, Dense, Mumps };
 // Start of each increment: the previous increment scaled, or then the thesis's arc rule (4.25)
 // (docs/model.md, Arc predictor), or the previous increment carried along with the roller
 // (contact/rolling_predictor.hpp).
@@ -51,6 +56,11 @@ template <>
 struct EnumNames<IpoptFriction> {
   static constexpr std::array<std::pair<IpoptFriction, const char*>, 2> names{
       {{IpoptFriction::Split, "split"}, {IpoptFriction::Regularized, "regularized"}}};
+};
+template <>
+struct EnumNames<KktSolver> {
+  static constexpr std::array<std::pair<KktSolver, const char*>, 3> names{
+      {{KktSolver::Auto, "auto"}, {KktSolver::Dense, "dense"}, {KktSolver::Mumps, "mumps"}}};
 };
 template <>
 struct EnumNames<FixedPointRule> {
@@ -101,6 +111,7 @@ struct IpoptOptions {
   Real fixed_point_tol = 1e-6;  // relative change of F_N that ends the fixed point (changes
                                 // below a pass's multiplier resolution end it too)
   int fixed_point_max = 30;
+  KktSolver kkt_solver = KktSolver::Auto;
   std::vector<RawIpoptOption> raw;  // applied after roller's own settings (override them)
   bool is_valid(std::string* why) const;
 };
