@@ -9,6 +9,7 @@ packages=(
   libopenblas0-pthread                   # optimised BLAS/LAPACK for MUMPS (replaces the reference
                                          # BLAS through Debian's alternatives: faster Ipopt
                                          # increments, docs/benchmarks.md, "BLAS under MUMPS")
+  liblapack-dev                          # dsytrf for Ipopt's small dense KKT systems
   libeigen3-dev                          # dense/sparse linear algebra
   catch2                                 # unit tests (v2)
   libcli11-dev                           # command-line parsing
