@@ -15,11 +15,21 @@ constexpr Real kNullPivot = 1e-12;
 SchurCondenser::SchurCondenser(const LinearSolverOptions& options) : options_(options) {}
 
 bool SchurCondenser::factorise(const SparseMatrix& a, const std::vector<Index>& superset) {
+  superset_.clear();
+  if (a.rows() <= kSimplicialSchurMaxDofs && !simplicial_refused_) {
+    if (!simplicial_) simplicial_.emplace();
+    if (simplicial_->factorize_with_schur(a, superset, kNullPivot, &schur_superset_)) {
+      superset_ = superset;
+      matrix_norm_ = a.coeffs().cwiseAbs().maxCoeff();
+      return true;
+    }
+    simplicial_refused_ = true;
+  }
+  simplicial_.reset();
   if (!solver_) {
     solver_.emplace(MumpsSolver::Symmetry::Symmetric, options_);
     solver_->detect_null_pivots(kNullPivot);
   }
-  superset_.clear();
   if (!solver_->factorize_with_schur(a, superset, &schur_superset_)) return false;
   if (solver_->null_pivots() > 0) {
     message_ = "the matrix is singular on the variables outside the Schur set";
@@ -56,9 +66,19 @@ bool SchurCondenser::reduce_to(const std::vector<Index>& set, MatX* schur) {
   return true;
 }
 
+bool SchurCondenser::holds_factors_of(const SparseMatrix& a) const {
+  if (simplicial_) return simplicial_->holds_factors_of(a, superset_);
+  return solver_ && solver_->holds_factors_of(a, superset_);
+}
+
+VecX SchurCondenser::solve_with_schur(const VecX& b, const std::function<VecX(const VecX&)>& schur_solve) {
+  if (simplicial_) return simplicial_->solve_with_schur(b, schur_solve);
+  return solver_->solve_with_schur(b, schur_solve);
+}
+
 SchurCondenser::Outcome SchurCondenser::condense(const SparseMatrix& a, const std::vector<Index>& set,
                                                  const std::vector<Index>& superset, MatX* schur) {
-  if (solver_ && solver_->holds_factors_of(a, superset_) && reduce_to(set, schur)) return Outcome::Reused;
+  if (holds_factors_of(a) && reduce_to(set, schur)) return Outcome::Reused;
   if (!factorise(a, superset)) return Outcome::Failed;
   if (reduce_to(set, schur)) return Outcome::Factorised;
   // S_C[R,R] not positive definite (an indefinite matrix): condense on the set alone.
@@ -67,8 +87,8 @@ SchurCondenser::Outcome SchurCondenser::condense(const SparseMatrix& a, const st
 }
 
 VecX SchurCondenser::solve_interior(const VecX& b) {
-  if (rest_.empty()) return solver_->solve_interior(b);
-  return solver_->solve_with_schur(b, [this](const VecX& reduced) {
+  if (rest_.empty()) return simplicial_ ? simplicial_->solve_interior(b) : solver_->solve_interior(b);
+  return solve_with_schur(b, [this](const VecX& reduced) {
     VecX x = VecX::Zero(reduced.size());  // zero on the set
     const VecX on_rest = rest_factors_.solve(VecX(reduced(rest_)));
     x(rest_) = on_rest;
@@ -77,10 +97,10 @@ VecX SchurCondenser::solve_interior(const VecX& b) {
 }
 
 std::optional<Inertia> SchurCondenser::inertia_of(const SparseMatrix& a) {
-  if (!solver_ || !solver_->holds_factors_of(a, superset_)) return std::nullopt;
-  Inertia in;
-  in.negative = solver_->negative_pivots();  // of A_II (the Schur variables are not pivoted)
-  in.zero = solver_->null_pivots();
+  if (!holds_factors_of(a)) return std::nullopt;
+  Inertia in;  // of A_II (the Schur variables are not pivoted); Eigen's holds a positive definite one
+  in.negative = simplicial_ ? 0 : solver_->negative_pivots();
+  in.zero = simplicial_ ? 0 : solver_->null_pivots();
   if (superset_.empty()) return in;
   const Real null = kNullPivot * matrix_norm_;
   const Eigen::LLT<MatX> llt(schur_superset_);
@@ -95,6 +115,7 @@ std::optional<Inertia> SchurCondenser::inertia_of(const SparseMatrix& a) {
 
 void SchurCondenser::release() {
   solver_.reset();
+  simplicial_.reset();
   superset_.clear();
   schur_superset_.resize(0, 0);
   in_set_.clear();

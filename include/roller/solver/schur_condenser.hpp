@@ -17,6 +17,10 @@
 //
 // The held factors also give A's inertia for free (Haynsworth: In(A) = In(A_II) + In(S_C)):
 // the run-time monitor's check of the same matrix (driver/step_monitor.hpp).
+//
+// The factorisation: MUMPS, or for matrices of at most kSimplicialSchurMaxDofs rows Eigen's
+// simplicial LDL^T (solver/simplicial_schur.hpp: no per-call fixed cost) while A_II is positive
+// definite; the first A_II that is not sends this condenser to MUMPS for good.
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +31,7 @@
 #include "roller/solver/inertia.hpp"
 #include "roller/solver/linear_solver_options.hpp"
 #include "roller/solver/mumps_factorization.hpp"
+#include "roller/solver/simplicial_schur.hpp"
 
 namespace roller {
 
@@ -56,12 +61,16 @@ class SchurCondenser {
  private:
   bool factorise(const SparseMatrix& a, const std::vector<Index>& superset);
   bool reduce_to(const std::vector<Index>& set, MatX* schur);
+  bool holds_factors_of(const SparseMatrix& a) const;
+  VecX solve_with_schur(const VecX& b, const std::function<VecX(const VecX&)>& schur_solve);
 
   LinearSolverOptions options_;
   std::optional<MumpsSolver> solver_;
-  std::vector<Index> superset_;  // the Schur variables of the held factors
-  MatX schur_superset_;          // S_C
-  Real matrix_norm_ = 0.0;       // max |a_ij| of the held matrix (the null-pivot scale)
+  std::optional<SimplicialSchur> simplicial_;  // the factors held, when they are Eigen's
+  bool simplicial_refused_ = false;            // an A_II it could not factorise: MUMPS from then on
+  std::vector<Index> superset_;                // the Schur variables of the held factors
+  MatX schur_superset_;                        // S_C
+  Real matrix_norm_ = 0.0;                     // max |a_ij| of the held matrix (the null-pivot scale)
   // The last set: its positions in superset_ and the other positions R with S_C[R,R]'s factors.
   std::vector<Index> in_set_, rest_;
   Eigen::LLT<MatX> rest_factors_;
