@@ -131,7 +131,10 @@ void factorise(ipfint* n, ipfint* nz, const ipfint* irn, const ipfint* icn, doub
     return;
   }
   int negative = 0, zeros = 0;
-  const double zero = dim * std::numeric_limits<double>::epsilon() * a_max;
+  // MUMPS's null-pivot threshold in Ipopt (CNTL(3) = 0: 1e-5 eps |A|). A looser one (n eps |A|)
+  // called a Z3 KKT matrix singular 15 times in 1371, where MUMPS did not: Ipopt then perturbed
+  // it, took 21 iterations more and restarted a warm start cold (docs/benchmarks.md).
+  const double zero = 1e-5 * std::numeric_limits<double>::epsilon() * a_max;
   inertia_of_d(dim, f, ipiv, zero, &negative, &zeros);
   info[14] = negative;
   if (zeros > 0 || status > 0) {
