@@ -20,8 +20,9 @@
 //     into the dense lower triangle at A[NZ..], factorises it there, keeps the pivots in IW;
 //     INFO(15) = the number of negative eigenvalues (from the 1x1 and 2x2 blocks of D), and an
 //     eigenvalue of a pivot block at or below 1e-5 eps |A|_max (MUMPS's null pivot in Ipopt) is
-//     a zero one: IFLAG = 3, INFO(2) = the rank, as MA27 reports a rank deficiency; a workspace too small gives IFLAG = -3/-4 with the size
-//     needed in INFO(2), and Ipopt grows it and calls again;
+//     a zero one: IFLAG = 3, INFO(2) = the rank, as MA27 reports a rank deficiency; a
+//     workspace too small gives IFLAG = -3/-4 with the size needed in INFO(2), and Ipopt grows
+//     it and calls again;
 //   ma27cd (solve): one right-hand side in place.
 // The pivot tolerance (CNTL(1)) is ignored: Bunch-Kaufman's pivot choice is fixed.
 #include <HSLLoader.h>
