@@ -21,6 +21,7 @@
 // The factorisation: MUMPS, or for matrices of at most kSimplicialSchurMaxDofs rows Eigen's
 // simplicial LDL^T (solver/simplicial_schur.hpp: no per-call fixed cost) while A_II is positive
 // definite; the first A_II that is not sends this condenser to MUMPS for good.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
