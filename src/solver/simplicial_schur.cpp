@@ -94,24 +94,15 @@ bool SimplicialSchur::holds_factors_of(const SparseMatrix& a, const std::vector<
   if (!factorised_ || a.rows() != held_.rows() || schur != schur_) return false;
   const Real* value = held_.valuePtr();
   const int* row = held_.innerIndexPtr();
+  const int* column_start = held_.outerIndexPtr();
   const Index count = held_.nonZeros();
   Index e = 0;
   bool same = true;
-  for_each_lower(a, [&](Index r, Index, Real v) {
-    same = same && e < count && row[e] == r && value[e] == v;
+  for_each_lower(a, [&](Index r, Index c, Real v) {
+    same = same && e < count && e >= column_start[c] && e < column_start[c + 1] && row[e] == r && value[e] == v;
     ++e;
   });
-  // The columns line up too: both are the lower triangle of a matrix of the same order, entry by
-  // entry in column order, so equal rows and values with equal counts per column.
-  if (!same || e != count) return false;
-  Index start = 0;
-  for (Index c = 0; c < a.outerSize(); ++c) {
-    Index in_column = 0;
-    for (SparseMatrix::InnerIterator it(a, c); it; ++it) in_column += it.row() >= c ? 1 : 0;
-    if (held_.outerIndexPtr()[c] != start) return false;
-    start += in_column;
-  }
-  return true;
+  return same && e == count;
 }
 
 }  // namespace roller

@@ -35,10 +35,9 @@ class SimplicialSchur {
   // `schur_solve` gets r = b_s - A_si A_ii^-1 b_i and returns x_s; then x_i = A_ii^-1 (b_i - A_is x_s).
   template <class SchurSolve>
   VecX solve_with_schur(const VecX& b, const SchurSolve& schur_solve) const {
-    const VecX y = interior_solve(gather_interior(b));
-    VecX r = gather_schur(b) - a_is_.transpose() * y;
-    const VecX xs = schur_solve(r);
-    return scatter(interior_solve(gather_interior(b) - a_is_ * xs), xs);
+    const VecX bi = gather_interior(b);
+    const VecX xs = schur_solve(VecX(gather_schur(b) - a_is_.transpose() * interior_solve(bi)));
+    return scatter(interior_solve(bi - a_is_ * xs), xs);
   }
   // Whether the factors held are those of exactly `a` (pattern and values) with this Schur list.
   bool holds_factors_of(const SparseMatrix& a, const std::vector<Index>& schur) const;
