@@ -1,7 +1,9 @@
 // roller command line: parse, load, run, report. Exit codes: 0 success, 1 a step failed
 // (results of completed steps are on disk), 2 bad input, 3 the machine refused (disk full, out
 // of memory), 4 an internal error (a bug: please report it).
+#include <cstdlib>
 #include <iostream>
+#include <optional>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -34,21 +36,37 @@ int run_scene(const RunArgs& args) {
   if (!args.contact.empty()) overrides.push_back({"contact.backend", "\"" + args.contact + "\""});
   roller::Scene scene = roller::load_scene(args.scene, overrides);
   if (!args.initial_state.empty()) scene.initial_state = std::filesystem::absolute(args.initial_state);
-  roller::Simulation sim(std::move(scene));
-  const std::string out = args.out.empty() ? "out/" + sim.scene().name : args.out;
+  roller::RunOptions options;
+  options.out_dir = args.out.empty() ? "out/" + scene.name : args.out;
+  options.progress = &std::cout;
+  options.resume = args.resume;
+  options.overwrite = args.overwrite;
+  const std::string out = options.out_dir.string();
+  std::optional<roller::Simulation> built;
+  try {
+    built.emplace(scene);
+  } catch (const roller::SystemError& e) {  // the memory check before the mesh is built
+    roller::write_stopped_summary(scene, options, roller::RunStatus::SystemError, e.what());
+    throw;
+  }
+  roller::Simulation& sim = *built;
   std::cout << fmt::format("roller: scene '{}' ({}), {} elements {}, {} dofs ({} free), {} steps -> {}\n",
                            sim.scene().name, sim.scene().title, sim.model().mesh().n_elements(),
                            roller::enum_name(sim.model().mesh().element_type), sim.model().n_dofs(),
                            sim.model().dof_map().n_free(), sim.scene().total_steps(), out);
-  roller::RunOptions options;
-  options.out_dir = out;
-  options.progress = &std::cout;
-  options.resume = args.resume;
-  options.overwrite = args.overwrite;
   const roller::RunSummary summary = sim.run(options);
   std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations, peak memory {:.0f} MiB); results in {}\n",
                            summary.message, summary.wall_s, summary.iterations_total, summary.peak_memory_mb, out);
-  return summary.converged ? 0 : 1;
+  return roller::exit_code(summary.status);
+}
+
+// Exit code 3 without the libraries' exit handlers: out of memory, an OpenBLAS thread may be
+// retrying its buffer's mapping for ever, and OpenBLAS's handler would wait for it (a hang seen
+// under ulimit -v). Our files are closed by then.
+int system_exit() {
+  std::cout.flush();
+  std::cerr.flush();
+  std::_Exit(3);
 }
 
 }  // namespace
@@ -100,11 +118,11 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const roller::SystemError& e) {
     std::cerr << "roller: system error: " << e.what() << "\n";
-    return 3;
+    return system_exit();
   } catch (const std::bad_alloc&) {
     std::cerr << "roller: system error: out of memory; use a coarser mesh (smaller refine) or "
-                 "[linear_solver] out_of_core = true\n";
-    return 3;
+                 "[linear_solver] out_of_core = true, or raise the memory limit (ulimit -v)\n";
+    return system_exit();
   } catch (const std::exception& e) {
     std::cerr << "roller: internal error: " << e.what() << " (please report it with the scene file)\n";
     return 4;

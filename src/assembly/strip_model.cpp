@@ -161,7 +161,7 @@ StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, Spars
   if (!u.allFinite())
     throw NumericalError(
         "the displacement increment contains NaN or Inf: the solver diverged; "
-        "use smaller steps");
+        "use smaller steps (a larger steps.count, or steps.max_cuts)");
   if (gradient) gradient->setZero(n_dofs());
   if (hessian_free) zero_hessian(*hessian_free);
   Real energy = 0.0;
@@ -207,7 +207,9 @@ StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, Spars
     }
   }
   if (!std::isfinite(energy))
-    throw NumericalError("the strain energy is not finite: the increment is too large; use smaller steps");
+    throw NumericalError(
+        "the strain energy is not finite: the increment is too large; use smaller steps (a larger steps.count, or "
+        "steps.max_cuts)");
   return {energy, n_yielded};
 }
 

@@ -80,7 +80,8 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
              std::isfinite(c.slip);
   if (!finite && r.converged()) {
     r.status = ContactTermination::Failed;
-    r.message = fmt::format("{} backend returned non-finite values; use smaller steps", name());
+    r.message = fmt::format(
+        "{} backend returned non-finite values; use smaller steps (a larger steps.count, or steps.max_cuts)", name());
   }
   r.max_penetration = 0.0;
   for (const auto& c : r.contact) r.max_penetration = std::max(r.max_penetration, -c.gap);

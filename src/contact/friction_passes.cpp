@@ -59,7 +59,8 @@ bool NormalForceFixedPoint::update(const std::vector<Real>& normal) {
 std::string NormalForceFixedPoint::failure_message(int passes) const {
   return fmt::format(
       "the friction fixed point on the normal force did not converge in {} passes (contact.ipopt.fixed_point_max): "
-      "max |dF_N| = {:.3g} vs contact.ipopt.fixed_point_tol * max F_N = {:.3g}; use smaller steps, raise "
+      "max |dF_N| = {:.3g} vs contact.ipopt.fixed_point_tol * max F_N = {:.3g}; use smaller steps (a larger "
+      "steps.count, or steps.max_cuts), raise "
       "contact.ipopt.fixed_point_max, or use contact.ipopt.fixed_point = \"single\"",
       passes, last_change_, o_.fixed_point_tol * last_max_);
 }

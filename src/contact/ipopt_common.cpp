@@ -115,29 +115,33 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
     case Ipopt::Maximum_Iterations_Exceeded:
       return {S::LimitReached,
               fmt::format("Ipopt stopped after {} iterations without reaching contact.ipopt.tol = {:g} "
-                          "(contact.ipopt.max_iter = {}); use smaller steps or raise contact.ipopt.max_iter",
+                          "(contact.ipopt.max_iter = {}); use smaller steps (a larger steps.count, or steps.max_cuts) "
+                          "or raise contact.ipopt.max_iter",
                           iterations, o.tol, o.max_iter)};
     case Ipopt::Maximum_CpuTime_Exceeded:
-      return {S::LimitReached, "Ipopt exceeded its CPU time limit; use smaller steps"};
+      return {S::LimitReached,
+              "Ipopt exceeded its CPU time limit; use smaller steps (a larger steps.count, or steps.max_cuts)"};
     case Ipopt::Restoration_Failed:
       return {S::LimitReached,
               fmt::format("Ipopt's feasibility restoration failed after {} iterations: the roller cannot be "
                           "placed without penetration from this start (or the strip cannot follow it){}; "
-                          "use smaller steps",
+                          "use smaller steps (a larger steps.count, or steps.max_cuts)",
                           iterations, cause)};
     case Ipopt::Infeasible_Problem_Detected:
       return {S::LimitReached,
               "Ipopt found the increment locally infeasible: the roller cannot be placed without "
               "penetration (e.g. it presses a node whose dofs are prescribed, or the step is too large "
-              "for the curved gap); use smaller steps"};
+              "for the curved gap); use smaller steps (a larger steps.count, or steps.max_cuts)"};
     case Ipopt::Search_Direction_Becomes_Too_Small:
       return {S::LimitReached,
               fmt::format("Ipopt's search direction became too small before reaching contact.ipopt.tol = {:g}: "
                           "the tolerance is below what round-off allows for this problem; raise "
-                          "contact.ipopt.tol or use smaller steps",
+                          "contact.ipopt.tol or use smaller steps (a larger steps.count, or steps.max_cuts)",
                           o.tol)};
     case Ipopt::Feasible_Point_Found:
-      return {S::LimitReached, "Ipopt found a feasible point but not an optimum; use smaller steps"};
+      return {S::LimitReached,
+              "Ipopt found a feasible point but not an optimum; use smaller steps (a larger steps.count, or "
+              "steps.max_cuts)"};
     case Ipopt::Diverging_Iterates:
       return {S::Failed,
               "Ipopt's iterates diverged (|x| > 1e20): the strip is not held against rigid-body motion "
@@ -145,12 +149,13 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
     case Ipopt::Error_In_Step_Computation:
       return {S::Failed,
               fmt::format("Ipopt could not solve its Newton system (singular KKT matrix after regularisation){}; "
-                          "check the boundary conditions (rigid-body modes) or use smaller steps",
+                          "check the boundary conditions (rigid-body modes) or use smaller steps (a larger "
+                          "steps.count, or steps.max_cuts)",
                           cause)};
     case Ipopt::Invalid_Number_Detected:
       return {S::Failed,
               fmt::format("the strip's energy or its derivatives could not be evaluated at an Ipopt iterate{}; "
-                          "use smaller steps",
+                          "use smaller steps (a larger steps.count, or steps.max_cuts)",
                           cause)};
     case Ipopt::Not_Enough_Degrees_Of_Freedom:
       return {S::Failed, "Ipopt: more equality constraints than free variables (internal error; please report)"};

@@ -218,7 +218,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
   } catch (const NumericalError& error) {
     return formulation_failed(result, ContactTermination::Failed,
                               fmt::format("ipopt backend: the strip cannot be evaluated at the start vector ({}); "
-                                          "use smaller steps",
+                                          "use smaller steps (a larger steps.count, or steps.max_cuts)",
                                           error.what()));
   }
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
@@ -373,7 +373,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       problem.move_roller(w0);
       return formulation_failed(result, ContactTermination::LimitReached,
                                 fmt::format("ipopt backend (condensed): no descent along the step of linearisation "
-                                            "{}{}; use smaller steps",
+                                            "{}{}; use smaller steps (a larger steps.count, or steps.max_cuts)",
                                             outer, evaluation_error.empty() ? "" : " (" + evaluation_error + ")"));
     }
     model_error = (g_new - g - alpha * kd).lpNorm<Eigen::Infinity>() / scales.force;
@@ -400,7 +400,7 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
       } catch (const NumericalError& error) {
         return formulation_failed(result, ContactTermination::Failed,
                                   fmt::format("ipopt backend (condensed): the strip tangent cannot be evaluated ({}); "
-                                              "use smaller steps",
+                                              "use smaller steps (a larger steps.count, or steps.max_cuts)",
                                               error.what()));
       }
     }
@@ -420,7 +420,8 @@ CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, cons
     }
     return formulation_failed(result, ContactTermination::LimitReached,
                               fmt::format("ipopt backend (condensed): {} linearisations without convergence (model "
-                                          "error {:.3g} against contact.ipopt.tol = {:g}); use smaller steps",
+                                          "error {:.3g} against contact.ipopt.tol = {:g}); use smaller steps (a larger "
+                                          "steps.count, or steps.max_cuts)",
                                           kMaxLinearisations, model_error, o.tol));
   }
   result.status = ContactTermination::Converged;

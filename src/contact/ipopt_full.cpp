@@ -128,7 +128,7 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
     result.status = ContactTermination::Failed;
     result.message = fmt::format(
         "ipopt backend: the strip cannot be evaluated at the start vector ({}); "
-        "use smaller steps",
+        "use smaller steps (a larger steps.count, or steps.max_cuts)",
         error.what());
     return result;
   }

@@ -174,7 +174,9 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
     result.iterations = it;
     result.residual = rnorm / std::max(e.scale, 1e-300);
     if (!std::isfinite(rnorm)) {
-      result.message = "the residual is not finite: the increment diverged; use smaller steps";
+      result.message =
+          "the residual is not finite: the increment diverged; use smaller steps (a larger steps.count, or "
+          "steps.max_cuts)";
       return result;
     }
     if (result.residual <= tolerance || rnorm <= e.roundoff_floor) {
@@ -198,7 +200,8 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
     if (it >= newton_.max_iterations) {
       result.status = ContactTermination::LimitReached;
       result.message = fmt::format(
-          "penalty Newton: no convergence in {} iterations (|r|/F = {:.2e}); use smaller steps, "
+          "penalty Newton: no convergence in {} iterations (|r|/F = {:.2e}); use smaller steps (a larger steps.count, "
+          "or steps.max_cuts), "
           "a smaller contact.penalty.factor, or the ipopt backend",
           it, result.residual);
       break;
@@ -230,7 +233,8 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
         result.status = ContactTermination::LimitReached;
         result.message = fmt::format(
             "penalty Newton: the line search found no decrease of the residual (|r|/F = {:.2e}); "
-            "use smaller steps, a smaller contact.penalty.factor, or the ipopt backend",
+            "use smaller steps (a larger steps.count, or steps.max_cuts), a smaller contact.penalty.factor, or the "
+            "ipopt backend",
             result.residual);
         break;
       }

@@ -107,7 +107,7 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
       if (hi - lo <= 1e-14 * std::max(1.0, std::abs(w))) {
         out.message = fmt::format(
             "the force on the roller jumps across the prescribed {:.6g} N/mm within {:.3g} mm of the centre's {} "
-            "(last {:.6g} N/mm): take smaller steps",
+            "(last {:.6g} N/mm): take smaller steps (a larger steps.count, or steps.max_cuts)",
             target, hi - lo, words(settings.axis).position, out.force);
         return out;
       }
@@ -126,7 +126,7 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
   }
   out.message = fmt::format(
       "the roller's {} under the prescribed force {:.6g} N/mm did not converge in {} contact solves (force {:.6g} "
-      "N/mm): take smaller steps",
+      "N/mm): take smaller steps (a larger steps.count, or steps.max_cuts)",
       words(settings.axis).position, target, settings.max_iterations, out.force);
   return out;
 }

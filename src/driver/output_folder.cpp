@@ -37,20 +37,28 @@ void prepare_output_folder(const std::filesystem::path& dir, const std::string& 
   std::error_code ec;
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw InputError(fmt::format("--out {}: not a folder", dir.string()));
-  if (!std::filesystem::exists(dir, ec)) {
-    std::filesystem::create_directories(dir);
-    return;
+  try {
+    if (!std::filesystem::exists(dir)) {
+      std::filesystem::create_directories(dir);
+      return;
+    }
+    const bool empty = std::filesystem::is_empty(dir);
+    const std::string recorded = recorded_scene(dir);
+    if (!empty && recorded != scene_name && !overwrite)
+      throw InputError(fmt::format(
+          "--out {}: the folder is not empty and holds no output of scene '{}'{}; expected a new or empty folder, "
+          "this scene's earlier output, or --overwrite (which removes the run files in it)",
+          dir.string(), scene_name, recorded.empty() ? "" : fmt::format(" (it holds scene '{}')", recorded)));
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      if (entry.is_regular_file() && is_run_output(entry.path().filename().string()))
+        std::filesystem::remove(entry.path());
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Not a place for a folder (under a file, in /proc, a name too long) or not writable: the
+    // user's path (exit 2); a full disk or an I/O error: the machine's (exit 3).
+    throw_file_error(fmt::format("--out {}: cannot use it as the output folder ({})", dir.string(),
+                                 e.path1().empty() ? dir.string() : e.path1().string()),
+                     e.code().value());
   }
-  const bool empty = std::filesystem::is_empty(dir, ec);
-  const std::string recorded = recorded_scene(dir);
-  if (!empty && recorded != scene_name && !overwrite)
-    throw InputError(fmt::format(
-        "--out {}: the folder is not empty and holds no output of scene '{}'{}; expected a new or empty folder, "
-        "this scene's earlier output, or --overwrite (which removes the run files in it)",
-        dir.string(), scene_name, recorded.empty() ? "" : fmt::format(" (it holds scene '{}')", recorded)));
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
-    if (entry.is_regular_file() && is_run_output(entry.path().filename().string()))
-      std::filesystem::remove(entry.path());
 }
 
 }  // namespace roller

@@ -15,8 +15,10 @@
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
+#include "roller/io/atomic_file.hpp"
 #include "roller/io/background_writer.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/solver/solver_abort.hpp"
 #include "run_outputs.hpp"
 
 namespace roller {
@@ -71,11 +73,29 @@ std::optional<Real> p0_over_k(const Scene& scene) {
   return p0 / (scene.material.yield_stress / std::sqrt(3.0));
 }
 
-void write_summary(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary, int first_step,
-                   bool resumed) {
+// `from` copied to `to` through "<to>.tmp" and a rename (whole or absent).
+void copy_state_file(const std::filesystem::path& from, const std::filesystem::path& to) {
+  const std::filesystem::path tmp = to.string() + ".tmp";
+  std::error_code ec;
+  std::filesystem::copy_file(from, tmp, std::filesystem::copy_options::overwrite_existing, ec);
+  if (!ec) std::filesystem::rename(tmp, to, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw_file_error(fmt::format("cannot write the state file '{}'", to.string()), ec.value());
+  }
+}
+
+// summary.json's reserve: the document is about 1 kB; a run's end writes it into this space
+// when the disk has filled up (io/atomic_file.hpp).
+constexpr std::size_t kSummaryReserve = 16384;
+
+std::string summary_json(const Simulation& sim, const RunSummary& summary, int first_step, bool resumed) {
   const Scene& scene = sim.scene();
   nlohmann::json j;
   j["scene"] = scene.name;
+  j["status"] = enum_name(summary.status);
+  j["exit_code"] = exit_code(summary.status);
   j["backend"] = scene.roller ? enum_name(scene.contact.backend) : "none";
   j["ndof"] = sim.model().n_dofs();
   j["n_free_dofs"] = sim.model().dof_map().n_free();
@@ -93,62 +113,129 @@ void write_summary(const std::filesystem::path& file, const Simulation& sim, con
   j["cuts_total"] = summary.cuts_total;
   j["max_penetration"] = summary.max_penetration;
   j["message"] = summary.message;
-  if (scene.passes.count > 1) {
+  if (scene.passes.count > 1 && summary.status != RunStatus::Running) {
     const ShakedownClassification c = classify_passes(sim.pass_records());
     j["passes"] = {{"count", sim.pass_records().size()}, {"verdict", enum_name(c.verdict)}, {"criterion", c.criterion}};
     if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
   }
-  std::ofstream(file) << j.dump(2) << "\n";
+  return j.dump(2) + "\n";
+}
+
+void write_summary(const std::filesystem::path& file, const Simulation& sim, const RunSummary& summary, int first_step,
+                   bool resumed) {
+  write_reserved(file, summary_json(sim, summary, first_step, resumed));
 }
 
 }  // namespace
+
+void write_stopped_summary(const Scene& scene, const RunOptions& options, RunStatus status,
+                           const std::string& message) {
+  try {
+    if (!options.resume) prepare_output_folder(options.out_dir, scene.name, options.overwrite);
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["status"] = enum_name(status);
+    j["exit_code"] = exit_code(status);
+    j["steps"] = scene.total_steps();
+    j["steps_done"] = 0;
+    j["resumed"] = options.resume;
+    j["converged"] = false;
+    j["message"] = message;
+    write_file_atomically(options.out_dir / "summary.json", j.dump(2) + "\n");
+  } catch (const std::exception&) {
+  }
+}
+
+int exit_code(RunStatus status) {
+  switch (status) {
+    case RunStatus::Running:
+    case RunStatus::Completed: return 0;
+    case RunStatus::StepFailed: return 1;
+    case RunStatus::InputError: return 2;
+    case RunStatus::SystemError: return 3;
+    case RunStatus::InternalError: return 4;
+  }
+  return 4;
+}
+
+RunStatus status_of(const std::exception& e) {
+  if (dynamic_cast<const InputError*>(&e)) return RunStatus::InputError;
+  if (dynamic_cast<const SystemError*>(&e) || dynamic_cast<const std::bad_alloc*>(&e)) return RunStatus::SystemError;
+  return RunStatus::InternalError;
+}
 
 RunSummary Simulation::run(const RunOptions& options) {
   const auto t_start = Clock::now();
   start_or_resume(options);
   const int first_step = steps_done_ + 1;
+  const std::filesystem::path summary_file = options.out_dir / "summary.json";
+  RunSummary summary;
+  summary.steps_done = steps_done_;
+  // Written now with room to spare, so that the run's end can still say why it stopped when the
+  // disk fills up meanwhile.
+  write_with_reserve(summary_file, summary_json(*this, summary, first_step, options.resume), kSummaryReserve);
   // VTU and state files are written while the next step is solved (io/background_writer.hpp),
   // except when the factors go to disk to save memory: the jobs' copies would undo that.
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
-  RunOutputs outputs(*this, options.out_dir, options.resume, writer);
-  StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
-                      scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
-                      options.progress);
-  RunSummary summary;
   summary.converged = true;
-  summary.steps_done = steps_done_;
+  auto finish_summary = [&] {
+    summary.iterations_total = totals_.iterations;
+    summary.cuts_total = totals_.cuts;
+    summary.max_penetration = totals_.max_penetration;
+    summary.wall_s = seconds_since(t_start);
+    summary.peak_memory_mb = peak_memory_mb();
+  };
+  // MUMPS's abort (an allocation failed inside a factorisation) ends the process: what the
+  // steps before wrote stays, and summary.json says why.
+  const SolverAbortGuard on_solver_abort([&](const std::string& message) {
+    writer.drain();
+    summary.converged = false;
+    summary.status = RunStatus::SystemError;
+    summary.message = message;
+    finish_summary();
+    try {
+      write_summary(summary_file, *this, summary, first_step, options.resume);
+    } catch (const std::exception&) {
+    }
+  });
   try {
+    RunOutputs outputs(*this, options.out_dir, options.resume, writer);
+    StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
+                        scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
+                        options.progress);
     run_steps(options, first_step, outputs, monitor, writer, summary);
     writer.finish();
+    if (summary.converged) {
+      // The checkpoint of the last step holds the same state: a copy instead of a second
+      // serialisation (at 2.9e5 dofs 37 MB, 0.4 s).
+      const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
+      const int every = scene_.output.checkpoint_every;
+      if (every > 0 && steps_done_ % every == 0 && std::filesystem::exists(checkpoint))
+        copy_state_file(checkpoint, options.out_dir / "state_final.cbor");
+      else
+        save_state(options.out_dir / "state_final.cbor");
+    }
   } catch (const std::exception& e) {
-    // Whatever stops the run (a full disk, a bug), the steps done so far are on disk and
-    // summary.json says how far the run came and why it stopped.
+    // Whatever stops the run (a full disk, out of memory, a bug), the steps done so far are on
+    // disk and summary.json says how far the run came and why it stopped.
     try {
       writer.finish();  // the files of the steps done; a second error adds nothing to the first
     } catch (const std::exception&) {
     }
     summary.converged = false;
+    summary.status = status_of(e);
     summary.message = e.what();
-    summary.wall_s = seconds_since(t_start);
-    summary.peak_memory_mb = peak_memory_mb();
-    write_summary(options.out_dir / "summary.json", *this, summary, first_step, options.resume);
+    finish_summary();
+    try {
+      write_summary(summary_file, *this, summary, first_step, options.resume);
+    } catch (const std::exception&) {  // the first error is the one to report
+    }
     throw;
   }
-  if (summary.converged) {
-    // The checkpoint of the last step holds the same state: a copy instead of a second
-    // serialisation (at 2.9e5 dofs 37 MB, 0.4 s).
-    const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
-    const int every = scene_.output.checkpoint_every;
-    if (every > 0 && steps_done_ % every == 0 && std::filesystem::exists(checkpoint))
-      std::filesystem::copy_file(checkpoint, options.out_dir / "state_final.cbor",
-                                 std::filesystem::copy_options::overwrite_existing);
-    else
-      save_state(options.out_dir / "state_final.cbor");
-  }
-  summary.wall_s = seconds_since(t_start);
-  summary.peak_memory_mb = peak_memory_mb();
+  finish_summary();
+  summary.status = summary.converged ? RunStatus::Completed : RunStatus::StepFailed;
   if (summary.converged) summary.message = fmt::format("{} steps converged", summary.steps_done);
-  write_summary(options.out_dir / "summary.json", *this, summary, first_step, options.resume);
+  write_summary(summary_file, *this, summary, first_step, options.resume);
   return summary;
 }
 
@@ -158,9 +245,9 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     const auto t_step = Clock::now();
     const StepResult res = advance_step(step);
     const double wall = seconds_since(t_step);
-    summary.iterations_total += res.iterations;
-    summary.cuts_total += res.cuts;
-    summary.max_penetration = std::max(summary.max_penetration, res.max_penetration);
+    totals_.iterations += res.iterations;
+    totals_.cuts += res.cuts;
+    totals_.max_penetration = std::max(totals_.max_penetration, res.max_penetration);
     const Index n_contact = count_in_contact(contact_);
     outputs.write_solver_row(step, res, monitor.check(step, *model_), wall, n_contact);
     if (!res.converged) {
@@ -180,7 +267,7 @@ void Simulation::start_or_resume(const RunOptions& options) {
   const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
   if (!options.resume) {
     prepare_output_folder(options.out_dir, scene_.name, options.overwrite);
-    std::ofstream(options.out_dir / "scene.resolved.toml") << scene_to_toml(scene_);
+    write_file_atomically(options.out_dir / "scene.resolved.toml", scene_to_toml(scene_));
     return;
   }
   if (!std::filesystem::exists(checkpoint))

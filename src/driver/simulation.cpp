@@ -1,5 +1,6 @@
 #include "roller/driver/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include "roller/driver/force_control.hpp"
 #include "roller/driver/memory_estimate.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/solver/blas_buffers.hpp"
 
 namespace roller {
 
@@ -40,9 +42,11 @@ Mesh make_mesh_that_fits(const Scene& scene) {
   const bool held = scene.roller && scene.contact.backend == ContactBackendKind::Ipopt &&
                     scene.contact.ipopt.formulation == IpoptFormulation::Condensed &&
                     tangent_is_constant(scene.element.kinematics, scene.material);
-  if (const auto available = available_memory_bytes())
+  if (const auto available = available_memory()) {
     check_run_memory(scene.mesh, scene.newton.linear, *available,
                      held ? HeldFactors::WholeRun : HeldFactors::PerIncrement);
+    if (available->address_space_limit) map_blas_buffers();
+  }
   return make_strip_mesh(scene.mesh);
 }
 
@@ -86,6 +90,14 @@ void Simulation::check_roller_starts_outside() const {
       deepest = a;
     }
   }
+  // A roller under the strip would press it from below, which no path of ours means.
+  Real bottom = x.front().y();
+  for (const Vec2& p : x) bottom = std::min(bottom, p.y());
+  if (pose_.centre.y() + radius < bottom)
+    throw InputError(fmt::format(
+        "{}: roller.centre = [{}, {}]: the roller lies entirely below the strip (its top at y = {:.6g} mm, the "
+        "strip's bottom at y = {:.6g} mm); expected a centre above the strip's top surface",
+        scene_.file.string(), pose_.centre.x(), pose_.centre.y(), pose_.centre.y() + radius, bottom));
   // Below 1e-6 R an overlap is the rounding of a touching start (the thesis's Z4 corner: 3e-8 R).
   if (depth > 1e-6 * radius)
     throw InputError(fmt::format(

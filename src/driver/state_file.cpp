@@ -1,5 +1,6 @@
 // State files of a Simulation (simulation.hpp): CBOR documents (nlohmann::json's binary
 // encoding keeps doubles exact) holding everything the next step reads.
+#include <cerrno>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -90,6 +91,8 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
     j["pass_baseline"] = pass_baseline_.save();
     j["pass_records"] = pass_records_;
   }
+  j["totals"] = {
+      {"iterations", totals_.iterations}, {"cuts", totals_.cuts}, {"max_penetration", totals_.max_penetration}};
   j["friction_history"] = friction_.save();
   dynamics_.save(j);
   j["scene_fingerprint"] = scene_fingerprint(scene_);
@@ -98,20 +101,24 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
     // Written beside and renamed: a kill while writing leaves the previous file intact.
     const std::filesystem::path tmp = file.string() + ".tmp";
     bool written = false;
+    int err = 0;
     {
+      errno = 0;
       std::ofstream out(tmp, std::ios::binary);
       const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
       out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
       out.close();
       written = static_cast<bool>(out);
+      err = errno;
     }
     if (!written) {
       std::error_code ignored;
       std::filesystem::remove(tmp, ignored);  // no half-written file left behind
-      throw SystemError(
-          fmt::format("{}: cannot write the state file (disk full or folder not writable?)", file.string()));
+      throw_file_error(fmt::format("{}: cannot write the state file", file.string()), err);
     }
-    std::filesystem::rename(tmp, file);
+    std::error_code ec;
+    std::filesystem::rename(tmp, file, ec);
+    if (ec) throw_file_error(fmt::format("{}: cannot write the state file", file.string()), ec.value());
   };
 }
 
@@ -194,6 +201,10 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
       pass_track_ = PassTrack::load(j.at("pass_track"));
       pass_baseline_ = PassBaseline::load(j.at("pass_baseline"));
       pass_records_ = j.at("pass_records").get<std::vector<PassRecord>>();
+    }
+    if (j.contains("totals")) {  // files of roller before 2026-11-26 hold none
+      const nlohmann::json& t = j.at("totals");
+      totals_ = RunTotals{t.at("iterations").get<int>(), t.at("cuts").get<int>(), t.at("max_penetration").get<Real>()};
     }
     friction_.load(j.at("friction_history"));
     dynamics_.load(j, file.string());

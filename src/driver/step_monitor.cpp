@@ -67,7 +67,8 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
         step, r.assembled.n_negative, r.worst_place.x(), r.worst_place.y(), mono.brief_report(),
         mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
             ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
-            : "in a quasistatic strip no time step restores it: use smaller steps or check the supports");
+            : "in a quasistatic strip no time step restores it: use smaller steps (a larger steps.count, or "
+              "steps.max_cuts) or check the supports");
   return r;
 }
 

@@ -49,7 +49,7 @@ CouplingResult couple_suspension(const Suspension& suspension, Real w0,
       out.message = fmt::format(
           "the suspension deflection would exceed {:.3g} mm under F_y = {:.6g} N/mm (effective stiffness {:.3g} N/mm "
           "per mm): the suspension is too soft for the contact force; raise roller.suspension.stiffness or mass, or "
-          "take smaller steps",
+          "take smaller steps (a larger steps.count, or steps.max_cuts)",
           max_deflection, *f, k_eff);
       return out;
     }

@@ -49,7 +49,9 @@ void strain_and_jacobian(const Gradients<N>& grad, const Dofs<N>& u, bool finite
     f += h;
     // Green-Lagrange strain cannot tell an inverted element (det F < 0) from a valid one.
     if (!(f.determinant() > 0.0))
-      throw NumericalError("an element inverts within the increment (det F <= 0); use smaller steps");
+      throw NumericalError(
+          "an element inverts within the increment (det F <= 0); use smaller steps (a larger steps.count, or "
+          "steps.max_cuts)");
   }
   e << strain(0, 0), strain(1, 1), 0.0, 2.0 * strain(0, 1);
   b.setZero();

@@ -66,7 +66,8 @@ void element_geometry(ElementType t, const std::vector<Vec2>& coordinates, Index
     if (!(det > 0.0)) {
       throw NumericalError(
           fmt::format("element {} is inverted or degenerate (det J = {:.3e} at integration point {}); "
-                      "the step is too large for the mesh: use smaller steps or a finer mesh",
+                      "the step is too large for the mesh: use smaller steps (a larger steps.count, or steps.max_cuts) "
+                      "or a finer mesh",
                       element_id, det, q));
     }
     g.gradients = dn * jac.inverse();

@@ -15,17 +15,21 @@ void BackgroundWriter::submit(std::function<void()> job) {
     return;
   }
   while (static_cast<int>(running_.size()) >= kMaxInFlight) {
-    std::future<void> oldest = std::move(running_.front());
+    std::shared_future<void> oldest = std::move(running_.front());
     running_.pop_front();
     oldest.get();
   }
-  running_.push_back(std::async(std::launch::async, std::move(job)));
+  std::shared_future<void> before = running_.empty() ? std::shared_future<void>() : running_.back();
+  running_.push_back(std::async(std::launch::async, [before = std::move(before), job = std::move(job)] {
+                       if (before.valid()) before.get();  // in order; rethrows the predecessor's error
+                       job();
+                     }).share());
 }
 
 void BackgroundWriter::finish() {
   std::exception_ptr first;
   while (!running_.empty()) {
-    std::future<void> oldest = std::move(running_.front());
+    std::shared_future<void> oldest = std::move(running_.front());
     running_.pop_front();
     try {
       oldest.get();

@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "roller/core/error.hpp"
+
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -47,26 +50,22 @@ CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> c
     throw std::invalid_argument(
         fmt::format("CsvTable '{}': no columns given; a table needs at least one", path.string()));
   }
+  errno = 0;
   out_.open(path_, std::ios::out | std::ios::trunc | std::ios::binary);
-  if (!out_) {
-    throw std::runtime_error(fmt::format(
-        "cannot open CSV file '{}' for writing (does the folder exist and is it writable?)", path_.string()));
-  }
+  if (!out_) throw_file_error(fmt::format("cannot create CSV file '{}'", path_.string()), errno);
   out_ << header_line() << std::flush;
-  if (!out_) {
-    throw std::runtime_error(fmt::format("cannot write the header of CSV file '{}' (disk full?)", path_.string()));
-  }
+  if (!out_) throw_file_error(fmt::format("cannot write the header of CSV file '{}'", path_.string()), errno);
 }
 
 CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> columns, Index keep_through)
     : columns_(std::move(columns)), path_(path) {
   std::ifstream in(path_, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("cannot resume CSV file '{}': it does not exist", path_.string()));
+  if (!in) throw InputError(fmt::format("cannot resume CSV file '{}': it does not exist", path_.string()));
   std::string line, kept;
   std::getline(in, line);
   if (line + '\n' != header_line())
-    throw std::runtime_error(fmt::format("cannot resume CSV file '{}': its header '{}' differs from '{}'",
-                                         path_.string(), line, header_line().substr(0, header_line().size() - 1)));
+    throw InputError(fmt::format("cannot resume CSV file '{}': its header '{}' differs from '{}'", path_.string(), line,
+                                 header_line().substr(0, header_line().size() - 1)));
   kept = line + '\n';
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -74,9 +73,10 @@ CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> c
     if (step <= keep_through) kept += line + '\n';
   }
   in.close();
+  errno = 0;
   out_.open(path_, std::ios::out | std::ios::trunc | std::ios::binary);
   out_ << kept << std::flush;
-  if (!out_) throw std::runtime_error(fmt::format("cannot rewrite CSV file '{}' (disk full?)", path_.string()));
+  if (!out_) throw_file_error(fmt::format("cannot rewrite CSV file '{}'", path_.string()), errno);
 }
 
 std::string CsvTable::header_line() const {
@@ -100,10 +100,9 @@ void CsvTable::add_row(const std::vector<Cell>& cells) {
   }
   line += '\n';
   // Flushed per row so finished steps survive a later failure or a killed run.
+  errno = 0;
   out_ << line << std::flush;
-  if (!out_) {
-    throw std::runtime_error(fmt::format("cannot write a row to CSV file '{}' (disk full?)", path_.string()));
-  }
+  if (!out_) throw_file_error(fmt::format("cannot write a row to CSV file '{}'", path_.string()), errno);
 }
 
 }  // namespace roller

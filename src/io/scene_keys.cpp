@@ -63,6 +63,9 @@ constexpr Real kMaxDensity = 1e-3;     // t/mm^3 (osmium: 2.3e-8)
 constexpr Real kMaxTime = 1e9;         // s
 constexpr Real kMaxSuspension = 1e12;  // t, N s/mm, N/mm per mm
 constexpr Real kMaxForce = 1e15;       // N per mm
+// Sub-steps of the thesis's stress integration: its error falls as 1/n, 100 are past any use, and
+// 1e6 kept a run busy for hours.
+constexpr Real kMaxSubsteps = 1000;
 
 // Lengths of the roller and of the motions, measured against the strip's size S = max(length,
 // height): the absolute bounds above let a 1e9 mm roller onto a 10 mm strip, where the gap
@@ -443,6 +446,13 @@ void read_ipopt_options(TomlSection& s, Scene& scene, std::size_t) {
   // Any Ipopt option, passed through (checked by Ipopt when the backend is built).
   for (const std::string& key : raw->keys()) {
     const toml::node* v = raw->node(key);
+    // Options naming files or libraries would let a scene file write, truncate or load any file
+    // of the machine: refused (docs/scenes.md, Ipopt's options).
+    if (key == "output_file" || key == "option_file_name" || key.find("file_name") != std::string::npos ||
+        (key.size() > 3 && key.compare(key.size() - 3, 3, "lib") == 0))
+      raw->fail(key,
+                "not passed through: an option naming a file or a library is refused (a scene writes only into its "
+                "output folder); Ipopt's log goes to the terminal with contact.ipopt.print_level");
     if (key == "linear_solver")  // set per NLP by roller (contact/ipopt_common.cpp, kkt_linear_solver)
       raw->fail(key,
                 "not passed through: roller chooses Ipopt's linear solver per NLP; use contact.ipopt.kkt_solver = "
@@ -551,7 +561,7 @@ std::vector<SceneKey> make_keys() {
           .written_if(plastic),
       key(
           "material.substeps", [](auto& s) -> auto& { return s.material.n_substeps; },
-          "sub-steps of the substep integration", at_least(1))
+          "sub-steps of the substep integration", closed(1, kMaxSubsteps))
           .written_if(plastic),
 
       // [mesh]
@@ -925,8 +935,12 @@ std::vector<SceneTable> make_tables() {
   add("").check = [](TomlSection& s, Scene& scene, Ref) {
     // The name becomes a folder under out/: one path component that stays inside it.
     const std::string& n = scene.name;
-    if (n.empty() || n == "." || n == ".." || n.find_first_of("/\\") != std::string::npos)
-      s.fail("name", "expected a non-empty name without '/' or '\\' (it names the output folder out/<name>)");
+    const bool printable = std::all_of(n.begin(), n.end(), [](char c) { return c > ' ' && c != 0x7f; });
+    if (n.empty() || n == "." || n == ".." || n.find_first_of("/\\") != std::string::npos || !printable ||
+        n.size() > 200)
+      s.fail("name",
+             "expected a non-empty name of at most 200 characters without '/', '\\', spaces, tabs or control "
+             "characters (it names the output folder out/<name>)");
     if (scene.passes.count > 1 && !scene.roller)
       s.fail("passes", "repeated passes need a [roller] whose [[roller.path]] describes one pass");
   };
@@ -946,6 +960,9 @@ std::vector<SceneTable> make_tables() {
   mesh.required = "a [mesh] table is required (element, length, height, nx, ny)";
   mesh.check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
+    for (const char* lines : {"x_lines", "y_lines"})
+      if (s.has(lines) && (lines[0] == 'x' ? scene.mesh.x_lines : scene.mesh.y_lines).empty())
+        s.fail(lines, "expected at least two grid lines (or no key: nx/ny and grading)");
     if (!scene.mesh.is_valid(&why)) s.fail_invalid(why, {});
   };
 

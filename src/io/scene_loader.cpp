@@ -131,6 +131,10 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file_nam
     throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_name.string(), e.source().begin.line,
                                  e.source().begin.column, e.description()));
   }
+  if (overrides.empty()) return scene_from_table(table, file_name);
+  // The file as written is checked first: an override must not hide a bad value in it (a nan in
+  // steps.count that --steps replaces would otherwise pass unseen).
+  scene_from_table(table, file_name);
   for (const auto& o : overrides) apply_override(table, o);
   return scene_from_table(table, file_name);
 }

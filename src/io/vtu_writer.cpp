@@ -13,6 +13,8 @@
 // leaves a half-written file where ParaView would look.
 #include "roller/io/vtu_writer.hpp"
 
+#include "roller/io/atomic_file.hpp"
+
 #include <fmt/format.h>
 #include <zlib.h>
 
@@ -130,38 +132,6 @@ std::string xml_attr(const std::string& text) {
     }
   }
   return out;
-}
-
-// Writes `content` to `path` through a temporary file in the same folder and a rename, so the
-// target is either the old file or the complete new one. Throws std::runtime_error naming path.
-void write_file_atomically(const fs::path& path, const std::string& content) {
-  fs::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw std::runtime_error(
-          fmt::format("cannot write '{}': cannot open temporary file '{}' (does the folder exist and is "
-                      "it writable?)",
-                      path.string(), tmp.string()));
-    }
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw std::runtime_error(fmt::format("cannot write '{}': writing temporary file '{}' failed (disk full?)",
-                                           path.string(), tmp.string()));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw std::runtime_error(
-        fmt::format("cannot write '{}': renaming '{}' onto it failed: {}", path.string(), tmp.string(), ec.message()));
-  }
 }
 
 // Checks a field against the number of tuples it must hold; `kind` is "point" or "cell".

@@ -2,15 +2,25 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <vector>
 
 #include <dmumps_c.h>
 #include <fmt/format.h>
 
+#include "roller/core/error.hpp"
+
 namespace roller {
 
 namespace {
+
+// MUMPS orders a matrix without a Schur complement (and Ipopt's MUMPS every large one) with
+// SCOTCH, whose Debian build (7.0) coarsens graphs on 2 threads by default and, so, not
+// deterministically: two runs of one scene took other orderings and parted at round-off from
+// the first factorisation with an empty working set (docs/stability.md, "Reproducible runs").
+// On one thread SCOTCH is deterministic. Set before main, before any thread or ordering exists.
+const bool kScotchOnOneThread = [] { return setenv("SCOTCH_PTHREAD_NUMBER", "1", 1) == 0; }();
 constexpr int kUseCommWorld = -987654;  // MUMPS's code for MPI_COMM_WORLD (a no-op sequentially)
 
 // Calls f(row, col, value) for each entry of `a` that MUMPS is given (the lower triangle of a
@@ -66,6 +76,16 @@ struct MumpsSolver::Impl {
   bool failed(const char* what) {
     if (id.infog[0] >= 0) return false;
     const int info = id.infog[0];
+    // -7, -13: an allocation failed (INFOG(2) its size, in millions of entries when negative): the
+    // machine's memory, not the matrix; the run stops (exit 3) instead of cutting the step.
+    if (info == -7 || info == -13) {
+      const double entries = id.infog[1] < 0 ? -1e6 * id.infog[1] : id.infog[1];
+      throw SystemError(fmt::format(
+          "out of memory: MUMPS's {} could not allocate {:.3g} MB (INFOG(1) = {}; the factorisation needs about "
+          "{} MB in core by MUMPS's estimate, {} MB out of core); use a coarser mesh (--refine, mesh.nx, mesh.ny) "
+          "or [linear_solver] out_of_core = true, or raise the memory limit (ulimit -v)",
+          what, entries * (info == -7 ? 4.0 : 8.0) / 1e6, info, id.infog[16], id.infog[26]));
+    }
     const char* why = info == -10   ? " (numerically singular matrix)"
                       : info == -13 ? " (out of memory: a coarser mesh, or [linear_solver] out_of_core = true)"
                       : info <= -90 ? " (out-of-core files: is [linear_solver] directory writable, with room?)"

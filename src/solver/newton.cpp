@@ -53,7 +53,9 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
     report.residual = gnorm / scale;
     report.iterations = it;
     if (!std::isfinite(gnorm)) {
-      report.message = "the residual is not finite (NaN/Inf): the increment diverged; use smaller steps";
+      report.message =
+          "the residual is not finite (NaN/Inf): the increment diverged; use smaller steps (a larger steps.count, or "
+          "steps.max_cuts)";
       return report;
     }
     if (report.residual <= options.residual_tolerance || g.size() == 0) {
@@ -64,7 +66,8 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
     if (it >= options.max_iterations) {
       report.status = NewtonStatus::NotConverged;
       report.message = fmt::format(
-          "no convergence in {} Newton iterations (|r|/F = {:.2e} > {:.1e}); use smaller steps "
+          "no convergence in {} Newton iterations (|r|/F = {:.2e} > {:.1e}); use smaller steps (a larger steps.count, "
+          "or steps.max_cuts) "
           "or raise newton.max_iterations",
           it, report.residual, options.residual_tolerance);
       return report;
@@ -73,7 +76,8 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
       report.message =
           "the tangent stiffness could not be factorised into a descent direction "
           "(singular or strongly indefinite: a mechanism, missing supports, or loss "
-          "of monotonicity); check the boundary conditions or use smaller steps";
+          "of monotonicity); check the boundary conditions or use smaller steps (a larger steps.count, or "
+          "steps.max_cuts)";
       return report;
     }
     // Backtracking on Pi (Armijo). Near the solution Pi changes only at round-off level, so a
@@ -98,7 +102,9 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
       }
     }
     if (!accepted) {
-      report.message = "the line search found no decrease of the incremental energy; use smaller steps";
+      report.message =
+          "the line search found no decrease of the incremental energy; use smaller steps (a larger steps.count, or "
+          "steps.max_cuts)";
       return report;
     }
     x = x_trial;

@@ -183,18 +183,22 @@ TEST_CASE("roller run writes into a new folder or its own earlier output, anothe
   fs::remove_all(foreign);
 }
 
-TEST_CASE("a state file that cannot be written ends the run with exit code 3, its summary written", "[app][output]") {
+TEST_CASE("a state file that cannot be written ends the run with exit code 2, its summary written", "[app][output]") {
   const fs::path out = fs::temp_directory_path() / ("roller_cli_nowrite_" + std::to_string(::getpid()));
   fs::remove_all(out);
-  // A folder where the checkpoint's temporary file would go: writing it fails like a full disk.
+  // A folder where the checkpoint's temporary file would go: the output folder cannot be used as
+  // it is (exit 2, like a read-only one; a full disk is exit 3: tests/scripts/test_reliability.py).
   fs::create_directories(out / "checkpoint.cbor.tmp");
   const Run r = run_roller("run problems/block_compression.toml --steps 3 --overwrite --out " + out.string());
   INFO(r.output);
-  CHECK(r.exit_code == 3);
-  CHECK_THAT(r.output, Catch::Contains("roller: system error:") && Catch::Contains("cannot write the state file"));
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.output, Catch::Contains("Is a directory"));
+  CHECK_THAT(r.output, Catch::Contains("roller: input error:") && Catch::Contains("cannot write the state file"));
   REQUIRE(fs::exists(out / "summary.json"));
   const auto summary = nlohmann::json::parse(roller::test::read_text(out / "summary.json"));
   CHECK(summary["converged"] == false);
+  CHECK(summary["status"] == "input_error");
+  CHECK(summary["exit_code"] == 2);
   CHECK_THAT(summary["message"].get<std::string>(), Catch::Contains("cannot write the state file"));
   CHECK(fs::exists(out / "step_0001.vtu"));  // the step done before is on disk
   fs::remove_all(out);

@@ -64,5 +64,5 @@ TEST_CASE("a mesh that does not fit stops with the remedies, one that fits goes 
   CHECK(refusal(mesh, factors_on_disk(), 4.0 * gib).empty());
   CHECK_THAT(refusal(mesh, factors_on_disk(), 1.0 * gib),
              Contains("out of core") && Contains("smaller mesh.refine") && !Contains("out_of_core = true"));
-  CHECK(available_memory_bytes().value_or(1.0) > 0.0);
+  CHECK(available_memory().value_or(AvailableMemory(1.0)).bytes > 0.0);
 }

@@ -1,11 +1,15 @@
-// The background writer of output files (io/background_writer.hpp): every job runs, at most
-// kMaxInFlight at once, and a job's error reaches the caller while the other jobs still finish.
+// The background writer of output files (io/background_writer.hpp): every job runs, one at a
+// time in the order submitted (a checkpoint never lands before the fields it vouches for), and a
+// job's error reaches the caller while the jobs after it do not run.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "roller/io/background_writer.hpp"
 
@@ -32,16 +36,39 @@ TEST_CASE("background writer: every job runs, never more than the bound at once"
   CHECK(most.load() >= 1);
 }
 
-TEST_CASE("background writer: a job's error is rethrown and the other jobs still finish", "[io][writer]") {
+TEST_CASE("background writer: jobs run one at a time in the order submitted", "[io][writer]") {
+  // The first job is slow: a writer that ran the second beside it (the checkpoint beside the
+  // step's VTU) would record the second first.
+  std::mutex m;
+  std::vector<int> order;
+  std::atomic<int> running{0}, most{0};
+  BackgroundWriter writer;
+  for (int i = 0; i < 6; ++i)
+    writer.submit([&, i] {
+      most = std::max(most.load(), ++running);
+      std::this_thread::sleep_for(std::chrono::milliseconds(i % 2 == 0 ? 30 : 1));
+      {
+        const std::lock_guard<std::mutex> lock(m);
+        order.push_back(i);
+      }
+      --running;
+    });
+  writer.finish();
+  CHECK(order == std::vector<int>{0, 1, 2, 3, 4, 5});
+  CHECK(most.load() == 1);
+}
+
+TEST_CASE("background writer: a job's error is rethrown and the jobs after it do not run", "[io][writer]") {
+  // A VTU that could not be written must not be followed by the checkpoint that vouches for it.
   std::atomic<int> done{0};
   BackgroundWriter writer;
-  writer.submit([] { throw std::runtime_error("disk full"); });
-  writer.submit([&] {
+  writer.submit([] {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    ++done;
+    throw std::runtime_error("disk full");
   });
+  writer.submit([&] { ++done; });
   CHECK_THROWS_WITH(writer.finish(), "disk full");
-  CHECK(done == 1);
+  CHECK(done == 0);
   CHECK_NOTHROW(writer.finish());  // collected once
 }
 

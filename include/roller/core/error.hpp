@@ -30,6 +30,12 @@ class SystemError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A file or folder that cannot be written or created. The path the user gave cannot be used (not
+// a folder, read-only, too long, not permitted): InputError, exit 2. The machine refused (a
+// full disk, a quota, an I/O error, no memory): SystemError, exit 3. `errnum` is the errno of the
+// failed call (0 if unknown: the machine's); the message ends with its text.
+[[noreturn]] void throw_file_error(const std::string& message, int errnum);
+
 inline void require(bool condition, const std::string& message) {
   if (!condition) throw std::logic_error(message);
 }

@@ -4,6 +4,8 @@
 // The rates are the peak resident memory per dof measured on the Hertz and Z1 increments from
 // 3e5 to 1.3e6 dofs (docs/benchmarks.md, Scaling and Out-of-core factors).
 #include <optional>
+#include <string>
+#include <utility>
 
 #include "roller/core/types.hpp"
 #include "roller/mesh/strip_mesher.hpp"
@@ -27,12 +29,24 @@ enum class HeldFactors { PerIncrement, WholeRun };
 MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear,
                                    HeldFactors held = HeldFactors::PerIncrement);
 
-// MemAvailable of /proc/meminfo [bytes]; none where it cannot be read.
-std::optional<Real> available_memory_bytes();
+// The memory a run may still take, and what sets it (as the refusal names it).
+struct AvailableMemory {
+  AvailableMemory(Real b, std::string by = "this machine has", bool limit = false)
+      : bytes(b), limited_by(std::move(by)), address_space_limit(limit) {}
+  Real bytes = 0.0;
+  std::string limited_by;
+  bool address_space_limit = false;  // the process runs under ulimit -v (solver/blas_buffers.hpp)
+};
+
+// MemAvailable of /proc/meminfo or, under an address-space limit (ulimit -v), the limit less what
+// the process has mapped and what OpenBLAS's threads will map for their buffers (128 MiB each),
+// over the address space a run maps per resident byte (1.25), whichever is smaller; none where
+// neither can be read.
+std::optional<AvailableMemory> available_memory();
 
 // Throws SystemError when the estimate exceeds `available`, naming the size and the remedies
 // (a smaller refine, out-of-core factors).
-void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, Real available,
+void check_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear, const AvailableMemory& available,
                       HeldFactors held = HeldFactors::PerIncrement);
 
 }  // namespace roller

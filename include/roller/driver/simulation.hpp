@@ -14,6 +14,7 @@
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/friction_history.hpp"
+#include "roller/core/enum_names.hpp"
 #include "roller/driver/load_program.hpp"
 #include "roller/dynamics/dynamics_state.hpp"
 #include "roller/io/scene.hpp"
@@ -36,7 +37,32 @@ struct RunOptions {
   bool overwrite = false;
 };
 
+// How a run ended, and the exit code of `roller run` for it (docs/scenes.md, Exit codes).
+enum class RunStatus { Running, Completed, StepFailed, InputError, SystemError, InternalError };
+template <>
+struct EnumNames<RunStatus> {
+  static constexpr std::array<std::pair<RunStatus, const char*>, 6> names{
+      {{RunStatus::Running, "running"},
+       {RunStatus::Completed, "completed"},
+       {RunStatus::StepFailed, "step_failed"},
+       {RunStatus::InputError, "input_error"},
+       {RunStatus::SystemError, "system_error"},
+       {RunStatus::InternalError, "internal_error"}}};
+};
+int exit_code(RunStatus status);
+// The status of a run stopped by `e` (InputError, SystemError or out of memory, or a bug).
+RunStatus status_of(const std::exception& e);
+
+// What the steps cost, over every step of the run since its first (a resumed run's included:
+// the totals are in the state files).
+struct RunTotals {
+  int iterations = 0;
+  int cuts = 0;
+  Real max_penetration = 0.0;
+};
+
 struct RunSummary {
+  RunStatus status = RunStatus::Running;
   bool converged = false;
   int steps_done = 0;
   int iterations_total = 0;
@@ -46,6 +72,11 @@ struct RunSummary {
   Real max_penetration = 0.0;
   std::string message;
 };
+
+// A run stopped before its first step (the memory check while the Simulation is built): its
+// output folder prepared as run() would, with a summary.json saying why. Nothing when the folder
+// cannot be used (the caller reports the first error).
+void write_stopped_summary(const Scene& scene, const RunOptions& options, RunStatus status, const std::string& message);
 
 // Contact result of one node at the end of a step (for output).
 struct NodeContactRecord {
@@ -222,6 +253,7 @@ class Simulation {
   std::vector<NodeContactRecord> contact_;
   FrictionHistory friction_;
   int steps_done_ = 0;
+  RunTotals totals_;
   DynamicsState dynamics_;
   NewtonMinimiser newton_;  // increments without contact
   Vec2 roller_velocity_ = Vec2::Zero();

@@ -4,11 +4,14 @@
 // of checkpoint a step, 2 s of solving). The job gets everything it writes by value; it must not
 // read the model, which the next step changes.
 //
-// At most kMaxInFlight jobs run at once: a submit waits for the oldest beyond that, so memory
-// stays bounded when writing is slower than solving. A job's exception (a full disk) is rethrown
-// by the submit or finish() that collects it, so the run stops with that message as it did when
-// it wrote in its own thread. finish() before reading what the jobs wrote (state_final.cbor, the
-// summary) and before the process ends.
+// Jobs run one after another in the order submitted, so a file written later (the checkpoint)
+// is never on disk before the files submitted before it (the step's VTU) that it vouches for; a
+// job whose predecessor failed does not run and carries that error on. At most kMaxInFlight jobs
+// are queued: a submit waits for the oldest beyond that, so memory stays bounded when writing is
+// slower than solving. A job's exception (a full disk) is rethrown by the submit or finish() that
+// collects it, so the run stops with that message as it did when it wrote in its own thread.
+// finish() before reading what the jobs wrote (state_final.cbor, the summary) and before the
+// process ends.
 #include <deque>
 #include <functional>
 #include <future>
@@ -34,7 +37,7 @@ class BackgroundWriter {
 
  private:
   bool in_background_;
-  std::deque<std::future<void>> running_;
+  std::deque<std::shared_future<void>> running_;  // oldest first; each waits for the one before
 };
 
 }  // namespace roller

@@ -1,0 +1,27 @@
+#pragma once
+// MUMPS's sequential MPI stub ends the process with Fortran's STOP, exit code 0 and no output of
+// ours, when MUMPS gives up inside a call (an allocation that fails deep in the factorisation,
+// under a memory limit). roller defines the stub's MPI_ABORT itself (the executable's symbol is
+// found first: CMakeLists.txt exports it): it calls the handler the driver installed, which
+// records what the run has done (summary.json), then prints the message and ends the process
+// with exit code 3 (the Fortran frames below cannot be unwound by an exception).
+#include <functional>
+#include <string>
+
+namespace roller {
+
+using SolverAbortHandler = std::function<void(const std::string& message)>;
+
+// Installs `handler` for the lifetime of the guard (the previous one comes back after it).
+class SolverAbortGuard {
+ public:
+  explicit SolverAbortGuard(SolverAbortHandler handler);
+  ~SolverAbortGuard();
+  SolverAbortGuard(const SolverAbortGuard&) = delete;
+  SolverAbortGuard& operator=(const SolverAbortGuard&) = delete;
+
+ private:
+  SolverAbortHandler previous_;
+};
+
+}  // namespace roller
