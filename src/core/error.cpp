@@ -17,10 +17,8 @@ void throw_file_error(const std::string& message, int errnum) {
     case ENOENT:
     case ELOOP:
     case EEXIST:
-    case EINVAL:
-      throw InputError(text);
-    default:
-      throw SystemError(text);
+    case EINVAL: throw InputError(text);
+    default: throw SystemError(text);
   }
 }
 

@@ -50,6 +50,16 @@ Mesh make_mesh_that_fits(const Scene& scene) {
   return make_strip_mesh(scene.mesh);
 }
 
+// A strip near incompressibility makes the tangent ill-conditioned, which smaller steps do not
+// cure: a failed step says so (the bulk modulus K over the shear modulus G).
+std::string incompressibility_hint(const MaterialParams& m) {
+  if (!(m.poisson_ratio > 0.499)) return "";
+  return fmt::format(
+      "; material.nu = {} makes the strip nearly incompressible (K/G = {:.3g}) and its tangent "
+      "ill-conditioned: use nu <= 0.499 (0.49 gives K/G = 24.7)",
+      m.poisson_ratio, m.bulk_modulus() / m.shear_modulus());
+}
+
 }  // namespace
 
 Simulation::Simulation(Scene scene)
@@ -572,8 +582,8 @@ Simulation::StepResult Simulation::advance_step(int step) {
       continue;
     }
     if (res.cuts >= scene_.steps.max_cuts) {
-      res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}", step, res.cuts,
-                                ds, inc.message);
+      res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}{}", step, res.cuts,
+                                ds, inc.message, incompressibility_hint(scene_.material));
       if (before_return && s == step - 1) {  // nothing of the step committed: undo the return too
         pose_ = before_return->pose;
         load_offset_ = before_return->load_offset;

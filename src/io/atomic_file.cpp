@@ -21,7 +21,8 @@ void write_file_atomically(const fs::path& path, const std::string& content) {
   {
     errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw_file_error(fmt::format("cannot write '{}': cannot create '{}'", path.string(), tmp.string()), errno);
+    if (!out)
+      throw_file_error(fmt::format("cannot write '{}': cannot create '{}'", path.string(), tmp.string()), errno);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.close();
     if (!out) {

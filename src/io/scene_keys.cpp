@@ -49,18 +49,20 @@ Range above(Real v) { return {v, std::nullopt, true, false}; }
 Range closed(Real lo, Real hi) { return {lo, hi, false, false}; }
 Range open(Real lo, Real hi) { return {lo, hi, true, true}; }
 Range right_open(Real lo, Real hi) { return {lo, hi, false, true}; }
-Range left_open(Real lo, Real hi) { return {lo, hi, true, false}; }
 
 // Plausibility bounds in scene units (mm, N, MPa, s, t) for quantities that have no natural
 // upper limit: far beyond any strip, roller or material (E 1e9 MPa is 800 times diamond's), yet
 // small enough that the solvers' products of them (E* l^2, c/dt, k R) stay finite; values
 // outside them were found by fuzzing to overflow into NaN or into Ipopt options of 0.
-constexpr Real kMaxLength = 1e9;       // mm
-constexpr Real kMinLength = 1e-6;      // mm
-constexpr Real kMaxModulus = 1e9;      // MPa
-constexpr Real kMinModulus = 1e-6;     // MPa (1 Pa: below foams; 1e-308 underflowed the stresses)
-constexpr Real kMaxDensity = 1e-3;     // t/mm^3 (osmium: 2.3e-8)
-constexpr Real kMaxTime = 1e9;         // s
+constexpr Real kMaxLength = 1e9;    // mm
+constexpr Real kMinLength = 1e-6;   // mm
+constexpr Real kMaxModulus = 1e9;   // MPa
+constexpr Real kMinModulus = 1e-6;  // MPa (1 Pa: below foams; 1e-308 underflowed the stresses)
+constexpr Real kMaxDensity = 1e-3;  // t/mm^3 (osmium: 2.3e-8)
+constexpr Real kMaxTime = 1e9;      // s
+// A nanosecond is far below any step of a rolling or impact scene (Z4: 1e-6 s); at dt = 1e-308
+// the inertia M/dt^2 overflowed and the contact solve failed without naming dt.
+constexpr Real kMinTime = 1e-12;       // s
 constexpr Real kMaxSuspension = 1e12;  // t, N s/mm, N/mm per mm
 constexpr Real kMaxForce = 1e15;       // N per mm
 // Sub-steps of the thesis's stress integration: its error falls as 1/n, 100 are past any use, and
@@ -617,7 +619,7 @@ std::vector<SceneKey> make_keys() {
           "number of steps (of one pass with [passes]); fields are written at the end of steps (--steps)",
           closed(1, 1e7)),
       key(
-          "steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", left_open(0.0, kMaxTime)),
+          "steps.dt", [](auto& s) -> auto& { return s.steps.dt; }, "time step [s]", closed(kMinTime, kMaxTime)),
       key(
           "steps.max_cuts", [](auto& s) -> auto& { return s.steps.max_cuts; },
           "a failed step is split in 2, 4, ... up to 2^max_cuts sub-increments", closed(0, 20)),
@@ -994,8 +996,16 @@ std::vector<SceneTable> make_tables() {
   displacement.check = [](TomlSection& s, Scene& scene, Ref i) {
     const DisplacementBC& d = scene.displacements[i];
     if (!d.x && !d.y) s.fail("x", "a [[displacement]] block needs x and/or y");
-    if (d.x) check_reach(s, scene, "x", d.x->value);
-    if (d.y) check_reach(s, scene, "y", d.y->value);
+    // As large as the strip: the elements between these nodes and the supports would be crushed
+    // through or torn apart, which the solvers would report as a step too large.
+    if (d.x && !(std::abs(d.x->value) < scene.mesh.length))
+      s.fail("x", fmt::format("|x| must be smaller than the strip's length mesh.length = {:g} mm (a displacement as "
+                              "large as the strip crushes or tears it)",
+                              scene.mesh.length));
+    if (d.y && !(std::abs(d.y->value) < scene.mesh.height))
+      s.fail("y", fmt::format("|y| must be smaller than the strip's height mesh.height = {:g} mm (a displacement as "
+                              "large as the strip crushes or tears it)",
+                              scene.mesh.height));
   };
   displacement.count = [](const Scene& s) { return s.displacements.size(); };
 

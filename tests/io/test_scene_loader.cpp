@@ -278,8 +278,9 @@ TEST_CASE("the roller's size and the motions are checked against the strip's siz
                                "wavelength = 1.0 }\n"),
              Contains("roller.path[0].harmonic") && Contains("strip's size"));
   CHECK(error_of(roller + "[[roller.path]]\nsteps = [1, 4]\ndx = -1e4\n").empty());
+  // A prescribed displacement stays below the strip's own extent (stricter than the reach).
   CHECK_THAT(error_of(replace(kGood, "y = 0.0", "y = 2e4")),
-             Contains("bad.toml:18: displacement[0].y = 20000") && Contains("strip's size"));
+             Contains("bad.toml:18: displacement[0].y = 20000") && Contains("strip's height mesh.height = 5"));
 }
 
 TEST_CASE("prescribed roller forces are checked before computing", "[io][scene][errors]") {
@@ -294,4 +295,28 @@ TEST_CASE("prescribed roller forces are checked before computing", "[io][scene][
              Contains("roller.path") && Contains("fx"));
   CHECK_THAT(error_of(roller + "[roller.suspension]\nstiffness = 1e3\n[[roller.path]]\nsteps = [1, 4]\nfx = 1.0\n"),
              Contains("bad.toml:22: roller.path[0].fx") && Contains("without roller.suspension"));
+}
+
+TEST_CASE("the smaller input checks: overrides do not hide the file, and the edge values are refused",
+          "[io][scene][errors]") {
+  using Catch::Contains;
+  // The file as written is checked before an override replaces a bad value in it.
+  CHECK_THAT(error_of(replace(kGood, "count = 4", "count = nan"), {{"steps.count", "2"}}), Contains("steps.count"));
+  CHECK_THAT(error_of(replace(kGood, "element = \"Q4\"", "element = \"Q5\""), {{"mesh.element", "\"T3\""}}),
+             Contains("mesh.element"));
+  // Bounds found by the hostile-input probe.
+  CHECK_THAT(
+      error_of(replace(kGood, "kappa = 0.07", "kappa = 0.07\nsubsteps = 1000000\nstress_integration = \"substep\"")),
+      Contains("material.substeps") && Contains("1000"));
+  CHECK_THAT(error_of(replace(kGood, "ny = 2", "ny = 2\nx_lines = []")),
+             Contains("mesh.x_lines") && Contains("at least two grid lines"));
+  for (const char* name : {"a b", "a\\tb", "a\\u0000b"})
+    CHECK_THAT(error_of("name = \"" + std::string(name) + "\"\n" + kGood), Contains("name"));
+  CHECK_THAT(error_of(kGood, {{"steps.dt", "1e-308"}}), Contains("steps.dt") && Contains("1e-12"));
+  CHECK_THAT(error_of(replace(kGood, "x = { value = 0.5", "x = { value = 10.0")),
+             Contains("displacement[1].x") && Contains("mesh.length = 10"));
+  CHECK(error_of(kGood, {{"steps.dt", "1e-6"}}).empty());
+  // A roller entirely below the strip (kGood's strip spans y = 0..5).
+  Scene below = parse_scene(kGood + "[roller]\nradius = 2.0\ncentre = [5.0, -3.0]\n", "below.toml");
+  CHECK_THROWS_WITH(Simulation(below), Contains("below.toml: roller.centre = [5, -3]: the roller lies entirely below"));
 }
