@@ -38,7 +38,7 @@
 // length tolerance in mm for gaps and complementarity (constraints are not scaled: mm).
 //
 // Ipopt options (beyond contact.ipopt.*): linear_solver per NLP (contact.ipopt.kkt_solver: a dense
-// LAPACK LDL^T for small KKT systems, dense_kkt_solver.hpp; MUMPS otherwise) with MUMPS's default
+// LAPACK LDL^T for small KKT systems, solver/dense_kkt_solver.hpp; MUMPS otherwise) with MUMPS's default
 // ordering (on this strip matrix it beat SCOTCH, mumps_pivot_order 3, in CPU time
 // (docs/benchmarks.md) — the opposite of what a scalar membrane prototype had shown);
 // hessian_approximation exact; bound_relax_factor 0 and honor_original_bounds yes (no

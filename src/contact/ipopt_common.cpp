@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include "dense_kkt_solver.hpp"
 #include "roller/core/error.hpp"
+#include "roller/solver/dense_kkt_solver.hpp"
 
 namespace roller::ipopt_detail {
 
@@ -61,7 +61,7 @@ Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real st
 }
 
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o, const Scales& scales) {
-  register_dense_kkt_solver();
+  dense_kkt::register_dense_kkt_solver();
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   app->RethrowNonIpoptException(true);
   set(*app, "sb", std::string("yes"));

@@ -34,7 +34,7 @@ Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real st
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o, const Scales& scales);
 
 // Ipopt's linear_solver for an NLP of n variables and m constraints (the "ma27" it is given is
-// the dense solver of dense_kkt_solver.hpp).
+// the dense solver of solver/dense_kkt_solver.hpp).
 std::string kkt_linear_solver(KktSolver choice, int n, int m);
 
 struct StatusText {

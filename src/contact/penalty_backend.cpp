@@ -124,11 +124,10 @@ std::vector<Stiffness> penalty_stiffnesses(const IncrementProblem& p, Real facto
 
 // LDL^T for the symmetric Jacobian (no friction, or stick), LU for the unsymmetric one of
 // sliding friction, and LU as the fallback when LDL^T fails (solver/sparse_solver.hpp).
-// The solvers persist between calls so that MUMPS's symbolic analysis is redone only when the
-// Jacobian's pattern changes (it is fixed within an increment).
-bool solve_linear(const Evaluation& e, const LinearSolverOptions& linear, VecX& d) {
-  thread_local SparseSolver ldlt(MumpsSolver::Symmetry::Symmetric);
-  thread_local SparseSolver lu(MumpsSolver::Symmetry::General);
+// The solvers are the backend's, kept between calls so that MUMPS's symbolic analysis is redone
+// only when the Jacobian's pattern changes (it is fixed within an increment).
+bool solve_linear(const Evaluation& e, const LinearSolverOptions& linear, SparseSolver& ldlt, SparseSolver& lu,
+                  VecX& d) {
   ldlt.configure(linear);
   lu.configure(linear);
   if (e.symmetric) {
@@ -157,7 +156,7 @@ void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r,
 
 // One Newton solve at fixed penalty stiffnesses, from x (updated in place).
 BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
-                                           Real tolerance, const std::vector<NodeContact>* frozen) const {
+                                           Real tolerance, const std::vector<NodeContact>* frozen) {
   BackendResult result;
   VecX d, x_trial;
   Evaluation e, trial;
@@ -207,7 +206,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       break;
     }
     ++result.factorizations;
-    if (!solve_linear(e, newton_.linear, d)) {
+    if (!solve_linear(e, newton_.linear, ldlt_, lu_, d)) {
       result.message =
           "penalty Newton: the tangent matrix is singular (missing supports, or a "
           "mechanism); check the boundary conditions";

@@ -7,6 +7,7 @@
 
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/arc_predictor.hpp"
+#include "roller/contact/backend_factory.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/contact/rolling_predictor.hpp"
 #include "roller/core/error.hpp"

@@ -15,6 +15,7 @@
 #include "../support/strip_spec.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/backend.hpp"
+#include "roller/contact/backend_factory.hpp"
 #include "roller/contact/contact_set.hpp"
 #include "roller/contact/friction_history.hpp"
 #include "roller/contact/ipopt_backend.hpp"

@@ -92,8 +92,4 @@ class ContactBackend {
   virtual std::optional<Inertia> do_held_tangent_inertia(const SparseMatrix& /*k*/) { return std::nullopt; }
 };
 
-// Throws InputError naming the option when the options are invalid. `newton` controls the
-// penalty backend's Newton iterations (the scene's [newton] table).
-std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options, const NewtonOptions& newton);
-
 }  // namespace roller

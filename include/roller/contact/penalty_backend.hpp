@@ -14,6 +14,7 @@
 // law; (3) if that fails too, the penalty is raised in stages (factor 10, 1e3, 1e5, ... up to the
 // target, each stage started from the previous solution).
 #include "roller/contact/backend.hpp"
+#include "roller/solver/sparse_solver.hpp"
 
 namespace roller {
 
@@ -35,11 +36,15 @@ class PenaltyBackend : public ContactBackend {
   // Newton at fixed penalties from x (updated in place); with `frozen`, every node keeps the
   // given status (see contact_state in the .cpp).
   BackendResult newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x, Real tolerance,
-                             const std::vector<NodeContact>* frozen = nullptr) const;
+                             const std::vector<NodeContact>* frozen = nullptr);
   static constexpr int kMaxActiveSetPasses = 20;
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
   ContactOptions options_;
   NewtonOptions newton_;
+  // LDL^T for the symmetric Jacobian, LU for sliding friction's and as the fallback; kept
+  // between Newton iterations (MUMPS's analysis is redone only for a new pattern).
+  SparseSolver ldlt_{MumpsSolver::Symmetry::Symmetric};
+  SparseSolver lu_{MumpsSolver::Symmetry::General};
 };
 
 }  // namespace roller

@@ -1,7 +1,7 @@
 #pragma once
 // Newton's method for the minimisation of a smooth objective Pi(x) over the free dofs, with a
-// backtracking line search on Pi and a clear report. Used for increments without contact and,
-// with penalty terms added to Pi, by the penalty contact backend (docs/model.md, Penalty backend).
+// backtracking line search on Pi and a clear report. Used for increments without contact (the
+// penalty contact backend runs a Newton loop of its own, contact/penalty_backend.cpp).
 #include <memory>
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-// The dense KKT solver behind Ipopt's MA27 interface (src/contact/dense_kkt_solver.hpp): solves
+// The dense KKT solver behind Ipopt's MA27 interface (solver/dense_kkt_solver.hpp): solves
 // and inertia of symmetric indefinite KKT matrices given as MA27 triplets, MA27's reports of a
-// rank deficiency and of workspaces too small, and the rule that picks it for small NLPs.
+// rank deficiency and of workspaces too small.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -8,12 +8,11 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "contact/dense_kkt_solver.hpp"
-#include "contact/ipopt_common.hpp"
 #include "roller/core/types.hpp"
+#include "roller/solver/dense_kkt_solver.hpp"
 
 using namespace roller;
-namespace ma27 = roller::ipopt_detail::dense_ma27;
+namespace ma27 = roller::dense_kkt::dense_ma27;
 
 namespace {
 
@@ -171,12 +170,4 @@ TEST_CASE("dense KKT solver: an index out of range is reported by the analysis",
                 cntl, info, &ops);
   CHECK(iflag == 1);
   CHECK(info[1] == 4);
-}
-
-TEST_CASE("Ipopt's linear solver: dense for small NLPs under auto, as chosen otherwise", "[ipopt]") {
-  using ipopt_detail::kkt_linear_solver;
-  CHECK(kkt_linear_solver(KktSolver::Auto, 100, 50) == "ma27");  // n + 2m = 200: the bound
-  CHECK(kkt_linear_solver(KktSolver::Auto, 101, 50) == "mumps");
-  CHECK(kkt_linear_solver(KktSolver::Dense, 5000, 3000) == "ma27");
-  CHECK(kkt_linear_solver(KktSolver::Mumps, 4, 1) == "mumps");
 }

@@ -1,4 +1,4 @@
-#include "dense_kkt_solver.hpp"
+#include "roller/solver/dense_kkt_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@ void dsytrs_(const char* uplo, const int* n, const int* nrhs, const double* a, c
              double* b, const int* ldb, int* info, std::size_t uplo_len);
 }
 
-namespace roller::ipopt_detail {
+namespace roller::dense_kkt {
 
 namespace {
 
@@ -158,4 +158,4 @@ void register_dense_kkt_solver() {
       once, [] { LSL_setMA27(&dense_ma27::analyse, &dense_ma27::factorise, &dense_ma27::solve, &dense_ma27::init); });
 }
 
-}  // namespace roller::ipopt_detail
+}  // namespace roller::dense_kkt

@@ -27,7 +27,7 @@
 // The pivot tolerance (CNTL(1)) is ignored: Bunch-Kaufman's pivot choice is fixed.
 #include <HSLLoader.h>
 
-namespace roller::ipopt_detail {
+namespace roller::dense_kkt {
 
 // Makes the dense solver Ipopt's "ma27" for this process (idempotent, thread-safe).
 void register_dense_kkt_solver();
@@ -44,4 +44,4 @@ void solve(ipfint* n, double* a, ipfint* la, ipfint* iw, ipfint* liw, double* w,
            ipfint* iw1, ipfint* nsteps, ipfint* icntl, double* cntl);
 }  // namespace dense_ma27
 
-}  // namespace roller::ipopt_detail
+}  // namespace roller::dense_kkt
