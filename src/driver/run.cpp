@@ -37,25 +37,17 @@ double peak_memory_mb() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
-Index count_in_contact(const std::vector<NodeContactRecord>& contact) {
-  Index n = 0;
-  for (const auto& c : contact) n += c.contact.status != ContactStatus::Open ? 1 : 0;
-  return n;
-}
-
-void print_progress(std::ostream& out, const Simulation& sim, int step, const Simulation::StepResult& res,
-                    Index n_contact, double wall_s) {
-  const Scene& scene = sim.scene();
+void print_progress(std::ostream& out, const Scene& scene, const Simulation::StepRecord& res, double wall_s) {
   std::string contact_text;
-  if (scene.roller)
-    contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", n_contact, res.max_penetration,
-                               sim.roller_force().y());
-  if (sim.suspension()) contact_text += fmt::format("  w {:9.3e}", sim.suspension()->deflection());
+  if (res.roller)
+    contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", res.n_contact, res.max_penetration,
+                               res.roller->force.y());
+  if (res.roller && scene.roller->suspension) contact_text += fmt::format("  w {:9.3e}", res.roller->deflection);
   const std::string pass_text =
-      scene.passes.count > 1 ? fmt::format("pass {:>2}/{:<2} ", sim.pass_of_step(step), scene.passes.count) : "";
+      scene.passes.count > 1 ? fmt::format("pass {:>2}/{:<2} ", res.pass, scene.passes.count) : "";
   out << fmt::format("{}step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
-                     pass_text, step, scene.total_steps(), step * scene.steps.dt, res.iterations, res.last.residual,
-                     res.cuts, res.n_yielded, contact_text, wall_s)
+                     pass_text, res.step, scene.total_steps(), res.time, res.iterations, res.last.residual, res.cuts,
+                     res.n_yielded, contact_text, wall_s)
       << std::flush;
 }
 
@@ -199,7 +191,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     }
   });
   try {
-    RunOutputs outputs(*this, options.out_dir, options.resume, writer);
+    RunOutputs outputs(scene_, *model_, dynamics_, pose_, steps_done_, options.out_dir, options.resume, writer);
     StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                         scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
                         options.progress);
@@ -243,13 +235,12 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
                            BackgroundWriter& writer, RunSummary& summary) {
   for (int step = first_step; step <= scene_.total_steps(); ++step) {
     const auto t_step = Clock::now();
-    const StepResult res = advance_step(step);
+    const StepRecord res = advance_step(step);
     const double wall = seconds_since(t_step);
     totals_.iterations += res.iterations;
     totals_.cuts += res.cuts;
     totals_.max_penetration = std::max(totals_.max_penetration, res.max_penetration);
-    const Index n_contact = count_in_contact(contact_);
-    outputs.write_solver_row(step, res, monitor.check(step, *model_), wall, n_contact);
+    outputs.write_solver_row(res, monitor.check(step, *model_), wall);
     if (!res.converged) {
       summary.converged = false;
       summary.message = res.message;
@@ -257,9 +248,9 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
       break;
     }
     summary.steps_done = step;
-    outputs.write_step(step, res.pass_end);
+    outputs.write_step(res);
     save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
-    if (options.progress) print_progress(*options.progress, *this, step, res, n_contact, wall);
+    if (options.progress) print_progress(*options.progress, scene_, res, wall);
   }
 }
 

@@ -528,7 +528,7 @@ std::string Simulation::return_for_pass(int pass) {
   return "";
 }
 
-std::optional<Simulation::StepResult::PassEnd> Simulation::observe_pass(int step) {
+std::optional<Simulation::StepRecord::PassEnd> Simulation::observe_pass(int step) {
   if (scene_.passes.count < 2) return std::nullopt;
   std::vector<Real> x, p;
   for (const auto& c : contact_) {
@@ -538,7 +538,7 @@ std::optional<Simulation::StepResult::PassEnd> Simulation::observe_pass(int step
   }
   pass_track_.observe(pose_.centre.x(), x, p);
   if (step % scene_.steps.n_steps != 0) return std::nullopt;
-  StepResult::PassEnd end;
+  StepRecord::PassEnd end;
   end.record = measure_pass(pass_of_step(step), *model_, scene_.mesh.height, pass_track_, pass_baseline_);
   end.profile_x = 0.5 * (end.record.track_start + end.record.track_end);
   end.profile = depth_profile(*model_, scene_.mesh.height, end.profile_x);
@@ -550,8 +550,29 @@ std::optional<Simulation::StepResult::PassEnd> Simulation::observe_pass(int step
 
 int Simulation::pass_of_step(int step) const { return locate_pass(step, scene_.steps.n_steps).pass; }
 
-Simulation::StepResult Simulation::advance_step(int step) {
-  StepResult res;
+void Simulation::record_state(StepRecord& res) const {
+  res.contact = contact_;
+  for (const auto& c : contact_) res.n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
+  res.kinetic_energy = dynamics_.kinetic_energy();
+  if (!scene_.roller) return;
+  RollerRecord r;
+  r.pose = pose_;
+  r.force = roller_force();
+  r.velocity = roller_velocity_;
+  r.anchor_y = prescribed_pose(res.step).centre.y();
+  if (const Suspension* suspension = dynamics_.suspension()) r.deflection = suspension->deflection();
+  r.deflection_velocity = dynamics_.suspension_velocity();
+  r.deflection_acceleration = dynamics_.suspension_acceleration();
+  r.prescribed = prescribed_force(res.step);
+  r.load_offset = load_offset_;
+  res.roller = r;
+}
+
+Simulation::StepRecord Simulation::advance_step(int step) {
+  StepRecord res;
+  res.step = step;
+  res.pass = pass_of_step(step);
+  res.time = step * scene_.steps.dt;
   // The first step of a pass after the first: the roller returns to the pass's start (undone
   // below if the step fails, so that a failed step changes nothing).
   struct BeforeReturn {
@@ -564,7 +585,10 @@ Simulation::StepResult Simulation::advance_step(int step) {
   if (scene_.roller && step > 1 && (step - 1) % scene_.steps.n_steps == 0) {
     before_return = BeforeReturn{pose_, load_offset_, last_increment_, contact_};
     res.message = return_for_pass(pass_of_step(step));
-    if (!res.message.empty()) return res;
+    if (!res.message.empty()) {
+      record_state(res);
+      return res;
+    }
   }
   const Vec2 centre_start = pose_.centre;
   // Sub-increments of 1/2^cuts of the step; a failed sub-increment is halved again.
@@ -591,6 +615,7 @@ Simulation::StepResult Simulation::advance_step(int step) {
         last_increment_ = before_return->last_increment;
         contact_ = before_return->contact;
       }
+      record_state(res);
       return res;
     }
     ++res.cuts;
@@ -601,6 +626,7 @@ Simulation::StepResult Simulation::advance_step(int step) {
   ++steps_done_;
   dynamics_.finish_step(model_->total_displacement());
   res.pass_end = observe_pass(step);
+  record_state(res);
   return res;
 }
 

@@ -142,7 +142,7 @@ TEST_CASE("Carter under a prescribed traction: the creep is an outcome and meets
   const int n = sim.scene().steps.n_steps;
   std::vector<Real> xc(n + 1), offset(n + 1);
   for (int step = 1; step <= n; ++step) {
-    const Simulation::StepResult r = sim.advance_step(step);
+    const Simulation::StepRecord r = sim.advance_step(step);
     REQUIRE(r.converged);
     xc[step] = sim.pose().centre.x();
     offset[step] = sim.load_offset().x();

@@ -24,7 +24,7 @@ TEST_CASE("constant tangent: one factorisation for the run, the answers of the u
   Simulation condensed(load_scene(scene));
   Simulation full(load_scene(scene, {{"contact.ipopt.formulation", "\"full\""}}));
   for (int step = 1; step <= condensed.scene().total_steps(); ++step) {
-    const Simulation::StepResult r = condensed.advance_step(step);
+    const Simulation::StepRecord r = condensed.advance_step(step);
     INFO("step " << step << ": " << r.stats.brief());
     REQUIRE(r.converged);
     REQUIRE(full.advance_step(step).converged);
@@ -77,7 +77,7 @@ TEST_CASE("constant tangent: a resumed run factorises afresh and agrees to round
   resumed.load_state(dir.path() / "after_2.cbor", /*strip_only=*/false);
   for (int step = 3; step <= 4; ++step) {
     INFO("step " << step);
-    const Simulation::StepResult w = whole.advance_step(step), r = resumed.advance_step(step);
+    const Simulation::StepRecord w = whole.advance_step(step), r = resumed.advance_step(step);
     REQUIRE(w.converged);
     REQUIRE(r.converged);
     CHECK(w.factorizations == 0);

@@ -74,7 +74,7 @@ TEST_CASE("force control: a load nothing carries stops the step with a message",
   // The roller beside the strip: no node ever touches it.
   Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml",
                             {{"roller.centre", "[500.0, 200.0]"}, {"roller.path", "[{steps=[1,4], fy=1000.0}]"}}));
-  const Simulation::StepResult r = sim.advance_step(1);
+  const Simulation::StepRecord r = sim.advance_step(1);
   CHECK_FALSE(r.converged);
   CHECK_THAT(r.message, Catch::Contains("nothing carries the load"));
 }
@@ -208,7 +208,7 @@ TEST_CASE("force control: a horizontal force beyond friction stops with a messag
       {{"steps.count", "2"},
        {"roller.path", fmt::format("[{{steps=[1,1], fy={}}}, {{steps=[2,2], fy={}, fx={}}}]", p, p, -1.5 * mu * p)}}));
   REQUIRE(sim.advance_step(1).converged);
-  const Simulation::StepResult r = sim.advance_step(2);
+  const Simulation::StepRecord r = sim.advance_step(2);
   CHECK_FALSE(r.converged);
   CHECK_THAT(r.message, Catch::Contains("the roller slides"));
   CHECK(std::isfinite(sim.pose().centre.x()));

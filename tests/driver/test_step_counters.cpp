@@ -20,7 +20,7 @@ TEST_CASE("step counters: a suspended roller's linearisations and NLP solves sum
                             {{"contact.roller_coupling", "\"passes\""}}));
   int steps_with_several_passes = 0;
   for (int step = 1; step <= 6; ++step) {
-    const Simulation::StepResult r = sim.advance_step(step);
+    const Simulation::StepRecord r = sim.advance_step(step);
     INFO("step " << step << ": " << r.stats.brief());
     REQUIRE(r.converged);
     CHECK(r.stats.linearisations == r.factorizations);

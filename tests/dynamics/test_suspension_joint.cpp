@@ -27,7 +27,7 @@ struct JointAndPasses {
     return o;
   }
   // Advances both through `step` (each must converge) and counts their linearisations.
-  std::pair<Simulation::StepResult, Simulation::StepResult> advance(int step) {
+  std::pair<Simulation::StepRecord, Simulation::StepRecord> advance(int step) {
     auto a = joint.advance_step(step);
     auto b = passes.advance_step(step);
     REQUIRE(a.converged);
@@ -80,7 +80,7 @@ TEST_CASE("Suspended roller: the penalty backend couples by passes whatever the 
   Simulation penalty(load_scene(scene, {{"contact.backend", "\"penalty\""}}));
   REQUIRE(penalty.scene().contact.roller_coupling == RollerCoupling::Joint);
   for (int step = 1; step <= 6; ++step) {
-    const Simulation::StepResult r = penalty.advance_step(step);
+    const Simulation::StepRecord r = penalty.advance_step(step);
     REQUIRE(r.converged);
     if (step >= 5) CHECK(r.last.suspension_passes >= 2);  // in contact from step 4 on
   }

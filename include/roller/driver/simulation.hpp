@@ -156,9 +156,24 @@ class Simulation {
   };
   Increment advance(Real s_from, Real s_to);
 
+  // The roller at the end of a converged step, as the outputs write it (roller.csv).
+  struct RollerRecord {
+    RollerPose pose;
+    Vec2 force = Vec2::Zero();     // of the strip on the roller [N per mm width]
+    Vec2 velocity = Vec2::Zero();  // of the centre over the step (backward difference) [mm/s]
+    Real anchor_y = 0.0;           // the prescribed pose's height: a suspension's anchor
+    Real deflection = 0.0, deflection_velocity = 0.0, deflection_acceleration = 0.0;  // suspension
+    PrescribedForce prescribed;  // the forces the step prescribed (none: its motion)
+    Vec2 load_offset = Vec2::Zero();
+  };
+
   // Advances through scene step `step` (1-based), cutting it into 2, 4, ... sub-increments when
-  // an increment fails, up to steps.max_cuts times.
-  struct StepResult {
+  // an increment fails, up to steps.max_cuts times. The record holds every value the outputs
+  // write about the step (driver/run_outputs.hpp), the prescribed pose and forces included.
+  struct StepRecord {
+    int step = 0;
+    int pass = 1;
+    Real time = 0.0;
     bool converged = false;
     int cuts = 0;
     int iterations = 0;
@@ -176,8 +191,14 @@ class Simulation {
       std::vector<DepthSample> profile;
     };
     std::optional<PassEnd> pass_end;
+    // The state at the end of the step (as it stands after a failed one): the contact of its
+    // last increment, the roller, the strip's kinetic energy.
+    std::vector<NodeContactRecord> contact;
+    Index n_contact = 0;  // candidates not open
+    std::optional<RollerRecord> roller;
+    Real kinetic_energy = 0.0;
   };
-  StepResult advance_step(int step);
+  StepRecord advance_step(int step);
 
  private:
   // The scene's start centre (roller.centre or its default), and that moved by roller.touch_strip.
@@ -263,7 +284,9 @@ class Simulation {
   PassBaseline pass_baseline_;
   std::vector<PassRecord> pass_records_;
   // After a converged step: observes the contact; at a pass's last step, measures the pass.
-  std::optional<StepResult::PassEnd> observe_pass(int step);
+  std::optional<StepRecord::PassEnd> observe_pass(int step);
+  // The state at the end of the step (converged or not) into its record.
+  void record_state(StepRecord& res) const;
   Vec2 load_offset_ = Vec2::Zero();     // force control: the centre's offset from the path [mm]
   Vec2 load_stiffness_ = Vec2::Zero();  // -dF/dw per axis, last force-controlled increment (0: none yet)
 };
