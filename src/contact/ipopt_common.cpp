@@ -75,7 +75,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
   // linear solve: Debian's MUMPS 5.5 walks its whole structure on every call. The probing
   // (Mehrotra) barrier oracle needs one extra solve per iteration where the quality function
   // needs several, and no forced refinement step saves a solve whenever the first is accurate
-  // (Ipopt still refines when the residual asks for it). Measured: docs/benchmarks.md, "The
+  // (Ipopt still refines when the residual asks for it). Measured: docs/benchmarks-log.md, "The
   // thesis scenes at refine 1".
   set(*app, "mu_oracle", std::string("probing"));
   set(*app, "min_refinement_steps", 0);
@@ -95,7 +95,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
 // Auto: the dense solver up to this bound on Ipopt's KKT dimension (n + 2m: the variables, the
 // constraints' multipliers and the inequalities' slacks). Measured on Z1 at refine 2-8, the
 // same Ipopt iterations with either solver: dense took 0.47 of MUMPS's time inside Ipopt at
-// ~25 condensed dofs, 0.7 at ~55, 1.0 at ~80 and 1.4 at ~110 (docs/benchmarks.md, "A dense
+// ~25 condensed dofs, 0.7 at ~55, 1.0 at ~80 and 1.4 at ~110 (docs/benchmarks-log.md, "A dense
 // solver for Ipopt's small KKT systems").
 constexpr int kDenseKktMax = 200;
 

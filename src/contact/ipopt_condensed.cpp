@@ -83,7 +83,7 @@ constexpr int kMaxBacktracks = 12;
 // most of its time in Ipopt; with 0.25 l_step 236 candidates; with 0.05 l_step the condensed
 // dofs of Z1's rolling increments fall by a third more (944 -> 634 at 4.4e5 dofs, its Ipopt time
 // 7.7 -> 2.9 s) and no scene needed a linearisation more for a candidate found penetrating
-// outside the set (docs/benchmarks.md, "A smaller working set for the contact NLP").
+// outside the set (docs/benchmarks-log.md, "A smaller working set for the contact NLP").
 constexpr Real kReach = 0.05;
 
 // Candidates in the working set: a free dof and (gap at x within `reach`, or a normal force in

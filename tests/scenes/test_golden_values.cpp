@@ -10,7 +10,7 @@
 // exact discrete solution is set by the backend's tolerances and can be larger. Hertz with ipopt,
 // step 2: 2e-6 of the peak force from the solution at contact.ipopt.tol = 1e-12, because Ipopt's
 // complementarity (F_N g <= tol F_ref) lets candidates near the contact edge keep small forces;
-// a change of the working set moves it (docs/benchmarks.md, "A smaller working set for the
+// a change of the working set moves it (docs/benchmarks-log.md, "A smaller working set for the
 // contact NLP").
 #include <catch2/catch.hpp>
 

@@ -6,7 +6,7 @@
 // unknowns and is solved hundreds of times a run, each interior-point iteration factorising and
 // solving its KKT system. Debian's Ipopt 3.11 solves those with MUMPS, whose 5.5 driver walks its
 // whole structure (dmumps_compute_memory_save) on every call: about 0.1 ms a call whatever the
-// size, most of a small scene's run (docs/benchmarks.md, "Ipopt's settings for many small NLPs").
+// size, most of a small scene's run (docs/benchmarks-log.md, "Ipopt's settings for many small NLPs").
 // A dense Bunch-Kaufman LDL^T (LAPACK dsytrf/dsytrs) has no such fixed cost, and on a dense
 // Hessian it does the work MUMPS does.
 //
