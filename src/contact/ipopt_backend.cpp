@@ -3,79 +3,11 @@
 // friction_passes (the Coulomb fixed point), ipopt_full and ipopt_condensed (the formulations),
 // ipopt_common (Ipopt set-up, scales, status messages, the report), this file (the facade).
 //
-// One increment = one or more nonlinear programs (NLP), each solved by Ipopt with MUMPS.
-//
-// Variables  z = [x, s+, s-]: x the free-dof increments; for the "split" friction one pair of
-//            auxiliaries s+_j, s-_j >= 0 per friction candidate j (none when mu = 0, none for
-//            the "regularized" friction, none for a candidate whose normal-force estimate is
-//            zero: its friction term vanishes and a zero-cost pair would be unbounded under
-//            the barrier).
-// Objective  f(z) = Pi(x) + sum_j mu Fbar_j (s+_j + s-_j)                      ("split")
-//            f(x) = Pi(x) + sum_j mu Fbar_j sqrt(slip_j(x)^2 + eps^2)          ("regularized")
-//            with Pi the strip's incremental potential (IncrementProblem::strip_energy).
-// Constraints g_i(x) = |x_i^n + u_i - c^{n+1}| - R >= 0 for every candidate with a free dof
-//            (exact circle); slip_j(x) - s+_j + s-_j = 0 for the split friction (linear).
-// Derivatives are exact: grad g_i = n_i on the node's free dofs, and the Hessian of the
-//            Lagrangian is sigma_f (K + friction) + sum_i lambda_i (I - n_i n_i^T) / |x_i - c|
-//            (lower triangle; the gap is curved, its Hessian is not zero); the regularized
-//            friction adds sigma_f mu Fbar eps^2 / (slip^2 + eps^2)^(3/2) t t^T.
-// Forces     Ipopt's Lagrangian is f + lambda^T g, so at a KKT point grad Pi = -sum lambda_i n_i
-//            - sum lambda_j t_j: the force of the roller on the strip node is F_N n + F_T t with
-//            F_N = -lambda_gap >= 0 and F_T = -lambda_slip (split; |F_T| <= mu Fbar from the
-//            bounds' multipliers) or F_T = -mu Fbar slip / sqrt(slip^2 + eps^2) (regularized).
-// Coulomb    Fixed point on the normal force (docs/model.md, Friction fixed point;
-//            friction_passes.hpp): pass 1 takes Fbar from the candidates' normal_force_guess,
-//            pass k+1 from pass k's F_N, until it settles ("converge") or after one pass
-//            ("single", the thesis's explicit variant).
-//            Pass k+1 starts from pass k's solution. stats.fixed_point_iterations = passes.
-//
-// Scaling. Ipopt's tolerances are absolute in the units of the scaled NLP. The objective is
-// scaled by 1/F_ref with F_ref = max(strip force scale at x0 (IncrementEnergy::evaluate), E* l_step): the first
-// is the size of the loads/reactions/start-of-step internal forces, the second the nodal force
-// of a surface element (width ~ depth) displaced by the step's length scale
-//   l_step = max(|dc|, R |dphi|, |full increment at x0|_inf, max penetration at x0, 1e-9 R).
-// So contact.ipopt.tol is a relative equilibrium tolerance (dual infeasibility / F_ref), and a
-// length tolerance in mm for gaps and complementarity (constraints are not scaled: mm).
-//
-// Ipopt options (beyond contact.ipopt.*): linear_solver per NLP (contact.ipopt.kkt_solver: a dense
-// LAPACK LDL^T for small KKT systems, solver/dense_kkt_solver.hpp; MUMPS otherwise) with MUMPS's default
-// ordering (on this strip matrix it beat SCOTCH, mumps_pivot_order 3, in CPU time
-// (docs/benchmarks.md) — the opposite of what a scalar membrane prototype had shown);
-// hessian_approximation exact; bound_relax_factor 0 and honor_original_bounds yes (no
-// constraint violation left by relaxed bounds); line_search_method penalty (an exact-penalty
-// merit function instead of the default filter: the curved gap leaves a constraint violation
-// ~1e-9 mm after every step, and the filter then accepts any full step that lowers it whatever
-// the energy does. On Z1 that let Newton 2-cycle between plastic loading and unloading along a
-// soft mode (the part of the strip beyond the roller sliding in x, held only by a plastic zone
-// through the thickness, when no friction holds it): frictionless Z1 failed at step 4 after 500
-// iterations; with the merit function every step must lower energy + violation, and Z1 needs
-// 15-27 iterations per step with or without friction, the Z2 and friction tests 3x fewer); obj_scaling_factor 1/F_ref;
-// dual_inf_tol and compl_inf_tol (Ipopt's unscaled checks): the first raised to 100 tol F_ref so that it never binds,
-// the second set to tol F_ref so that max F_N g / F_ref ends below tol
-// before tol does; sb yes (no banner); Initialize("") so that a stray ./ipopt.opt is ignored.
-// Warm start (warm_start_init_point, mu_init and pushes 1e-6): pass 1 only when
-// contact.ipopt.warm_start (multipliers from normal_force_guess / tangential_force), every later
-// fixed-point pass always (from the previous pass; this cut the friction tests' iterations ~3x).
-// Solved_To_Acceptable_Level counts as converged and is flagged in stats.acceptable_level.
-//
-// Status per candidate, with F_tol = 1e-6 max(F_ref, max F_N):
-//   open   if F_N <= F_tol and g > 0;
-//   stick  if |slip| <= l_step (1 - |F_T| / (mu Fbar))   (candidates with a friction term)
-//          or |slip| <= 1e-6 l_step                        (frictionless candidates);
-//   slip   otherwise.
-// Interior-point multipliers of inactive constraints are small but not zero (~ barrier / gap);
-// F_tol separates them from real contact forces, and only candidates with Fbar > F_tol carry
-// friction in the next pass. Likewise a sticking node keeps an interior-point slip
-// ~ barrier / (mu Fbar - |F_T|) (measured ~1e-9 mm, ~1e-6 of the step, on the Cattaneo scene),
-// so a fixed slip tolerance would misread it: the slip is weighed against the step's length
-// scale times the node's distance from the Coulomb bound. A node at the bound (|F_T| = mu Fbar)
-// slips for any non-zero slip; at a converged solution |slip| (mu Fbar - |F_T|) ~ barrier, so
-// the two cases separate by many orders of magnitude. Candidates whose dofs are all prescribed get no constraint (their
-// gap cannot change); they are reported with F_N = 0 and their gap.
-//
-// strip_energy may throw NumericalError (inverted element at a trial point): eval_f/eval_grad_f
-// return false so that Ipopt cuts its step; eval_h returning false ends the solve (Ipopt cannot
-// recover from that) and is reported with the cause.
+// The NLP (variables, objective, constraints, exact derivatives, forces), its scaling, Ipopt's
+// options and why, warm starts and the status of each candidate: docs/model.md, "The interior-point
+// backend's NLP in detail". strip_energy may throw NumericalError (an inverted element at a trial
+// point): eval_f/eval_grad_f return false so that Ipopt cuts its step; eval_h returning false ends
+// the solve (Ipopt cannot recover from that), reported with the cause.
 #include "roller/contact/ipopt_backend.hpp"
 
 #include <cstdarg>

@@ -87,7 +87,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
   set(*app, "compl_inf_tol", o.tol * scales.force);
   set(*app, "bound_relax_factor", 0.0);
   set(*app, "honor_original_bounds", std::string("yes"));
-  set(*app, "line_search_method", std::string("penalty"));  // ipopt_backend.cpp, header comment
+  set(*app, "line_search_method", std::string("penalty"));  // docs/model.md, the NLP in detail
   apply_raw_options(*app, o.raw);
   return app;
 }

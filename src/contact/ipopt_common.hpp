@@ -22,14 +22,14 @@ void apply_raw_options(Ipopt::IpoptApplication& app, const std::vector<RawIpoptO
 // Ipopt's warm start from a primal-dual point (warm_start_init_point and its push/frac options).
 void set_warm_start(Ipopt::IpoptApplication& app, bool on);
 
-// Scales of one increment (ipopt_backend.cpp, header comment "Scaling").
+// Scales of one increment (docs/model.md, "The interior-point backend's NLP in detail": Scaling).
 struct Scales {
   Real force = 1.0;   // F_ref [N/mm]
   Real length = 1.0;  // l_step [mm]
 };
 Scales increment_scales(const IncrementProblem& problem, const VecX& x0, Real strip_force_scale);
 
-// An Ipopt application with roller's settings (ipopt_backend.cpp, header comment "Ipopt options") and the
+// An Ipopt application with roller's settings (docs/model.md, the NLP in detail: Ipopt options) and the
 // pass-through options applied; not yet initialised.
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o, const Scales& scales);
 

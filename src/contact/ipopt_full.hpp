@@ -1,7 +1,7 @@
 #pragma once
 // The "full" formulation of the interior-point backend (contact.ipopt.formulation = "full"):
-// Ipopt on the whole strip's nonlinear energy, every free dof an NLP variable (ipopt_backend.cpp,
-// header comment). Also the fallback of the condensed formulation.
+// Ipopt on the whole strip's nonlinear energy, every free dof an NLP variable (docs/model.md,
+// "The interior-point backend's NLP in detail"). Also the fallback of the condensed formulation.
 #include <string>
 #include <vector>
 
