@@ -159,10 +159,10 @@ RunStatus status_of(const std::exception& e) {
 RunSummary Simulation::run(const RunOptions& options) {
   const auto t_start = Clock::now();
   start_or_resume(options);
-  const int first_step = steps_done_ + 1;
+  const int first_step = state_.steps_done + 1;
   const std::filesystem::path summary_file = options.out_dir / "summary.json";
   RunSummary summary;
-  summary.steps_done = steps_done_;
+  summary.steps_done = state_.steps_done;
   // Written now with room to spare, so that the run's end can still say why it stopped when the
   // disk fills up meanwhile.
   write_with_reserve(summary_file, summary_json(*this, summary, first_step, options.resume), kSummaryReserve);
@@ -171,9 +171,9 @@ RunSummary Simulation::run(const RunOptions& options) {
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
   summary.converged = true;
   auto finish_summary = [&] {
-    summary.iterations_total = totals_.iterations;
-    summary.cuts_total = totals_.cuts;
-    summary.max_penetration = totals_.max_penetration;
+    summary.iterations_total = state_.totals.iterations;
+    summary.cuts_total = state_.totals.cuts;
+    summary.max_penetration = state_.totals.max_penetration;
     summary.wall_s = seconds_since(t_start);
     summary.peak_memory_mb = peak_memory_mb();
   };
@@ -191,7 +191,8 @@ RunSummary Simulation::run(const RunOptions& options) {
     }
   });
   try {
-    RunOutputs outputs(scene_, *model_, dynamics_, pose_, steps_done_, options.out_dir, options.resume, writer);
+    RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, state_.steps_done, options.out_dir, options.resume,
+                       writer);
     StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                         scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
                         options.progress);
@@ -202,7 +203,7 @@ RunSummary Simulation::run(const RunOptions& options) {
       // serialisation (at 2.9e5 dofs 37 MB, 0.4 s).
       const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
       const int every = scene_.output.checkpoint_every;
-      if (every > 0 && steps_done_ % every == 0 && std::filesystem::exists(checkpoint))
+      if (every > 0 && state_.steps_done % every == 0 && std::filesystem::exists(checkpoint))
         copy_state_file(checkpoint, options.out_dir / "state_final.cbor");
       else
         save_state(options.out_dir / "state_final.cbor");
@@ -237,9 +238,9 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     const auto t_step = Clock::now();
     const StepRecord res = advance_step(step);
     const double wall = seconds_since(t_step);
-    totals_.iterations += res.iterations;
-    totals_.cuts += res.cuts;
-    totals_.max_penetration = std::max(totals_.max_penetration, res.max_penetration);
+    state_.totals.iterations += res.iterations;
+    state_.totals.cuts += res.cuts;
+    state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
     outputs.write_solver_row(res, monitor.check(step, *model_), wall);
     if (!res.converged) {
       summary.converged = false;
@@ -268,7 +269,7 @@ void Simulation::start_or_resume(const RunOptions& options) {
                     checkpoint.string()));
   load_state(checkpoint, /*strip_only=*/false);
   if (options.progress)
-    *options.progress << fmt::format("resuming after step {} from {}\n", steps_done_, checkpoint.string());
+    *options.progress << fmt::format("resuming after step {} from {}\n", state_.steps_done, checkpoint.string());
 }
 
 void Simulation::save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const {

@@ -73,18 +73,18 @@ Simulation::Simulation(Scene scene)
     NodeSelector sel;
     sel.set_name = scene_.contact.candidates;
     candidate_nodes_ = resolve_nodes(sel, model_->mesh(), "contact.candidates");
-    pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
+    state_.pose = roller_pose(*scene_.roller, start_centre(), 0.0);
   }
   if (!scene_.initial_state.empty()) load_state(scene_.initial_state, /*strip_only=*/true);
   if (scene_.roller && scene_.roller->touch_strip) {
     start_lift_ = touching_lift();
-    pose_ = roller_pose(*scene_.roller, start_centre(), 0.0);
+    state_.pose = roller_pose(*scene_.roller, start_centre(), 0.0);
   }
   if (scene_.roller) check_roller_starts_outside();
   // After the initial state: a restarted strip starts at rest in its new configuration.
   dynamics_ = DynamicsState(*model_, scene_.dynamics.strip_inertia, scene_.dynamics.lumped_mass,
                             scene_.roller ? scene_.roller->suspension : std::nullopt, scene_.steps.dt);
-  if (scene_.passes.count > 1) pass_baseline_ = PassBaseline::of(*model_);
+  if (scene_.passes.count > 1) state_.pass_baseline = PassBaseline::of(*model_);
 }
 
 void Simulation::check_roller_starts_outside() const {
@@ -95,7 +95,7 @@ void Simulation::check_roller_starts_outside() const {
   Real depth = 0.0;
   Index deepest = -1;
   for (Index a : candidate_nodes_) {
-    const Real d = radius - (x[a] - pose_.centre).norm();
+    const Real d = radius - (x[a] - state_.pose.centre).norm();
     if (d > depth) {
       depth = d;
       deepest = a;
@@ -104,19 +104,19 @@ void Simulation::check_roller_starts_outside() const {
   // A roller under the strip would press it from below, which no path of ours means.
   Real bottom = x.front().y();
   for (const Vec2& p : x) bottom = std::min(bottom, p.y());
-  if (pose_.centre.y() + radius < bottom)
+  if (state_.pose.centre.y() + radius < bottom)
     throw InputError(fmt::format(
         "{}: roller.centre = [{}, {}]: the roller lies entirely below the strip (its top at y = {:.6g} mm, the "
         "strip's bottom at y = {:.6g} mm); expected a centre above the strip's top surface",
-        scene_.file.string(), pose_.centre.x(), pose_.centre.y(), pose_.centre.y() + radius, bottom));
+        scene_.file.string(), state_.pose.centre.x(), state_.pose.centre.y(), state_.pose.centre.y() + radius, bottom));
   // Below 1e-6 R an overlap is the rounding of a touching start (the thesis's Z4 corner: 3e-8 R).
   if (depth > 1e-6 * radius)
     throw InputError(fmt::format(
         "{}: roller.centre = [{}, {}]: the roller starts inside the strip (node {} at ({:.6g}, {:.6g}) mm lies "
         "{:.4g} mm inside it); expected a start on or above the surface: raise the centre by at least {:.4g} mm, "
         "or press in with a [[roller.path]] segment (dy < 0)",
-        scene_.file.string(), pose_.centre.x(), pose_.centre.y(), deepest + 1, x[deepest].x(), x[deepest].y(), depth,
-        depth));
+        scene_.file.string(), state_.pose.centre.x(), state_.pose.centre.y(), deepest + 1, x[deepest].x(),
+        x[deepest].y(), depth, depth));
 }
 
 Vec2 Simulation::given_start_centre() const {
@@ -149,7 +149,7 @@ Real Simulation::touching_lift() const {
 
 Vec2 Simulation::roller_force() const {
   Vec2 f = Vec2::Zero();
-  for (const auto& c : contact_) f -= c.force;
+  for (const auto& c : state_.contact) f -= c.force;
   return f;
 }
 
@@ -175,9 +175,10 @@ PrescribedForce Simulation::prescribed_force(Real s) const {
 
 std::vector<PressureSample> Simulation::pressure_profile() const {
   std::vector<PressureSample> out;
-  for (const auto& c : contact_) {
+  for (const auto& c : state_.contact) {
     const bool loaded = c.contact.status != ContactStatus::Open;
-    out.push_back({c.position.x() - pose_.centre.x(), loaded ? c.contact.normal_force / c.tributary_length : 0.0});
+    out.push_back(
+        {c.position.x() - state_.pose.centre.x(), loaded ? c.contact.normal_force / c.tributary_length : 0.0});
   }
   return out;
 }
@@ -189,7 +190,7 @@ void Simulation::solve_contact(IncrementEnergy& energy, const VecX& prescribed, 
   const Real reach = 0.05 * motion.radius + 4.0 * motion.dc().norm() + 4.0 * predictor.cwiseAbs().maxCoeff();
   std::vector<ContactCandidate> candidates = make_contact_candidates(*model_, candidate_nodes_, prescribed, predictor,
                                                                      motion.end.centre, motion.radius, reach);
-  friction_.seed(candidates);
+  state_.friction.seed(candidates);
   // A later pass of the same increment (the suspension's or the load's coupling) moved the roller
   // only a little: its friction fixed point starts from the last pass's normal forces, not from
   // the previous increment's, and so needs no more linearisations than the move itself.
@@ -234,7 +235,7 @@ std::optional<Real> Simulation::solve_height_jointly(IncrementEnergy& energy, co
 
 void Simulation::record_contact(const std::vector<ContactCandidate>& candidates, const BackendResult& result,
                                 const VecX& u) {
-  contact_.clear();
+  state_.contact.clear();
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     const ContactCandidate& c = candidates[i];
     const NodeContact& nc = result.contact[i];
@@ -244,11 +245,11 @@ void Simulation::record_contact(const std::vector<ContactCandidate>& candidates,
     rec.contact = nc;
     rec.tributary_length = c.tributary_length;
     rec.element_size = c.element_size;
-    rec.force =
-        contact_force(nc.normal_force, nc.tangential_force, (rec.position - pose_.centre).normalized(), c.tangent);
-    contact_.push_back(rec);
+    rec.force = contact_force(nc.normal_force, nc.tangential_force, (rec.position - state_.pose.centre).normalized(),
+                              c.tangent);
+    state_.contact.push_back(rec);
   }
-  friction_.record(candidates, result.contact);
+  state_.friction.record(candidates, result.contact);
 }
 
 Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
@@ -261,9 +262,9 @@ Simulation::Increment Simulation::advance(Real s_from, Real s_to) {
   RollerMotion motion;
   if (scene_.roller) {
     motion.radius = scene_.roller->radius;
-    motion.start = pose_;
+    motion.start = state_.pose;
     motion.end = prescribed_pose(s_to);
-    motion.end.centre += load_offset_;
+    motion.end.centre += state_.load_offset;
     const Real local = locate_pass(s_to, scene_.steps.n_steps).local;
     motion.friction =
         friction_in_step(*scene_.roller, static_cast<int>(std::ceil(local - 1e-12)), scene_.contact.friction);
@@ -279,8 +280,8 @@ VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) c
   // The previous converged increment scaled to this one's length (a linear extrapolation of the
   // path) starts Newton near the solution on smooth paths.
   VecX predictor = VecX::Zero(model_->n_dofs());
-  if (last_increment_.size() == model_->n_dofs() && last_length_ > 0.0)
-    predictor = last_increment_ * ((s_to - s_from) / last_length_);
+  if (state_.last_increment.size() == model_->n_dofs() && state_.last_length > 0.0)
+    predictor = state_.last_increment * ((s_to - s_from) / state_.last_length);
   if (motion && scene_.contact.predictor == IncrementPredictor::Rolling)
     predictor = translate_increment(model_->mesh(), model_->current_coordinates(), predictor,
                                     motion->end.centre.x() - motion->start.centre.x());
@@ -295,8 +296,8 @@ Simulation::Solution Simulation::solve_increment(IncrementEnergy& energy, const 
                                                  RollerMotion& motion, const PrescribedForce& force, Increment& inc) {
   VecX x = model_->dof_map().restrict_to_free(predictor);
   Solution solution;
-  solution.load_offset = load_offset_;
-  solution.load_stiffness = load_stiffness_;
+  solution.load_offset = state_.load_offset;
+  solution.load_stiffness = state_.load_stiffness;
   if (!scene_.roller) {
     add_solve(inc, newton_.minimise(energy, x, scene_.newton));
     solution.u = energy.full_increment(x);
@@ -375,9 +376,9 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
   // The centre sits at the path's position plus an offset that carries the forces
   // (force_control.hpp).
   Solution solution;
-  solution.load_offset = load_offset_;
-  solution.load_stiffness = load_stiffness_;
-  const Vec2 path = motion.end.centre - load_offset_;
+  solution.load_offset = state_.load_offset;
+  solution.load_stiffness = state_.load_stiffness;
+  const Vec2 path = motion.end.centre - state_.load_offset;
   // 1e-6 of the largest force of the path: far below what a user reads, far above the contact
   // solves' own accuracy. A horizontal force is measured against the vertical one as well (a
   // traction of 0 under a prescribed depth).
@@ -429,7 +430,7 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
     // the contact solve, the load's potential F w (IncrementProblem::free_roller with stiffness 0), so
     // F_y = F at the solution. A roller still to meet the strip finds it by passes: nothing sets
     // the joint solve's length scale and working set before contact.
-    if (friction_.touching() && joint_height()) {
+    if (state_.friction.touching() && joint_height()) {
       const Real w0 = solution.load_offset.y();
       motion.end.centre.y() = path.y() + w0;
       RollerPotential load;
@@ -470,7 +471,8 @@ Simulation::Solution Simulation::solve_loaded(const PrescribedForce& force, Incr
     if (!force.fy) ++inc.load_passes;  // a solve per x; counted within the vertical iteration otherwise
     return f->x();
   };
-  const ForceControlResult fc = solve_for_force(*force.fx, load_offset_.x(), settings(ForceAxis::Horizontal), fx_at);
+  const ForceControlResult fc =
+      solve_for_force(*force.fx, state_.load_offset.x(), settings(ForceAxis::Horizontal), fx_at);
   if (!fc.converged) {
     inc.converged = false;
     inc.message = failure.empty() ? fc.message : failure;
@@ -491,13 +493,13 @@ void Simulation::commit(const Solution& solution, const RollerMotion& motion, Re
     inc.message = fmt::format("the increment's solution is not admissible: {}", e.what());
     return;
   }
-  last_increment_ = solution.u;
-  last_length_ = s_to - s_from;
-  load_offset_ = solution.load_offset;
-  load_stiffness_ = solution.load_stiffness;
+  state_.last_increment = solution.u;
+  state_.last_length = s_to - s_from;
+  state_.load_offset = solution.load_offset;
+  state_.load_stiffness = solution.load_stiffness;
   dynamics_.commit_increment(model_->total_displacement(), solution.deflection);
   if (scene_.roller) {
-    pose_ = motion.end;
+    state_.pose = motion.end;
     record_contact(solution.candidates, solution.contact, solution.u);
   }
 }
@@ -506,7 +508,7 @@ std::string Simulation::return_for_pass(int pass) {
   // The roller must have left the strip: no node carries a contact force, and none lies within
   // the roller at the pass's start.
   Index touching = 0;
-  for (const auto& c : contact_) touching += c.contact.status != ContactStatus::Open ? 1 : 0;
+  for (const auto& c : state_.contact) touching += c.contact.status != ContactStatus::Open ? 1 : 0;
   if (touching > 0)
     return fmt::format(
         "pass {} ends with the roller on the strip ({} nodes in contact): end each pass with a lift (a "
@@ -521,50 +523,50 @@ std::string Simulation::return_for_pass(int pass) {
           "pass {} would start with node {} inside the roller at ({:.6g}, {:.6g}): start the pass "
           "clear of the strip (roller.centre) or press in from above",
           pass, a + 1, start.centre.x(), start.centre.y());
-  pose_ = start;
-  load_offset_.setZero();     // each pass meets the strip as the first did
-  last_increment_.setZero();  // the lift is no predictor of the press
-  contact_.clear();
+  state_.pose = start;
+  state_.load_offset.setZero();     // each pass meets the strip as the first did
+  state_.last_increment.setZero();  // the lift is no predictor of the press
+  state_.contact.clear();
   return "";
 }
 
 std::optional<Simulation::StepRecord::PassEnd> Simulation::observe_pass(int step) {
   if (scene_.passes.count < 2) return std::nullopt;
   std::vector<Real> x, p;
-  for (const auto& c : contact_) {
+  for (const auto& c : state_.contact) {
     if (c.contact.status == ContactStatus::Open) continue;
     x.push_back(c.position.x());
     p.push_back(c.contact.normal_force / c.tributary_length);
   }
-  pass_track_.observe(pose_.centre.x(), x, p);
+  state_.pass_track.observe(state_.pose.centre.x(), x, p);
   if (step % scene_.steps.n_steps != 0) return std::nullopt;
   StepRecord::PassEnd end;
-  end.record = measure_pass(pass_of_step(step), *model_, scene_.mesh.height, pass_track_, pass_baseline_);
+  end.record = measure_pass(pass_of_step(step), *model_, scene_.mesh.height, state_.pass_track, state_.pass_baseline);
   end.profile_x = 0.5 * (end.record.track_start + end.record.track_end);
   end.profile = depth_profile(*model_, scene_.mesh.height, end.profile_x);
-  pass_records_.push_back(end.record);
-  pass_track_ = PassTrack{};
-  pass_baseline_ = PassBaseline::of(*model_);
+  state_.pass_records.push_back(end.record);
+  state_.pass_track = PassTrack{};
+  state_.pass_baseline = PassBaseline::of(*model_);
   return end;
 }
 
 int Simulation::pass_of_step(int step) const { return locate_pass(step, scene_.steps.n_steps).pass; }
 
 void Simulation::record_state(StepRecord& res) const {
-  res.contact = contact_;
-  for (const auto& c : contact_) res.n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
+  res.contact = state_.contact;
+  for (const auto& c : state_.contact) res.n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
   res.kinetic_energy = dynamics_.kinetic_energy();
   if (!scene_.roller) return;
   RollerRecord r;
-  r.pose = pose_;
+  r.pose = state_.pose;
   r.force = roller_force();
-  r.velocity = roller_velocity_;
+  r.velocity = state_.roller_velocity;
   r.anchor_y = prescribed_pose(res.step).centre.y();
   if (const Suspension* suspension = dynamics_.suspension()) r.deflection = suspension->deflection();
   r.deflection_velocity = dynamics_.suspension_velocity();
   r.deflection_acceleration = dynamics_.suspension_acceleration();
   r.prescribed = prescribed_force(res.step);
-  r.load_offset = load_offset_;
+  r.load_offset = state_.load_offset;
   res.roller = r;
 }
 
@@ -575,22 +577,16 @@ Simulation::StepRecord Simulation::advance_step(int step) {
   res.time = step * scene_.steps.dt;
   // The first step of a pass after the first: the roller returns to the pass's start (undone
   // below if the step fails, so that a failed step changes nothing).
-  struct BeforeReturn {
-    RollerPose pose;
-    Vec2 load_offset;
-    VecX last_increment;
-    std::vector<NodeContactRecord> contact;
-  };
-  std::optional<BeforeReturn> before_return;
+  std::optional<RunState> before_return;
   if (scene_.roller && step > 1 && (step - 1) % scene_.steps.n_steps == 0) {
-    before_return = BeforeReturn{pose_, load_offset_, last_increment_, contact_};
+    before_return = state_;
     res.message = return_for_pass(pass_of_step(step));
     if (!res.message.empty()) {
       record_state(res);
       return res;
     }
   }
-  const Vec2 centre_start = pose_.centre;
+  const Vec2 centre_start = state_.pose.centre;
   // Sub-increments of 1/2^cuts of the step; a failed sub-increment is halved again.
   Real s = step - 1;
   Real ds = 1.0;
@@ -610,10 +606,7 @@ Simulation::StepRecord Simulation::advance_step(int step) {
       res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}{}", step, res.cuts,
                                 ds, inc.message, incompressibility_hint(scene_.material));
       if (before_return && s == step - 1) {  // nothing of the step committed: undo the return too
-        pose_ = before_return->pose;
-        load_offset_ = before_return->load_offset;
-        last_increment_ = before_return->last_increment;
-        contact_ = before_return->contact;
+        state_ = std::move(*before_return);
       }
       record_state(res);
       return res;
@@ -622,8 +615,8 @@ Simulation::StepRecord Simulation::advance_step(int step) {
     ds *= 0.5;
   }
   res.converged = true;
-  roller_velocity_ = (pose_.centre - centre_start) / scene_.steps.dt;
-  ++steps_done_;
+  state_.roller_velocity = (state_.pose.centre - centre_start) / scene_.steps.dt;
+  ++state_.steps_done;
   dynamics_.finish_step(model_->total_displacement());
   res.pass_end = observe_pass(step);
   record_state(res);

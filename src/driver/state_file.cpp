@@ -59,6 +59,47 @@ Vec2 offset_pair(const nlohmann::json& j, const char* key) {
   return Vec2(v.at(0).get<Real>(), v.at(1).get<Real>());
 }
 
+// The run state (driver/run_state.hpp) into the document and back: every field a later step
+// reads, under the keys of state-file version 3 (the contact and the roller's velocity are the
+// last step's, recomputed by the next one: not saved).
+void save_run_state(const RunState& s, bool multi_pass, nlohmann::json& j) {
+  j["step"] = s.steps_done;
+  j["last_increment"] = to_list(s.last_increment);
+  j["last_length"] = s.last_length;
+  j["pose"] = {s.pose.centre.x(), s.pose.centre.y(), s.pose.angle};
+  j["load_offset"] = {s.load_offset.x(), s.load_offset.y()};
+  j["load_stiffness"] = {s.load_stiffness.x(), s.load_stiffness.y()};
+  if (multi_pass) {
+    j["pass_track"] = s.pass_track.save();
+    j["pass_baseline"] = s.pass_baseline.save();
+    j["pass_records"] = s.pass_records;
+  }
+  j["totals"] = {
+      {"iterations", s.totals.iterations}, {"cuts", s.totals.cuts}, {"max_penetration", s.totals.max_penetration}};
+  j["friction_history"] = s.friction.save();
+}
+
+void load_run_state(const nlohmann::json& j, bool multi_pass, RunState& s) {
+  s.steps_done = j.at("step").get<int>();
+  s.last_increment = to_vec(j.at("last_increment"));
+  s.last_length = j.at("last_length").get<Real>();
+  const auto pose = j.at("pose").get<std::vector<Real>>();
+  s.pose.centre = Vec2(pose.at(0), pose.at(1));
+  s.pose.angle = pose.at(2);
+  s.load_offset = offset_pair(j, "load_offset");
+  s.load_stiffness = offset_pair(j, "load_stiffness");
+  if (multi_pass && j.contains("pass_track")) {
+    s.pass_track = PassTrack::load(j.at("pass_track"));
+    s.pass_baseline = PassBaseline::load(j.at("pass_baseline"));
+    s.pass_records = j.at("pass_records").get<std::vector<PassRecord>>();
+  }
+  if (j.contains("totals")) {  // files of roller before 2026-11-26 hold none
+    const nlohmann::json& t = j.at("totals");
+    s.totals = RunTotals{t.at("iterations").get<int>(), t.at("cuts").get<int>(), t.at("max_penetration").get<Real>()};
+  }
+  s.friction.load(j.at("friction_history"));
+}
+
 }  // namespace
 
 void Simulation::save_state(const std::filesystem::path& file) const { state_writer(file)(); }
@@ -68,7 +109,6 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
   j["format"] = kFormat;
   j["version"] = kVersion;
   j["scene"] = scene_.name;
-  j["step"] = steps_done_;
   j["n_nodes"] = model_->mesh().n_nodes();
   j["n_elements"] = model_->mesh().n_elements();
   std::vector<Real> reference;
@@ -81,19 +121,7 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
     states.insert(states.end(), {s.eq_plastic_strain, s.plastic_work, s.yield_stress});
   }
   j["material_states"] = to_list(states);
-  j["last_increment"] = to_list(last_increment_);
-  j["last_length"] = last_length_;
-  j["pose"] = {pose_.centre.x(), pose_.centre.y(), pose_.angle};
-  j["load_offset"] = {load_offset_.x(), load_offset_.y()};
-  j["load_stiffness"] = {load_stiffness_.x(), load_stiffness_.y()};
-  if (scene_.passes.count > 1) {
-    j["pass_track"] = pass_track_.save();
-    j["pass_baseline"] = pass_baseline_.save();
-    j["pass_records"] = pass_records_;
-  }
-  j["totals"] = {
-      {"iterations", totals_.iterations}, {"cuts", totals_.cuts}, {"max_penetration", totals_.max_penetration}};
-  j["friction_history"] = friction_.save();
+  save_run_state(state_, scene_.passes.count > 1, j);
   dynamics_.save(j);
   j["scene_fingerprint"] = scene_fingerprint(scene_);
   return [j = std::move(j), file]() mutable {
@@ -189,24 +217,7 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
           fmt::format("{}: the checkpoint is after step {} but the run has {} steps (steps.count or "
                       "--steps, times passes.count); give at least {} steps",
                       file.string(), j.at("step").get<int>(), scene_.total_steps(), j.at("step").get<int>()));
-    steps_done_ = j.at("step").get<int>();
-    last_increment_ = to_vec(j.at("last_increment"));
-    last_length_ = j.at("last_length").get<Real>();
-    const auto pose = j.at("pose").get<std::vector<Real>>();
-    pose_.centre = Vec2(pose.at(0), pose.at(1));
-    pose_.angle = pose.at(2);
-    load_offset_ = offset_pair(j, "load_offset");
-    load_stiffness_ = offset_pair(j, "load_stiffness");
-    if (scene_.passes.count > 1 && j.contains("pass_track")) {
-      pass_track_ = PassTrack::load(j.at("pass_track"));
-      pass_baseline_ = PassBaseline::load(j.at("pass_baseline"));
-      pass_records_ = j.at("pass_records").get<std::vector<PassRecord>>();
-    }
-    if (j.contains("totals")) {  // files of roller before 2026-11-26 hold none
-      const nlohmann::json& t = j.at("totals");
-      totals_ = RunTotals{t.at("iterations").get<int>(), t.at("cuts").get<int>(), t.at("max_penetration").get<Real>()};
-    }
-    friction_.load(j.at("friction_history"));
+    load_run_state(j, scene_.passes.count > 1, state_);
     dynamics_.load(j, file.string());
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: damaged state file ({})", file.string(), e.what()));

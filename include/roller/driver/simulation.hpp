@@ -16,6 +16,7 @@
 #include "roller/contact/friction_history.hpp"
 #include "roller/core/enum_names.hpp"
 #include "roller/driver/load_program.hpp"
+#include "roller/driver/run_state.hpp"
 #include "roller/dynamics/dynamics_state.hpp"
 #include "roller/io/scene.hpp"
 #include "roller/solver/newton.hpp"
@@ -53,14 +54,6 @@ int exit_code(RunStatus status);
 // The status of a run stopped by `e` (InputError, SystemError or out of memory, or a bug).
 RunStatus status_of(const std::exception& e);
 
-// What the steps cost, over every step of the run since its first (a resumed run's included:
-// the totals are in the state files).
-struct RunTotals {
-  int iterations = 0;
-  int cuts = 0;
-  Real max_penetration = 0.0;
-};
-
 struct RunSummary {
   RunStatus status = RunStatus::Running;
   bool converged = false;
@@ -78,16 +71,6 @@ struct RunSummary {
 // cannot be used (the caller reports the first error).
 void write_stopped_summary(const Scene& scene, const RunOptions& options, RunStatus status, const std::string& message);
 
-// Contact result of one node at the end of a step (for output).
-struct NodeContactRecord {
-  Index node = 0;
-  Vec2 position = Vec2::Zero();
-  NodeContact contact;
-  Real tributary_length = 0.0;
-  Real element_size = 0.0;    // depth of the surface element under the node (penalty scale)
-  Vec2 force = Vec2::Zero();  // force of the roller on the node [N per mm width]
-};
-
 class Simulation {
  public:
   // Builds the mesh and the load program, validating the scene against the mesh (InputError).
@@ -102,13 +85,13 @@ class Simulation {
   // the inertia of factors it holds.
   ContactBackend* contact_backend() { return backend_.get(); }
   // Roller pose at the end of the last committed increment, and the contact of that increment.
-  const RollerPose& pose() const { return pose_; }
+  const RollerPose& pose() const { return state_.pose; }
   int pass_of_step(int step) const;  // 1-based ([passes]; 1 without)
   // The records of the passes completed so far (multi-pass runs) and what they show.
-  const std::vector<PassRecord>& pass_records() const { return pass_records_; }
-  const std::vector<NodeContactRecord>& contact() const { return contact_; }
+  const std::vector<PassRecord>& pass_records() const { return state_.pass_records; }
+  const std::vector<NodeContactRecord>& contact() const { return state_.contact; }
   Vec2 roller_force() const;  // force of the strip on the roller [N per mm width]
-  int steps_done() const { return steps_done_; }
+  int steps_done() const { return state_.steps_done; }
   // Strip inertia and suspension at the end of the last step (dynamics_state.hpp).
   const DynamicsState& dynamics() const { return dynamics_; }
   const VecX& velocity() const { return dynamics_.velocity(); }
@@ -123,10 +106,10 @@ class Simulation {
   RollerPose prescribed_pose(Real s) const;
   // Force control: the centre's offset from the path that carries the prescribed forces (kept
   // after the force-controlled segments), and those forces at step s (none: motion).
-  Vec2 load_offset() const { return load_offset_; }
+  Vec2 load_offset() const { return state_.load_offset; }
   PrescribedForce prescribed_force(Real s) const;
   // Roller centre velocity over the last step (backward difference) [mm/s].
-  Vec2 roller_velocity() const { return roller_velocity_; }
+  Vec2 roller_velocity() const { return state_.roller_velocity; }
 
   // State files (CBOR): everything the next step needs, so that a run continued from a saved
   // state gives the same results as an uninterrupted one. load_state() restores the strip and,
@@ -267,28 +250,14 @@ class Simulation {
   LoadProgram loads_;
   std::unique_ptr<ContactBackend> backend_;
   std::vector<Index> candidate_nodes_;
-  VecX last_increment_;     // last converged increment (all dofs), for the predictor
-  Real start_lift_ = 0.0;   // roller.touch_strip: vertical shift of the start centre [mm]
-  Real last_length_ = 0.0;  // its length in steps
-  RollerPose pose_;
-  std::vector<NodeContactRecord> contact_;
-  FrictionHistory friction_;
-  int steps_done_ = 0;
-  RunTotals totals_;
+  Real start_lift_ = 0.0;  // roller.touch_strip: vertical shift of the start centre [mm]
+  RunState state_;         // everything a later step reads but the strip and the dynamics (run_state.hpp)
   DynamicsState dynamics_;
   NewtonMinimiser newton_;  // increments without contact
-  Vec2 roller_velocity_ = Vec2::Zero();
-  // Multi-pass runs: the contact seen in the current pass, the strip at its start, and the
-  // records of the passes done.
-  PassTrack pass_track_;
-  PassBaseline pass_baseline_;
-  std::vector<PassRecord> pass_records_;
   // After a converged step: observes the contact; at a pass's last step, measures the pass.
   std::optional<StepRecord::PassEnd> observe_pass(int step);
   // The state at the end of the step (converged or not) into its record.
   void record_state(StepRecord& res) const;
-  Vec2 load_offset_ = Vec2::Zero();     // force control: the centre's offset from the path [mm]
-  Vec2 load_stiffness_ = Vec2::Zero();  // -dF/dw per axis, last force-controlled increment (0: none yet)
 };
 
 }  // namespace roller
