@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -79,4 +80,27 @@ TEST_CASE("background writer in the foreground runs each job inside submit", "[i
   writer.submit([&] { ran_on = std::this_thread::get_id(); });
   CHECK(ran_on == caller);
   CHECK_THROWS_WITH(writer.submit([] { throw std::runtime_error("disk full"); }), "disk full");
+}
+
+TEST_CASE("background writer: what the jobs captured is released once they ran (memory stays bounded)",
+          "[io][writer]") {
+  // Each job captures a payload (a step's fields in a run); a writer that kept finished jobs'
+  // captures alive (a chain of predecessors) would hold all 20 by the end.
+  static std::atomic<int> live{0};
+  struct Payload {
+    Payload() { ++live; }
+    Payload(const Payload&) { ++live; }
+    ~Payload() { --live; }
+  };
+  int most = 0;
+  {
+    BackgroundWriter writer;
+    for (int i = 0; i < 20; ++i) {
+      writer.submit([p = std::make_shared<Payload>()] { std::this_thread::sleep_for(std::chrono::milliseconds(2)); });
+      most = std::max(most, live.load());
+    }
+    writer.finish();
+  }
+  CHECK(most <= BackgroundWriter::kMaxInFlight + 1);
+  CHECK(live.load() == 0);
 }

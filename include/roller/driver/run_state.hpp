@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "roller/analysis/pass_metrics.hpp"
-#include "roller/contact/friction_history.hpp"
 #include "roller/contact/backend.hpp"
+#include "roller/contact/friction_history.hpp"
 #include "roller/contact/roller.hpp"
 #include "roller/core/types.hpp"
 
