@@ -56,7 +56,7 @@ int run_scene(const RunArgs& args) {
                            sim.model().dof_map().n_free(), sim.scene().total_steps(), out);
   const roller::RunSummary summary = sim.run(options);
   std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations, peak memory {:.0f} MiB); results in {}\n",
-                           summary.message, summary.wall_s, summary.iterations_total, summary.peak_memory_mb, out);
+                           summary.message, summary.wall_s, summary.totals.iterations, summary.peak_memory_mb, out);
   return roller::exit_code(summary.status);
 }
 

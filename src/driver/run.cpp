@@ -40,7 +40,7 @@ double peak_memory_mb() {
 void print_progress(std::ostream& out, const Scene& scene, const Simulation::StepRecord& res, double wall_s) {
   std::string contact_text;
   if (res.roller)
-    contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", res.n_contact, res.max_penetration,
+    contact_text = fmt::format("  contact {:>3}  pen {:8.2e}  Fy {:10.4g}", res.n_contact(), res.max_penetration,
                                res.roller->force.y());
   if (res.roller && scene.roller->suspension) contact_text += fmt::format("  w {:9.3e}", res.roller->deflection);
   const std::string pass_text =
@@ -65,46 +65,39 @@ std::optional<Real> p0_over_k(const Scene& scene) {
   return p0 / (scene.material.yield_stress / std::sqrt(3.0));
 }
 
-// `from` copied to `to` through "<to>.tmp" and a rename (whole or absent).
-void copy_state_file(const std::filesystem::path& from, const std::filesystem::path& to) {
-  const std::filesystem::path tmp = to.string() + ".tmp";
-  std::error_code ec;
-  std::filesystem::copy_file(from, tmp, std::filesystem::copy_options::overwrite_existing, ec);
-  if (!ec) std::filesystem::rename(tmp, to, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw_file_error(fmt::format("cannot write the state file '{}'", to.string()), ec.value());
-  }
-}
-
 // summary.json's reserve: the document is about 1 kB; a run's end writes it into this space
 // when the disk has filled up (io/atomic_file.hpp).
 constexpr std::size_t kSummaryReserve = 16384;
 
-std::string summary_json(const Simulation& sim, const RunSummary& summary, int first_step, bool resumed) {
-  const Scene& scene = sim.scene();
+// The keys every summary.json has, a run stopped before its first step's included.
+nlohmann::json summary_head(const Scene& scene, const RunSummary& summary, bool resumed) {
   nlohmann::json j;
   j["scene"] = scene.name;
   j["status"] = enum_name(summary.status);
   j["exit_code"] = exit_code(summary.status);
+  j["steps"] = scene.total_steps();
+  j["steps_done"] = summary.steps_done;
+  j["resumed"] = resumed;
+  j["converged"] = summary.converged;
+  j["message"] = summary.message;
+  return j;
+}
+
+std::string summary_json(const Simulation& sim, const RunSummary& summary, int first_step, bool resumed) {
+  const Scene& scene = sim.scene();
+  nlohmann::json j = summary_head(scene, summary, resumed);
   j["backend"] = scene.roller ? enum_name(scene.contact.backend) : "none";
   j["ndof"] = sim.model().n_dofs();
   j["n_free_dofs"] = sim.model().dof_map().n_free();
   j["n_elements"] = sim.model().mesh().n_elements();
-  j["steps"] = scene.total_steps();
-  j["steps_done"] = summary.steps_done;
   j["first_step"] = first_step;
-  j["resumed"] = resumed;
   j["strip_inertia"] = scene.dynamics.strip_inertia;
   j["suspension"] = sim.suspension() != nullptr;
-  j["converged"] = summary.converged;
   j["wall_s"] = summary.wall_s;
   j["peak_memory_mb"] = summary.peak_memory_mb;
-  j["iterations_total"] = summary.iterations_total;
-  j["cuts_total"] = summary.cuts_total;
-  j["max_penetration"] = summary.max_penetration;
-  j["message"] = summary.message;
+  j["iterations_total"] = summary.totals.iterations;
+  j["cuts_total"] = summary.totals.cuts;
+  j["max_penetration"] = summary.totals.max_penetration;
   if (scene.passes.count > 1 && summary.status != RunStatus::Running) {
     const ShakedownClassification c = classify_passes(sim.pass_records());
     j["passes"] = {{"count", sim.pass_records().size()}, {"verdict", enum_name(c.verdict)}, {"criterion", c.criterion}};
@@ -124,16 +117,11 @@ void write_stopped_summary(const Scene& scene, const RunOptions& options, RunSta
                            const std::string& message) {
   try {
     if (!options.resume) prepare_output_folder(options.out_dir, scene.name, options.overwrite);
-    nlohmann::json j;
-    j["scene"] = scene.name;
-    j["status"] = enum_name(status);
-    j["exit_code"] = exit_code(status);
-    j["steps"] = scene.total_steps();
-    j["steps_done"] = 0;
-    j["resumed"] = options.resume;
-    j["converged"] = false;
-    j["message"] = message;
-    write_file_atomically(options.out_dir / "summary.json", j.dump(2) + "\n");
+    RunSummary summary;
+    summary.status = status;
+    summary.message = message;
+    write_file_atomically(options.out_dir / "summary.json",
+                          summary_head(scene, summary, options.resume).dump(2) + "\n");
   } catch (const std::exception&) {
   }
 }
@@ -171,24 +159,27 @@ RunSummary Simulation::run(const RunOptions& options) {
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
   summary.converged = true;
   auto finish_summary = [&] {
-    summary.iterations_total = state_.totals.iterations;
-    summary.cuts_total = state_.totals.cuts;
-    summary.max_penetration = state_.totals.max_penetration;
+    summary.totals = state_.totals;
     summary.wall_s = seconds_since(t_start);
     summary.peak_memory_mb = peak_memory_mb();
   };
-  // MUMPS's abort (an allocation failed inside a factorisation) ends the process: what the
-  // steps before wrote stays, and summary.json says why.
-  const SolverAbortGuard on_solver_abort([&](const std::string& message) {
-    writer.drain();
+  // A run stopped by an error: summary.json says how far it came and why (a failure to write it
+  // adds nothing to the first error).
+  auto record_stop = [&](RunStatus status, const std::string& message) {
     summary.converged = false;
-    summary.status = RunStatus::SystemError;
+    summary.status = status;
     summary.message = message;
     finish_summary();
     try {
       write_summary(summary_file, *this, summary, first_step, options.resume);
     } catch (const std::exception&) {
     }
+  };
+  // MUMPS's abort (an allocation failed inside a factorisation) ends the process: what the
+  // steps before wrote stays, and summary.json says why.
+  const SolverAbortGuard on_solver_abort([&](const std::string& message) {
+    writer.drain();
+    record_stop(RunStatus::SystemError, message);
   });
   try {
     RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, state_.steps_done, options.out_dir, options.resume,
@@ -204,7 +195,7 @@ RunSummary Simulation::run(const RunOptions& options) {
       const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
       const int every = scene_.output.checkpoint_every;
       if (every > 0 && state_.steps_done % every == 0 && std::filesystem::exists(checkpoint))
-        copy_state_file(checkpoint, options.out_dir / "state_final.cbor");
+        copy_file_atomically(checkpoint, options.out_dir / "state_final.cbor", "the state file");
       else
         save_state(options.out_dir / "state_final.cbor");
     }
@@ -215,14 +206,7 @@ RunSummary Simulation::run(const RunOptions& options) {
       writer.finish();  // the files of the steps done; a second error adds nothing to the first
     } catch (const std::exception&) {
     }
-    summary.converged = false;
-    summary.status = status_of(e);
-    summary.message = e.what();
-    finish_summary();
-    try {
-      write_summary(summary_file, *this, summary, first_step, options.resume);
-    } catch (const std::exception&) {  // the first error is the one to report
-    }
+    record_stop(status_of(e), e.what());
     throw;
   }
   finish_summary();

@@ -92,7 +92,7 @@ Row solver_row(const Simulation::StepRecord& r, const MonitorReport& monitor, do
           {"complementarity", stats.complementarity},
           {"constraint_violation", stats.constraint_violation},
           {"fixed_point_iterations", static_cast<Real>(stats.fixed_point_iterations)},
-          {"contact_nodes", r.n_contact},
+          {"contact_nodes", r.n_contact()},
           {"a_not_pd_points", monitor.checked ? mono.n_not_pd : not_checked},
           {"a_lambda_min", std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0},
           {"k_eff_positive_definite",

@@ -507,8 +507,7 @@ void Simulation::commit(const Solution& solution, const RollerMotion& motion, Re
 std::string Simulation::return_for_pass(int pass) {
   // The roller must have left the strip: no node carries a contact force, and none lies within
   // the roller at the pass's start.
-  Index touching = 0;
-  for (const auto& c : state_.contact) touching += c.contact.status != ContactStatus::Open ? 1 : 0;
+  const Index touching = count_in_contact(state_.contact);
   if (touching > 0)
     return fmt::format(
         "pass {} ends with the roller on the strip ({} nodes in contact): end each pass with a lift (a "
@@ -554,7 +553,6 @@ int Simulation::pass_of_step(int step) const { return locate_pass(step, scene_.s
 
 void Simulation::record_state(StepRecord& res) const {
   res.contact = state_.contact;
-  for (const auto& c : state_.contact) res.n_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
   res.kinetic_energy = dynamics_.kinetic_energy();
   if (!scene_.roller) return;
   RollerRecord r;

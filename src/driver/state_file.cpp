@@ -1,6 +1,5 @@
 // State files of a Simulation (simulation.hpp): CBOR documents (nlohmann::json's binary
 // encoding keeps doubles exact) holding everything the next step reads.
-#include <cerrno>
 #include <fstream>
 
 #include <fmt/format.h>
@@ -9,6 +8,7 @@
 #include "roller/core/error.hpp"
 #include "roller/core/json_vectors.hpp"
 #include "roller/driver/simulation.hpp"
+#include "roller/io/atomic_file.hpp"
 #include "roller/io/scene_loader.hpp"
 
 namespace roller {
@@ -127,26 +127,9 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
   return [j = std::move(j), file]() mutable {
     j["checksum"] = checksum(j);  // of everything above
     // Written beside and renamed: a kill while writing leaves the previous file intact.
-    const std::filesystem::path tmp = file.string() + ".tmp";
-    bool written = false;
-    int err = 0;
-    {
-      errno = 0;
-      std::ofstream out(tmp, std::ios::binary);
-      const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
-      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-      out.close();
-      written = static_cast<bool>(out);
-      err = errno;
-    }
-    if (!written) {
-      std::error_code ignored;
-      std::filesystem::remove(tmp, ignored);  // no half-written file left behind
-      throw_file_error(fmt::format("{}: cannot write the state file", file.string()), err);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, file, ec);
-    if (ec) throw_file_error(fmt::format("{}: cannot write the state file", file.string()), ec.value());
+    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
+    write_file_atomically(file, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                          "the state file");
   };
 }
 

@@ -15,31 +15,61 @@ namespace roller {
 
 namespace fs = std::filesystem;
 
-void write_file_atomically(const fs::path& path, const std::string& content) {
+namespace {
+
+// How a message names the file: "the state file '<path>'" or "'<path>'".
+std::string named(const fs::path& path, std::string_view what) {
+  return what.empty() ? fmt::format("'{}'", path.string()) : fmt::format("{} '{}'", what, path.string());
+}
+
+// The finished "<path>.tmp" renamed over `path`; on failure the temporary file is removed.
+void rename_into_place(const fs::path& tmp, const fs::path& path, std::string_view what) {
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (!ec) return;
+  std::error_code ignored;
+  fs::remove(tmp, ignored);
+  throw_file_error(fmt::format("cannot write {}: renaming '{}' onto it failed", named(path, what), tmp.string()),
+                   ec.value());
+}
+
+fs::path temporary_of(const fs::path& path) {
   fs::path tmp = path;
   tmp += ".tmp";
+  return tmp;
+}
+
+}  // namespace
+
+void write_file_atomically(const fs::path& path, std::string_view content, std::string_view what) {
+  const fs::path tmp = temporary_of(path);
   {
     errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out)
-      throw_file_error(fmt::format("cannot write '{}': cannot create '{}'", path.string(), tmp.string()), errno);
+      throw_file_error(fmt::format("cannot write {}: cannot create '{}'", named(path, what), tmp.string()), errno);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.close();
     if (!out) {
       const int err = errno;
       std::error_code ignored;
       fs::remove(tmp, ignored);
-      throw_file_error(fmt::format("cannot write '{}' (through '{}')", path.string(), tmp.string()), err);
+      throw_file_error(fmt::format("cannot write {} (through '{}')", named(path, what), tmp.string()), err);
     }
   }
+  rename_into_place(tmp, path, what);
+}
+
+void copy_file_atomically(const fs::path& from, const fs::path& to, std::string_view what) {
+  const fs::path tmp = temporary_of(to);
   std::error_code ec;
-  fs::rename(tmp, path, ec);
+  fs::copy_file(from, tmp, fs::copy_options::overwrite_existing, ec);
   if (ec) {
     std::error_code ignored;
     fs::remove(tmp, ignored);
-    throw_file_error(fmt::format("cannot write '{}': renaming '{}' onto it failed", path.string(), tmp.string()),
-                     ec.value());
+    throw_file_error(fmt::format("cannot write {} (a copy of '{}')", named(to, what), from.string()), ec.value());
   }
+  rename_into_place(tmp, to, what);
 }
 
 void write_with_reserve(const fs::path& path, const std::string& content, std::size_t reserve) {

@@ -31,6 +31,13 @@ struct NodeContactRecord {
   Vec2 force = Vec2::Zero();  // force of the roller on the node [N per mm width]
 };
 
+// The nodes of `contact` that touch the roller (status not open).
+inline Index count_in_contact(const std::vector<NodeContactRecord>& contact) {
+  Index n = 0;
+  for (const auto& c : contact) n += c.contact.status != ContactStatus::Open ? 1 : 0;
+  return n;
+}
+
 struct RunState {
   int steps_done = 0;
   RunTotals totals;

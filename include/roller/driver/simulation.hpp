@@ -58,11 +58,9 @@ struct RunSummary {
   RunStatus status = RunStatus::Running;
   bool converged = false;
   int steps_done = 0;
-  int iterations_total = 0;
-  int cuts_total = 0;
+  RunTotals totals;  // over every step of the run, a resumed run's earlier ones included
   double wall_s = 0.0;
   double peak_memory_mb = 0.0;  // the process's peak resident memory so far [MiB]
-  Real max_penetration = 0.0;
   std::string message;
 };
 
@@ -177,7 +175,7 @@ class Simulation {
     // The state at the end of the step (as it stands after a failed one): the contact of its
     // last increment, the roller, the strip's kinetic energy.
     std::vector<NodeContactRecord> contact;
-    Index n_contact = 0;  // candidates not open
+    Index n_contact() const { return count_in_contact(contact); }
     std::optional<RollerRecord> roller;
     Real kinetic_energy = 0.0;
   };

@@ -6,12 +6,18 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 namespace roller {
 
 // Writes `content` to "<path>.tmp" and renames it over `path` (atomic on POSIX within one file
-// system): the target is either the old file or the complete new one.
-void write_file_atomically(const std::filesystem::path& path, const std::string& content);
+// system): the target is either the old file or the complete new one. `what` names the file in
+// messages ("the state file"); empty: the path alone.
+void write_file_atomically(const std::filesystem::path& path, std::string_view content, std::string_view what = "");
+
+// The same for a copy of the file `from`.
+void copy_file_atomically(const std::filesystem::path& from, const std::filesystem::path& to,
+                          std::string_view what = "");
 
 // Creates `path` holding `content` padded with blanks to `reserve` bytes, so that the disk's
 // blocks for a later write_reserved() are taken now.

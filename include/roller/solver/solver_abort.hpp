@@ -1,10 +1,10 @@
 #pragma once
-// MUMPS's sequential MPI stub ends the process with Fortran's STOP, exit code 0 and no output of
-// ours, when MUMPS gives up inside a call (an allocation that fails deep in the factorisation,
-// under a memory limit). roller defines the stub's MPI_ABORT itself (the executable's symbol is
-// found first: CMakeLists.txt exports it): it calls the handler the driver installed, which
-// records what the run has done (summary.json), then prints the message and ends the process
-// with exit code 3 (the Fortran frames below cannot be unwound by an exception).
+// When MUMPS gives up inside a call (an allocation that fails deep in the factorisation, under a
+// memory limit), its sequential MPI stub ends the process with Fortran's STOP: exit code 0, and
+// nothing of ours printed. So roller defines the stub's MPI_ABORT itself; CMakeLists.txt exports
+// the symbol from the executable, where the dynamic linker finds it first. It calls the handler
+// the driver installed, which records what the run has done (summary.json), then prints the
+// message and ends the process with exit code 3 (an exception cannot unwind the Fortran frames).
 #include <functional>
 #include <string>
 
