@@ -166,7 +166,7 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
       if (!(r.residual_max >= s.last.residual)) r.residual_max = s.last.residual;
       if (step == r.load_step) {
         r.force = sim.roller_force().norm();
-        r.profile = sim.pressure_profile();
+        r.profile = pressure_profile(sim.state().contact, sim.state().pose);
         std::sort(r.profile.begin(), r.profile.end(), [](auto& a, auto& b) { return a.x < b.x; });
         if (plan.scene == "hertz") {
           const MaterialParams& m = sim.scene().material;
@@ -188,7 +188,7 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
     if (r.converged()) {
       r.final_force = sim.roller_force().norm();
       r.final_contact_nodes = 0;
-      for (const NodeContactRecord& c : sim.contact())
+      for (const NodeContactRecord& c : sim.state().contact)
         if (c.contact.status != ContactStatus::Open) ++r.final_contact_nodes;
       const StripFields f = strip_fields(sim.model(), VecX::Zero(sim.model().n_dofs()));
       for (const VtuField& field : f.point_data) {

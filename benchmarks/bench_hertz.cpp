@@ -59,11 +59,11 @@ int main(int argc, char** argv) {
         }
         walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         n_contact = 0;
-        for (const auto& rec : sim.contact()) n_contact += rec.contact.status != ContactStatus::Open ? 1 : 0;
+        for (const auto& rec : sim.state().contact) n_contact += rec.contact.status != ContactStatus::Open ? 1 : 0;
         const MaterialParams& m = sim.scene().material;
         load = sim.roller_force().y();
-        c = compare_with_hertz(sim.pressure_profile(), load, sim.scene().roller->radius,
-                               m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio));
+        c = compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose), load,
+                               sim.scene().roller->radius, m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio));
         dofs = sim.model().n_dofs();
       }
       if (!ok) {

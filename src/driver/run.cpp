@@ -92,15 +92,16 @@ std::string summary_json(const Simulation& sim, const RunSummary& summary, int f
   j["n_elements"] = sim.model().mesh().n_elements();
   j["first_step"] = first_step;
   j["strip_inertia"] = scene.dynamics.strip_inertia;
-  j["suspension"] = sim.suspension() != nullptr;
+  j["suspension"] = sim.dynamics().suspension() != nullptr;
   j["wall_s"] = summary.wall_s;
   j["peak_memory_mb"] = summary.peak_memory_mb;
   j["iterations_total"] = summary.totals.iterations;
   j["cuts_total"] = summary.totals.cuts;
   j["max_penetration"] = summary.totals.max_penetration;
   if (scene.passes.count > 1 && summary.status != RunStatus::Running) {
-    const ShakedownClassification c = classify_passes(sim.pass_records());
-    j["passes"] = {{"count", sim.pass_records().size()}, {"verdict", enum_name(c.verdict)}, {"criterion", c.criterion}};
+    const ShakedownClassification c = classify_passes(sim.state().pass_records);
+    j["passes"] = {
+        {"count", sim.state().pass_records.size()}, {"verdict", enum_name(c.verdict)}, {"criterion", c.criterion}};
     if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
   }
   return j.dump(2) + "\n";

@@ -17,14 +17,14 @@ Simulation run(const std::string& scene_name, const std::string& backend, const 
 
 // Relative L2 difference of the nodal pressures of two runs on the same mesh.
 Real pressure_difference(const Simulation& a, const Simulation& b) {
-  REQUIRE(a.contact().size() == b.contact().size());
+  REQUIRE(a.state().contact.size() == b.state().contact.size());
   Real num = 0.0, den = 0.0;
-  for (std::size_t i = 0; i < a.contact().size(); ++i) {
-    REQUIRE(a.contact()[i].node == b.contact()[i].node);
-    const Real pa = a.contact()[i].contact.normal_force / a.contact()[i].tributary_length;
-    const Real pb = b.contact()[i].contact.normal_force / b.contact()[i].tributary_length;
-    num += (pa - pb) * (pa - pb) * a.contact()[i].tributary_length;
-    den += pb * pb * b.contact()[i].tributary_length;
+  for (std::size_t i = 0; i < a.state().contact.size(); ++i) {
+    REQUIRE(a.state().contact[i].node == b.state().contact[i].node);
+    const Real pa = a.state().contact[i].contact.normal_force / a.state().contact[i].tributary_length;
+    const Real pb = b.state().contact[i].contact.normal_force / b.state().contact[i].tributary_length;
+    num += (pa - pb) * (pa - pb) * a.state().contact[i].tributary_length;
+    den += pb * pb * b.state().contact[i].tributary_length;
   }
   return std::sqrt(num / den);
 }
@@ -36,7 +36,8 @@ TEST_CASE("Hertz: ipopt and penalty (factor 1e5) agree on force and pressure", "
   const Simulation pe = run("hertz", "penalty", "1e5");
   CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
   CHECK(pressure_difference(ip, pe) < 0.02);
-  for (const auto& c : ip.contact()) CHECK(c.contact.gap >= -1e-8 * ip.scene().roller->radius);  // constraint violation
+  for (const auto& c : ip.state().contact)
+    CHECK(c.contact.gap >= -1e-8 * ip.scene().roller->radius);  // constraint violation
 }
 
 TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip zones",
@@ -47,8 +48,8 @@ TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip z
   CHECK(ip.roller_force().x() == Approx(pe.roller_force().x()).epsilon(0.02));
   CHECK(pressure_difference(ip, pe) < 0.02);
   // Stick/slip agree except at nodes next to a change of status (zone boundaries).
-  const auto& a = ip.contact();
-  const auto& b = pe.contact();
+  const auto& a = ip.state().contact;
+  const auto& b = pe.state().contact;
   int disagreements = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].contact.status == b[i].contact.status) continue;
@@ -93,11 +94,11 @@ void check_lockstep_agreement(const std::string& name, const std::vector<SceneOv
     CHECK(std::abs(ip.roller_force().x() - pe.roller_force().x()) <= 0.005 * scale);
     CHECK(a.last.stats.constraint_violation <= 1e-8 * radius);
     CHECK(a.last.stats.complementarity <= tol);
-    for (const auto& c : ip.contact()) CHECK(c.contact.gap >= -1e-8 * radius);
+    for (const auto& c : ip.state().contact) CHECK(c.contact.gap >= -1e-8 * radius);
   }
   CHECK(pressure_difference(ip, pe) < 0.02);
-  const auto& a = ip.contact();
-  const auto& b = pe.contact();
+  const auto& a = ip.state().contact;
+  const auto& b = pe.state().contact;
   REQUIRE(a.size() == b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i].contact.status == b[i].contact.status) continue;

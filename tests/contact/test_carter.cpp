@@ -64,11 +64,11 @@ struct StickZone {
 StickZone measure_stick_zone(const Simulation& sim, Real mu) {
   StickZone z;
   Real p_max = 0.0;
-  for (const auto& c : sim.contact()) p_max = std::max(p_max, c.contact.normal_force / c.tributary_length);
+  for (const auto& c : sim.state().contact) p_max = std::max(p_max, c.contact.normal_force / c.tributary_length);
   REQUIRE(p_max > 0.0);
   std::vector<Real> xa, p2;
   Real w0 = 0.0, w1 = 0.0, w2 = 0.0;
-  for (const auto& c : sim.contact()) {
+  for (const auto& c : sim.state().contact) {
     const Real p = c.contact.normal_force / c.tributary_length;
     if (p <= 1e-3 * p_max) continue;
     const Real x = c.position.x();
@@ -108,7 +108,7 @@ TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of 
   const Real a = z.a, d_abs = z.d_abs, c = z.c, x_stick_min = z.x_stick_min, x_stick_max = z.x_stick_max;
   const int n_stick = z.n_stick, n_slip = z.n_slip;
   const Real c_carter = a * std::sqrt(1.0 - q_ratio);
-  const Real xc = sim.pose().centre.x();
+  const Real xc = sim.state().pose.centre.x();
   INFO("Q/(mu P) = " << q_ratio << ", a = " << a << " (centre " << contact.centre - xc << " from the roller's), c = "
                      << c << " at d = " << d_abs - contact.centre << ", Carter c = " << c_carter << ", " << n_stick
                      << " stick nodes in [" << x_stick_min - contact.centre << ", " << x_stick_max - contact.centre
@@ -144,13 +144,14 @@ TEST_CASE("Carter under a prescribed traction: the creep is an outcome and meets
   for (int step = 1; step <= n; ++step) {
     const Simulation::StepRecord r = sim.advance_step(step);
     REQUIRE(r.converged);
-    xc[step] = sim.pose().centre.x();
-    offset[step] = sim.load_offset().x();
+    xc[step] = sim.state().pose.centre.x();
+    offset[step] = sim.state().load_offset.x();
   }
   const Real mu = sim.scene().contact.friction;
   const Vec2 f = sim.roller_force();
   CHECK(std::abs(f.x() - q) <= 1e-6 * f.y());
-  CHECK(sim.pose().angle == Approx(-34.0 / sim.scene().roller->radius).epsilon(1e-12));  // turned at the rolling rate
+  CHECK(sim.state().pose.angle ==
+        Approx(-34.0 / sim.scene().roller->radius).epsilon(1e-12));  // turned at the rolling rate
   const StickZone z = measure_stick_zone(sim, mu);
   // The creep over the last 2a rolled (22 steps of 0.2 mm), and over the 2a before (steadiness).
   const int k = n - 22, j = n - 44;

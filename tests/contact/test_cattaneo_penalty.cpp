@@ -15,7 +15,7 @@ TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P))", "[contact][
   std::vector<Real> x;
   std::vector<bool> in_contact, stick;
   int n_stick = 0, n_slip = 0;
-  for (const auto& c : sim.contact()) {
+  for (const auto& c : sim.state().contact) {
     x.push_back(c.position.x());
     in_contact.push_back(c.contact.status != ContactStatus::Open);
     stick.push_back(c.contact.status == ContactStatus::Stick);
@@ -78,5 +78,5 @@ friction = 0.0
   REQUIRE(before.y() > 0.0);
   CHECK(std::abs(after.x()) < 1e-6 * after.y());
   CHECK((after - before).norm() < 1e-6 * before.norm());
-  for (const auto& c : sim.contact()) CHECK(c.contact.tangential_force == 0.0);
+  for (const auto& c : sim.state().contact) CHECK(c.contact.tangential_force == 0.0);
 }

@@ -19,7 +19,7 @@ using test::run_scene;
 namespace {
 
 Real fitted_half_width(const Simulation& sim) {
-  std::vector<PressureSample> samples = sim.pressure_profile();
+  std::vector<PressureSample> samples = pressure_profile(sim.state().contact, sim.state().pose);
   std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
   const Real e_star = sim.scene().material.plane_strain_modulus();
   return compare_with_hertz(samples, sim.roller_force().y(), sim.scene().roller->radius, e_star).half_width;
@@ -43,18 +43,18 @@ TEST_CASE("force control: Hertz under a prescribed force matches the depth-contr
     const Simulation force = run_scene("hertz", loaded);
     // The force reached: the tolerance is 1e-6 of the largest prescribed force.
     CHECK(std::abs(force.roller_force().y() - p) <= 1e-6 * p);
-    CHECK(force.prescribed_force(1).fy.value() == p);
-    CHECK_FALSE(force.prescribed_force(1).fx.has_value());
+    CHECK(force.program().force(1).fy.value() == p);
+    CHECK_FALSE(force.program().force(1).fx.has_value());
     // The same indentation and contact: centre height within 1e-5 of the 0.1 mm press-in, the
     // same nodes in contact, the fitted half-width within 1e-6.
-    CHECK(force.pose().centre.y() == Approx(depth.pose().centre.y()).margin(1e-6));
-    CHECK(force.load_offset().y() == Approx(-0.1).margin(1e-6));
-    CHECK(force.load_offset().x() == 0.0);
+    CHECK(force.state().pose.centre.y() == Approx(depth.state().pose.centre.y()).margin(1e-6));
+    CHECK(force.state().load_offset.y() == Approx(-0.1).margin(1e-6));
+    CHECK(force.state().load_offset.x() == 0.0);
     const Real a_depth = fitted_half_width(depth), a_force = fitted_half_width(force);
     CHECK(a_force == Approx(a_depth).epsilon(1e-6));
-    REQUIRE(force.contact().size() == depth.contact().size());
-    for (std::size_t i = 0; i < depth.contact().size(); ++i)
-      CHECK(force.contact()[i].contact.status == depth.contact()[i].contact.status);
+    REQUIRE(force.state().contact.size() == depth.state().contact.size());
+    for (std::size_t i = 0; i < depth.state().contact.size(); ++i)
+      CHECK(force.state().contact[i].contact.status == depth.state().contact[i].contact.status);
   }
 }
 
@@ -64,10 +64,10 @@ TEST_CASE("force control: the offset is kept after the loaded segment, a lift st
       run_scene("hertz", {{"roller.path", "[{steps=[1,2], fy=4000.0}, {steps=[4,4], dy=0.2}]"}, {"steps.count", "4"}});
   // After the lift the roller is 0.2 mm above where the load left it, i.e. above the surface.
   CHECK(sim.roller_force().y() == Approx(0.0).margin(1e-6 * 4000.0));
-  CHECK(sim.pose().centre.y() == Approx(200.0 + sim.load_offset().y() + 0.2).margin(1e-12));
-  CHECK(sim.load_offset().y() < -0.05);
-  CHECK_FALSE(sim.prescribed_force(3).any());
-  CHECK_FALSE(sim.prescribed_force(4).any());
+  CHECK(sim.state().pose.centre.y() == Approx(200.0 + sim.state().load_offset.y() + 0.2).margin(1e-12));
+  CHECK(sim.state().load_offset.y() < -0.05);
+  CHECK_FALSE(sim.program().force(3).any());
+  CHECK_FALSE(sim.program().force(4).any());
 }
 
 TEST_CASE("force control: a load nothing carries stops the step with a message", "[contact][force]") {
@@ -144,20 +144,20 @@ TEST_CASE("force control: Cattaneo's tangential load under a prescribed fx match
     const Real mu = slide.scene().contact.friction;
     REQUIRE(f.x() < -0.2 * mu * f.y());  // the strip holds the roller back: partial slip
     const Simulation pushed = cattaneo(backend, fmt::format("{{steps=[5,5], fx={:.17g}}}", f.x()));
-    CHECK(pushed.prescribed_force(5).fx.value() == f.x());
+    CHECK(pushed.program().force(5).fx.value() == f.x());
     CHECK(std::abs(pushed.roller_force().x() - f.x()) <= 1e-6 * f.y());
     // The same motion: the centre's x within 1e-4 of the 0.012 mm slide, the height and the
     // angle unchanged, the same stick and slip nodes.
-    CHECK(pushed.load_offset().x() == Approx(0.012).epsilon(1e-4));
-    CHECK(pushed.pose().centre.x() == Approx(slide.pose().centre.x()).margin(1e-6));
-    CHECK(pushed.pose().centre.y() == slide.pose().centre.y());
-    CHECK(pushed.pose().angle == slide.pose().angle);
+    CHECK(pushed.state().load_offset.x() == Approx(0.012).epsilon(1e-4));
+    CHECK(pushed.state().pose.centre.x() == Approx(slide.state().pose.centre.x()).margin(1e-6));
+    CHECK(pushed.state().pose.centre.y() == slide.state().pose.centre.y());
+    CHECK(pushed.state().pose.angle == slide.state().pose.angle);
     CHECK(pushed.roller_force().y() == Approx(f.y()).epsilon(1e-5));
-    REQUIRE(pushed.contact().size() == slide.contact().size());
+    REQUIRE(pushed.state().contact.size() == slide.state().contact.size());
     int stick = 0;
-    for (std::size_t i = 0; i < slide.contact().size(); ++i) {
-      CHECK(pushed.contact()[i].contact.status == slide.contact()[i].contact.status);
-      stick += slide.contact()[i].contact.status == ContactStatus::Stick;
+    for (std::size_t i = 0; i < slide.state().contact.size(); ++i) {
+      CHECK(pushed.state().contact[i].contact.status == slide.state().contact[i].contact.status);
+      stick += slide.state().contact[i].contact.status == ContactStatus::Stick;
     }
     CHECK(stick > 0);
   }
@@ -173,15 +173,15 @@ TEST_CASE("force control: the Cattaneo-Mindlin protocol under both forces gives 
     const Real p = 10000.0, q = -750.0, mu = 0.15;
     CHECK(std::abs(sim.roller_force().y() - p) <= 1e-6 * p);
     CHECK(std::abs(sim.roller_force().x() - q) <= 1e-6 * p);
-    CHECK(sim.load_offset().x() > 0.0);  // pushed on in +x against the strip's -x reaction
-    CHECK(sim.pose().angle == 0.0);      // dx = 0: the rotation is blocked
+    CHECK(sim.state().load_offset.x() > 0.0);  // pushed on in +x against the strip's -x reaction
+    CHECK(sim.state().pose.angle == 0.0);      // dx = 0: the rotation is blocked
     // Half-widths from moments of nodal forces (exact for the ellipses of Hertz and Cattaneo, and
     // free of the node spacing that limits a count of stick nodes to half a spacing per edge): the
     // pressure ~ sqrt(1 - x^2/a^2) has standard deviation a/2, and so has the traction deficit
     // mu p - |q| ~ sqrt(1 - x^2/c^2), zero in the slip zone, with c/2.
     auto half_width = [&](auto weight) {
       Real w = 0.0, wx = 0.0, wxx = 0.0;
-      for (const auto& c : sim.contact()) {
+      for (const auto& c : sim.state().contact) {
         const Real v = c.contact.status == ContactStatus::Open ? 0.0 : std::max(weight(c.contact), 0.0);
         w += v;
         wx += v * c.position.x();
@@ -211,6 +211,6 @@ TEST_CASE("force control: a horizontal force beyond friction stops with a messag
   const Simulation::StepRecord r = sim.advance_step(2);
   CHECK_FALSE(r.converged);
   CHECK_THAT(r.message, Catch::Contains("the roller slides"));
-  CHECK(std::isfinite(sim.pose().centre.x()));
-  CHECK(sim.steps_done() == 1);
+  CHECK(std::isfinite(sim.state().pose.centre.x()));
+  CHECK(sim.state().steps_done == 1);
 }

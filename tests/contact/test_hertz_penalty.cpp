@@ -19,7 +19,8 @@ TEST_CASE("Hertz line contact (penalty): a and p0 within 2 % of the analytic sol
   const Simulation sim = run_hertz(2);
   const Real e_star = sim.scene().material.youngs_modulus / (1 - std::pow(sim.scene().material.poisson_ratio, 2));
   const Real load = sim.roller_force().y();
-  const HertzComparison c = compare_with_hertz(sim.pressure_profile(), load, sim.scene().roller->radius, e_star);
+  const HertzComparison c = compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose), load,
+                                               sim.scene().roller->radius, e_star);
   INFO("P = " << load << " a = " << c.half_width << " (analytic " << c.analytic.half_width << "), p0 = " << c.peak
               << " (analytic " << c.analytic.peak << "), L2 " << c.l2_error);
   CHECK(std::abs(c.half_width_error) < 0.02);
@@ -40,7 +41,7 @@ TEST_CASE("Hertz (penalty): contact force equals the support reaction, penetrati
   CHECK(std::abs(f.x()) < 1e-6 * f.y());
   // Penetration of each node = F_N / kN = p h / (factor E*) (penalty_backend.hpp).
   const Real e_star = sim.scene().material.youngs_modulus / (1 - std::pow(sim.scene().material.poisson_ratio, 2));
-  for (const auto& c : sim.contact()) {
+  for (const auto& c : sim.state().contact) {
     if (c.contact.status == ContactStatus::Open) continue;
     const Real p = c.contact.normal_force / c.tributary_length;
     CHECK(-c.contact.gap <= p * c.element_size / (sim.scene().contact.penalty.factor * e_star) * (1 + 1e-6));

@@ -28,16 +28,16 @@ SceneOverride override_of(const std::string& text) { return parse_override(text)
 TEST_CASE("passes: an elastic strip rolled twice is left without stress or displacement", "[contact][passes]") {
   const Simulation sim =
       test::run_scene("rolling_friction", {override_of(kPass), {"steps.count", "8"}, {"passes.count", "2"}});
-  REQUIRE(sim.steps_done() == 16);
-  REQUIRE(sim.pass_records().size() == 2);
+  REQUIRE(sim.state().steps_done == 16);
+  REQUIRE(sim.state().pass_records.size() == 2);
   // The pass pressed: a peak pressure of a few hundred MPa.
-  CHECK(sim.pass_records()[1].peak_pressure > 100.0);
+  CHECK(sim.state().pass_records[1].peak_pressure > 100.0);
   Real stress = 0.0;
   for (const MaterialState& s : sim.model().states()) stress = std::max(stress, s.stress.cwiseAbs().maxCoeff());
-  CHECK(stress <= 1e-8 * sim.pass_records()[1].peak_pressure);
+  CHECK(stress <= 1e-8 * sim.state().pass_records[1].peak_pressure);
   CHECK(sim.model().total_displacement().cwiseAbs().maxCoeff() <= 1e-12);
-  CHECK(sim.pass_records()[1].surface_dux == Approx(0.0).margin(1e-12));
-  CHECK(sim.pass_records()[1].max_plastic_increment == 0.0);
+  CHECK(sim.state().pass_records[1].surface_dux == Approx(0.0).margin(1e-12));
+  CHECK(sim.state().pass_records[1].max_plastic_increment == 0.0);
 }
 
 TEST_CASE("passes: the second pass over an elastic strip repeats the first from the same start", "[contact][passes]") {
@@ -51,12 +51,12 @@ TEST_CASE("passes: the second pass over an elastic strip repeats the first from 
     REQUIRE(sim.advance_step(step).converged);
     if (step <= 8) {
       pass1_force.push_back(sim.roller_force());
-      pass1_centre.push_back(sim.pose().centre);
+      pass1_centre.push_back(sim.state().pose.centre);
       continue;
     }
     const Vec2& f = pass1_force[step - 9];
     INFO("step " << step);
-    CHECK((sim.pose().centre - pass1_centre[step - 9]).norm() <= 1e-12);
+    CHECK((sim.state().pose.centre - pass1_centre[step - 9]).norm() <= 1e-12);
     CHECK((sim.roller_force() - f).norm() <= 1e-6 * std::max(1.0, f.norm()));
   }
 }
@@ -134,23 +134,26 @@ TEST_CASE("passes: alternating passes run the path mirrored, horizontal forces r
   spec.path[1].dx = 4.0;
   spec.path[1].fx = -30.0;  // the strip holds back a roller driven to +x
   const PassSpec alternate{2, PassDirection::Alternate};
-  Vec2 start1, start2;
-  const RollerSpec first = roller_of_pass(spec, alternate, 1, Vec2(10.0, 60.0), 6, &start1);
-  const RollerSpec second = roller_of_pass(spec, alternate, 2, Vec2(10.0, 60.0), 6, &start2);
-  CHECK(start1.x() == 10.0);
-  CHECK(start2.x() == Approx(14.0));  // where the first pass's path ends
-  CHECK(first.path[1].dx == 4.0);
-  CHECK(*first.path[1].fx == -30.0);
-  CHECK(second.path[1].dx == -4.0);
-  CHECK(*second.path[1].fx == 30.0);  // now it holds back a roller driven to -x
-  CHECK(*second.path[0].fy == 400.0);
+  const RollerProgram program(spec, alternate, 6, Vec2(10.0, 60.0));
+  CHECK(program.pass_start(1).centre.x() == 10.0);
+  CHECK(program.pose(6.0).centre.x() == Approx(14.0));
+  CHECK(program.pass_start(2).centre.x() == Approx(14.0));  // where the first pass's path ends
+  CHECK(program.pose(12.0).centre.x() == Approx(10.0));     // and back: dx mirrored
+  CHECK(program.force(6.0).fx.value() == -30.0);
+  CHECK(program.force(12.0).fx.value() == 30.0);  // now it holds back a roller driven to -x
+  CHECK(program.force(8.0).fy.value() == 400.0);
+  CHECK(program.pass_of_step(6) == 1);
+  CHECK(program.pass_of_step(7) == 2);
+  CHECK(program.starts_later_pass(7));
+  CHECK_FALSE(program.starts_later_pass(1));
+  CHECK(program.ends_pass(12));
   // The driver prescribes what the pass's own path says.
   Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml",
                             {{"steps.count", "6"},
                              {"passes.count", "2"},
                              {"passes.direction", "\"alternate\""},
                              {"roller.path", "[{steps=[1,2], fy=400.0}, {steps=[3,6], dx=4.0, fx=-30.0}]"}}));
-  CHECK(sim.prescribed_force(6.0).fx.value() == Approx(-30.0));
-  CHECK(sim.prescribed_force(12.0).fx.value() == Approx(30.0));
-  CHECK(sim.prescribed_force(8.0).fy.value() == Approx(400.0));
+  CHECK(sim.program().force(6.0).fx.value() == Approx(-30.0));
+  CHECK(sim.program().force(12.0).fx.value() == Approx(30.0));
+  CHECK(sim.program().force(8.0).fy.value() == Approx(400.0));
 }

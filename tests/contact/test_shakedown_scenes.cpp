@@ -34,17 +34,17 @@ TEST_CASE("shakedown scenes: three passes shake down at p0/k = 3.7 and keep yiel
   // scenes have five): below it the mean plastic increment falls below 1 % of pass 1's by pass 3
   // (measured 0.7 %), above it it stays at a fifth.
   const Simulation below = run_scene("shakedown_p37", {{"passes.count", "3"}, {"output.vtu", "false"}});
-  const ShakedownClassification b = classify_passes(below.pass_records());
+  const ShakedownClassification b = classify_passes(below.state().pass_records);
   INFO(b.criterion);
   CHECK(b.verdict == ShakedownVerdict::ElasticShakedown);
-  CHECK(below.pass_records().front().max_plastic_increment > 0.0);  // it did yield in pass 1
+  CHECK(below.state().pass_records.front().max_plastic_increment > 0.0);  // it did yield in pass 1
 
   const Simulation above = run_scene("shakedown_p45", {{"passes.count", "3"}, {"output.vtu", "false"}});
-  const ShakedownClassification a = classify_passes(above.pass_records());
+  const ShakedownClassification a = classify_passes(above.state().pass_records);
   INFO(a.criterion);
   CHECK(a.verdict != ShakedownVerdict::ElasticShakedown);
   CHECK(a.verdict != ShakedownVerdict::Undetermined);
-  const auto& r = above.pass_records();
+  const auto& r = above.state().pass_records;
   // A steady increment: pass 3's within 30 % of pass 2's.
   CHECK(std::abs(r[2].mean_plastic_increment / r[1].mean_plastic_increment - 1.0) < 0.3);
 }

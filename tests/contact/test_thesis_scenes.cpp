@@ -13,7 +13,7 @@ TEST_CASE("thesis scenes Z1 and Z2 run end to end (ipopt, refine 1)", "[contact]
       const Simulation sim = test::run_scene(name);
       CHECK(sim.scene().contact.backend == ContactBackendKind::Ipopt);
       int in_contact = 0;
-      for (const auto& c : sim.contact()) {
+      for (const auto& c : sim.state().contact) {
         in_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
         CHECK(c.contact.gap >= -1e-8 * sim.scene().roller->radius);
         CHECK(std::abs(c.contact.tangential_force) <=
@@ -38,7 +38,7 @@ TEST_CASE("thesis scenes Z1 and Z2 run end to end with the penalty backend (refi
       // (The penalty backend's Coulomb bound is its return map, nothing to check here; its
       // forces are checked against the interior-point backend in test_backend_agreement.cpp.)
       int in_contact = 0;
-      for (const auto& c : sim.contact()) in_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
+      for (const auto& c : sim.state().contact) in_contact += c.contact.status != ContactStatus::Open ? 1 : 0;
       CHECK(in_contact >= 2);
       CHECK(sim.roller_force().y() > 0.0);
     }

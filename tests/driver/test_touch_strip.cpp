@@ -25,12 +25,12 @@ TEST_CASE("roller.touch_strip lowers or raises the start onto the strip's surfac
   for (const char* centre : {"[100.0, 210.0]", "[100.0, 195.0]", "[0.0, 230.0]"}) {
     INFO(centre);
     const Simulation sim = hertz_with(centre);
-    CHECK(sim.pose().centre.y() == Approx(200.0).epsilon(1e-12));
-    CHECK(sim.prescribed_pose(0.0).centre.y() == Approx(200.0).epsilon(1e-12));
+    CHECK(sim.state().pose.centre.y() == Approx(200.0).epsilon(1e-12));
+    CHECK(sim.program().pose(0.0).centre.y() == Approx(200.0).epsilon(1e-12));
   }
   // Over the strip's corner the highest candidate under the roller is the corner node.
   const Simulation corner = hertz_with("[250.0, 400.0]");
-  CHECK(corner.pose().centre.y() == Approx(100.0 + std::sqrt(100.0 * 100.0 - 50.0 * 50.0)).epsilon(1e-12));
+  CHECK(corner.state().pose.centre.y() == Approx(100.0 + std::sqrt(100.0 * 100.0 - 50.0 * 50.0)).epsilon(1e-12));
 }
 
 TEST_CASE("roller.touch_strip without a strip under the roller names the key", "[driver][roller]") {

@@ -61,7 +61,8 @@ TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes
       ++touching_steps;
       CHECK(b.last.suspension_passes >= 2);
     }
-    CHECK(std::abs(joint.suspension()->deflection() - passes.suspension()->deflection()) <= w_tol);
+    CHECK(std::abs(joint.dynamics().suspension()->deflection() - passes.dynamics().suspension()->deflection()) <=
+          w_tol);
     CHECK(std::abs(joint.roller_force().y() - fy) <= 1e-5 * std::max(std::abs(fy), 1.0));
     CHECK(std::abs(joint.roller_force().x() - passes.roller_force().x()) <= 1e-5 * std::max(std::abs(fy), 1.0));
     // The strip (plastic, with inertia) carries the solves' differences on from step to step:
@@ -109,7 +110,7 @@ TEST_CASE("Force-loaded roller: one joint solve per increment on the strip equal
     // The friction force follows the path of the load: within 1e-3 of it.
     CHECK(std::abs(passes.roller_force().x() - joint.roller_force().x()) <=
           1e-3 * std::max(1.0, std::abs(passes.roller_force().x())));
-    CHECK(std::abs(joint.pose().centre.y() - passes.pose().centre.y()) <= 1e-5);
+    CHECK(std::abs(joint.state().pose.centre.y() - passes.state().pose.centre.y()) <= 1e-5);
   }
   INFO("linearisations: joint " << run.joint_linearisations << ", passes " << run.passes_linearisations);
   CHECK(run.joint_linearisations < run.passes_linearisations);

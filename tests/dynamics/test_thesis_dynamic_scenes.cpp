@@ -20,9 +20,9 @@ namespace {
 // (k_eff + contact stiffness) x 1e-10 R, about 1e-6 of the scene's force scale.
 Real suspension_imbalance(const Simulation& sim) {
   const SuspensionSpec& s = *sim.scene().roller->suspension;
-  const Real w = sim.suspension()->deflection();
-  return s.mass * sim.suspension_acceleration() + s.damping * sim.suspension_velocity() + s.stiffness * w -
-         sim.roller_force().y();
+  const Real w = sim.dynamics().suspension()->deflection();
+  return s.mass * sim.dynamics().suspension_acceleration() + s.damping * sim.dynamics().suspension_velocity() +
+         s.stiffness * w - sim.roller_force().y();
 }
 
 }  // namespace
@@ -48,7 +48,7 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
       if (step >= 4) {
         // Contact begins in step 4 (the scene starts the roller 3.5 steps before the corner).
         CHECK(fy > 0.0);
-        CHECK(sim.suspension()->deflection() > 0.0);
+        CHECK(sim.dynamics().suspension()->deflection() > 0.0);
         CHECK(penalty.roller_force().y() == Approx(fy).epsilon(0.01));
       } else {
         CHECK(std::abs(fy) <= 1e-4);  // the interior point's barrier force on a node not yet touched
@@ -63,7 +63,7 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
     // The thesis (its figure 5.21): D_y of node 101 is largest at step 5 for all speeds.
     CHECK(largest_step == 5);
     // Strip inertia is on: the strip moves.
-    CHECK(sim.kinetic_energy() > 0.0);
+    CHECK(sim.dynamics().kinetic_energy() > 0.0);
   }
 }
 
@@ -91,7 +91,7 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
   CHECK(second.model().state(0, 0).stress == first.model().state(0, 0).stress);
   // Its depths are measured from the surface pass 1 left (roller.touch_strip): the roller starts
   // touching the groove, 0.95 mm below the original top at its x.
-  CHECK(second.pose().centre.y() < first.scene().roller->start_centre->y() - 0.5);
+  CHECK(second.state().pose.centre.y() < first.scene().roller->start_centre->y() - 0.5);
   for (int step = 1; step <= second.scene().steps.n_steps; ++step) {
     INFO("DATA02 step " << step);
     REQUIRE(second.advance_step(step).converged);

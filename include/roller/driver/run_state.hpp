@@ -5,6 +5,7 @@
 // serialise it whole (driver/state_file.cpp).
 #include <vector>
 
+#include "roller/analysis/hertz.hpp"
 #include "roller/analysis/pass_metrics.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/friction_history.hpp"
@@ -37,6 +38,17 @@ inline Index count_in_contact(const std::vector<NodeContactRecord>& contact) {
   for (const auto& c : contact) n += c.contact.status != ContactStatus::Open ? 1 : 0;
   return n;
 }
+
+// The force of the strip on the roller: the nodes' contact forces on the strip, reversed [N per mm].
+inline Vec2 force_on_roller(const std::vector<NodeContactRecord>& contact) {
+  Vec2 f = Vec2::Zero();
+  for (const auto& c : contact) f -= c.force;
+  return f;
+}
+
+// Nodal contact pressures against x measured from the roller centre; open nodes count as unloaded
+// (an interior-point solution leaves barrier-size forces there).
+std::vector<PressureSample> pressure_profile(const std::vector<NodeContactRecord>& contact, const RollerPose& pose);
 
 struct RunState {
   int steps_done = 0;

@@ -1,19 +1,36 @@
 #pragma once
 // A scene: everything one run needs, as plain structs filled by the scene loader
 // (io/scene_keys.hpp declares every key of a scene file, docs/scenes.md documents them).
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "roller/contact/contact_options.hpp"
-#include "roller/contact/passes.hpp"
 #include "roller/contact/roller.hpp"
+#include "roller/core/enum_names.hpp"
 #include "roller/fem/kinematics.hpp"
 #include "roller/material/material_params.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
 namespace roller {
+
+// Repeated passes of the roller ([passes]; docs/scenes.md, Repeated passes): the scene's steps
+// 1..steps.count and its [[roller.path]] describe one pass, repeated `count` times, each from the
+// same start or, alternating, back from where the previous one ended (driver/roller_program.hpp).
+enum class PassDirection { Same, Alternate };
+template <>
+struct EnumNames<PassDirection> {
+  static constexpr std::array<std::pair<PassDirection, const char*>, 2> names{
+      {{PassDirection::Same, "same"}, {PassDirection::Alternate, "alternate"}}};
+};
+
+struct PassSpec {
+  int count = 1;  // passes in the run
+  PassDirection direction = PassDirection::Same;
+};
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
 struct NodeSelector {
