@@ -1,13 +1,12 @@
-#!/usr/bin/python3
 """Error against run time, penalty vs interior point (docs/benchmarks.md).
 
-usage: /usr/bin/python3 benchmarks/error_vs_time.py [--quick] [--build DIR] [--out DIR]
+usage: ./rollerpy bench-error-vs-time [--quick] [--build DIR] [--out DIR]
            [--scenes hertz,cattaneo,...] [--refine-max N] [--max-run-seconds S]
            [--max-reference-seconds S] [--plot-only] [--check] [--jobs N] [--scheduler ADDR] [--resume]
 
 Runs DIR/benchmarks/bench_error_time (default DIR: build/ of this checkout; when the program is
 missing it is built first: `bash scripts/build.sh` for build/, a CMake build of the one target
-otherwise), once per scene, as points of the study runner (scripts/study.py): one scene at a time
+otherwise), once per scene, as points of the study runner (rollerpy.study): one scene at a time
 by default (timings undisturbed), --jobs N side by side on a Dask LocalCluster or --scheduler on
 a cluster; --resume keeps the scenes already complete in --out (OUT/scenes/SCENE/). The program sweeps mesh refinement, penalty factor and Ipopt tolerance for each
 scene, times every run and compares it with a reference run (ipopt, one mesh level finer, the
@@ -30,12 +29,12 @@ import subprocess
 import sys
 import time
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..outputs import num as fnum
+from ..outputs import read_rows
+from ..paths import ROOT as REPO
+from ..plots import plt
+from ..study import engines
+from ..study.point import finished_record, make_task, run_point
 # The plan's scenes (bench_error_time.cpp, plans()), in its order.
 SCENES = ["hertz", "cattaneo", "z1_outf05", "z3_data01", "z4_v25"]
 QUICK_SCENES = ["hertz", "cattaneo"]
@@ -57,13 +56,6 @@ MEASURES = {"max_penetration": "max penetration over all steps [mm]",
             "residual_max": "max relative equilibrium residual over all steps"}
 STYLE = {("penalty", "refine"): ("tab:red", "o-"), ("ipopt", "refine"): ("tab:blue", "s-"),
          ("penalty", "penalty_factor"): ("tab:orange", "^--"), ("ipopt", "ipopt_tol"): ("tab:cyan", "v--")}
-
-
-def fnum(text):
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return math.nan
 
 
 def pareto(points):
@@ -253,14 +245,11 @@ def ensure_binary(build, bench):
 
 
 def run_scenes(args, bench, csv_path):
-    """One point of the study runner (scripts/study.py, docs/studies.md) per scene: each runs
+    """One point of the study runner (rollerpy.study, docs/studies.md) per scene: each runs
     bench_error_time on that scene alone (its sweeps and its own reference) into
     OUT/scenes/SCENE/; serial by default so that timings are not disturbed, --jobs N on a
     LocalCluster or --scheduler on a cluster; --resume keeps the scenes complete. The scenes'
     CSVs are then joined into csv_path in the plan's order. Returns 0 when every scene finished."""
-    sys.path.insert(0, os.path.join(REPO, "scripts"))
-    from roller_study import engines
-    from roller_study.point import finished_record, make_task, run_point
     scenes = args.scenes.split(",") if args.scenes else (QUICK_SCENES if args.quick else SCENES)
     tasks, records = [], []
     for i, scene in enumerate(scenes):
@@ -302,8 +291,9 @@ def run_scenes(args, bench, csv_path):
     return 0 if all(r["status"] == "ok" for r in records) else 1
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy bench-error-vs-time", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="Hertz and Cattaneo on coarse meshes (the CTest check)")
     ap.add_argument("--build", default=os.path.join(REPO, "build"), help="build directory (default: build/)")
     ap.add_argument("--out", default="out/error_vs_time")
@@ -319,7 +309,7 @@ def main():
     ap.add_argument("--scheduler", help="a running Dask scheduler for the scenes (their timings then are the workers')")
     ap.add_argument("--resume", action="store_true", help="keep the scenes already complete in --out")
     ap.add_argument("--check", action="store_true")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     csv_path = os.path.join(args.out, "error_vs_time.csv")
     elapsed = 0.0
@@ -333,8 +323,7 @@ def main():
             print("warning: a scene's bench_error_time did not finish; plotting the rows written", file=sys.stderr)
             if not os.path.isfile(csv_path):
                 return 1
-    with open(csv_path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(csv_path)
     if rows and "status" not in rows[0]:
         sys.exit(f"error: {csv_path} is from an older bench_error_time (no status column); rebuild and rerun")
     for path in plot(rows, args.out):
@@ -355,7 +344,3 @@ def main():
             return 1
         print("check passed:", len(rows), "runs")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,30 +1,27 @@
-#!/usr/bin/python3
 """Repeated passes under load: the time of one pass and of a multi-pass study, both backends
 (docs/benchmarks.md, "Repeated passes under load").
 
-usage: /usr/bin/python3 benchmarks/passes.py [--roller build/roller] [--out out/bench_passes]
-                                             [--element-size 0.1] [--load 4.5]
-                                             [--passes ipopt=5,penalty=1] [--timeout 7200]
+usage: ./rollerpy bench-passes [--roller build/roller] [--out out/bench_passes]
+                              [--element-size 0.1] [--load 4.5]
+                              [--passes ipopt=5,penalty=1] [--timeout 7200]
 
-The strip is the shakedown scene of docs/validation.md (scripts/make_shakedown_scenes.py) with
+The strip is the shakedown scene of docs/validation.md (`rollerpy make-shakedown-scenes`) with
 uniform elements of --element-size under the track (0.1 mm: 40 across 2a, 4.8e4 dofs), at p0/k
 = --load. Each backend runs the number of passes given in --passes, once, alone: one run of
 several minutes is its own average over ~20 increments a pass, so the table gives per-pass
 times from solver.csv (wall_s summed over the pass's steps) beside the whole process's wall
 time, peak memory (/usr/bin/time -v) and output folder size. Writes OUT/passes.csv and prints a
-Markdown table.
+Markdown table; each run's log (roller's output and /usr/bin/time's report) is OUT/<run>.log.
 """
 import argparse
 import csv
 import os
 import re
-import subprocess
-import sys
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from stability import num, read_rows  # noqa: E402
+from ..outputs import num, read_rows
+from ..paths import DEFAULT_ROLLER
+from ..runner import contact_option, roller_command, run as run_roller
+from ..validation.make_shakedown_scenes import write_scenes
 
 
 def folder_bytes(path):
@@ -33,14 +30,12 @@ def folder_bytes(path):
 
 def run(args, scene, backend, passes):
     out = os.path.join(args.out, "%s_%dpasses" % (backend, passes))
-    cmd = ["/usr/bin/time", "-v", args.roller, "run", scene, "--out", out, "--overwrite", "--contact", backend,
-           "--set", "passes.count=%d" % passes]
+    cmd = ["/usr/bin/time", "-v"] + roller_command(args.roller, scene, out, "--overwrite", *contact_option(backend),
+                                                   "--set", "passes.count=%d" % passes)
     print("$", " ".join(cmd), flush=True)
-    t0 = time.monotonic()
-    proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, timeout=args.timeout)
-    wall = time.monotonic() - t0
-    rss = re.search(r"Maximum resident set size \(kbytes\): (\d+)", proc.stderr)
-    rows = read_rows(os.path.join(out, "solver.csv")) if proc.returncode == 0 else []
+    result = run_roller(cmd, out + ".log", args.timeout)
+    rss = re.search(r"Maximum resident set size \(kbytes\): (\d+)", result.output())
+    rows = read_rows(os.path.join(out, "solver.csv")) if result.exit_code == 0 else []
     per_pass = {}
     for r in rows:
         per_pass[int(r["pass"])] = per_pass.get(int(r["pass"]), 0.0) + num(r["wall_s"])
@@ -48,25 +43,25 @@ def run(args, scene, backend, passes):
     with open(os.path.join(out, "summary.json")) as f:
         m = re.search(r'"ndof"\s*:\s*(\d+)', f.read())
         dofs = int(m.group(1)) if m else None
-    return {"backend": backend, "passes": passes, "rc": proc.returncode, "dofs": dofs, "wall_s": round(wall, 1),
+    return {"backend": backend, "passes": passes, "rc": result.status.value if result.timed_out else result.exit_code,
+            "dofs": dofs, "wall_s": round(result.wall_s, 1),
             "per_pass_s": " ".join("%.0f" % per_pass[k] for k in sorted(per_pass)),
             "peak_mib": round(int(rss.group(1)) / 1024.0) if rss else None,
             "folder_mb": round(folder_bytes(out) / 1e6, 1)}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--roller", default=os.path.join(ROOT, "build", "roller"))
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy bench-passes", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
     ap.add_argument("--out", default="out/bench_passes")
     ap.add_argument("--element-size", default="0.1")
     ap.add_argument("--load", default="4.5")
     ap.add_argument("--passes", default="ipopt=5,penalty=1")
     ap.add_argument("--timeout", type=float, default=7200)
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "make_shakedown_scenes.py"), "--loads", args.load,
-                    "--element-size", args.element_size, "--out", args.out], check=True)
-    scene = os.path.join(args.out, "shakedown_p%02d.toml" % round(10 * float(args.load)))
+    args = ap.parse_args(argv)
+    scene, = write_scenes([float(args.load)], 5, float(args.element_size), args.out)
+    print("wrote", scene)
     rows = []
     for item in args.passes.split(","):
         backend, passes = item.split("=")
@@ -83,7 +78,3 @@ def main():
         print("| %s | %s | %d | %.0f s%s | %s s | %s MiB | %s MB |" % (
             r["backend"], r["dofs"], r["passes"], r["wall_s"], status, r["per_pass_s"], r["peak_mib"],
             r["folder_mb"]))
-
-
-if __name__ == "__main__":
-    main()

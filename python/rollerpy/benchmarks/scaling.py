@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """Scaling of one increment with the number of dofs, both backends (docs/benchmarks.md).
 
-usage: /usr/bin/python3 benchmarks/scaling.py [--build build] [--out DIR] [--min-dofs 0] [--max-dofs 1.4e6]
-                                              [--backends ipopt,penalty] [--cases hertz,z1] [--timeout 3600]
-                                              [--set KEY=VALUE ...]
+usage: ./rollerpy bench-scaling [--build build] [--out DIR] [--min-dofs 0] [--max-dofs 1.4e6]
+                               [--backends ipopt,penalty] [--cases hertz,z1] [--timeout 3600]
+                               [--set KEY=VALUE ...]
 
 Cases: Hertz (frictionless, elastic): the whole indentation in ONE increment, cold start; Z1
 (plastic, friction, finite strain): the first rolling increment (step 4, warm from step 3).
@@ -11,7 +10,7 @@ For each mesh size: wall time of that increment (solver.csv wall_s) and of the w
 (cold: scene, mesh, earlier steps, output), solver iterations, peak memory of the roller process
 (summary.json), and the time (and MUMPS memory) of one MUMPS analysis + factorisation of the
 strip tangent K (bench_factorize) as the unit. The runs are a study per case on the study runner
-(scripts/study.py, DIR/study_CASE/: one point per size and backend, serial so that timings are
+(`rollerpy study`, DIR/study_CASE/: one point per size and backend, serial so that timings are
 not disturbed, resumed when rerun: a study stopped part-way keeps every size it measured; a size
 beyond --timeout is recorded as timeout). Writes DIR/scaling.csv, DIR/scaling.png and prints a
 Markdown table with the fitted exponent of time against dofs (sizes >= 1e4).
@@ -23,15 +22,12 @@ import csv
 import json
 import math
 import os
-import subprocess
-import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..outputs import read_rows
+from ..paths import ROOT
+from ..plots import plt
+from ..runner import run
+from ..study import cli as study_cli
 QUIET = ["output.monitor=false", "output.vtu=false", "output.checkpoint_every=0"]
 # (label, scene, overrides, measured step); dofs: Hertz 2(60k+1)(30k+1), Z1 2(45k+1)(3k+1).
 CASES = {
@@ -54,7 +50,7 @@ def dofs_of(label, overrides):
 
 
 def run_sizes(args, case, sizes):
-    """Runs the sizes of a case as a study (scripts/study.py, docs/studies.md): one point per size
+    """Runs the sizes of a case as a study (`rollerpy study`, docs/studies.md): one point per size
     and backend, serially (timings undisturbed), resumable (a rerun keeps the sizes measured
     before). Returns {(size index, backend): row}."""
     scene, step = sizes[0][1], sizes[0][3]
@@ -72,10 +68,10 @@ def run_sizes(args, case, sizes):
     study = os.path.join(out, "study.toml")
     with open(study, "w") as f:
         f.write("\n".join(lines) + "\n")
-    subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "study.py"), study, "--out", out, "--serial",
-                    "--resume", "--roller", os.path.abspath(os.path.join(args.build, "roller"))], check=True)
-    with open(os.path.join(out, "study.csv"), newline="") as f:
-        study_rows = list(csv.DictReader(f))
+    if study_cli.main([study, "--out", out, "--serial", "--resume",
+                       "--roller", os.path.abspath(os.path.join(args.build, "roller"))]) != 0:
+        raise SystemExit("bench-scaling: the study %s did not run" % study)
+    study_rows = read_rows(os.path.join(out, "study.csv"))
     results = {}
     for r in study_rows:
         row = {"status": "converged" if r["status"] == "ok" else r["status"],
@@ -93,11 +89,10 @@ def run_sizes(args, case, sizes):
     return results
 
 
-def factorization_time(build, scene, overrides):
+def factorization_time(build, scene, overrides, log):
     """(seconds, MB): one MUMPS analysis + factorisation of K (median of 3) and the memory MUMPS took."""
-    p = subprocess.run([os.path.join(build, "benchmarks", "bench_factorize"), scene, "3"] + overrides,
-                       capture_output=True, text=True, check=True)
-    fields = p.stdout.split()
+    result = run([os.path.join(build, "benchmarks", "bench_factorize"), scene, "3"] + overrides, log).check()
+    fields = result.last_line().split()  # its one line of results comes last
     return float(fields[3]), float(fields[4]) if len(fields) > 4 else float("nan")
 
 
@@ -110,8 +105,9 @@ def fit_exponent(points):
     return sum((x - mx) * (y - my) for x, y in pts) / sum((x - mx) ** 2 for x, _ in pts)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy bench-scaling", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default="build")
     ap.add_argument("--out", default="out/scaling")
     ap.add_argument("--min-dofs", type=float, default=0)
@@ -120,7 +116,7 @@ def main():
     ap.add_argument("--cases", default="hertz,z1")
     ap.add_argument("--timeout", type=float, default=3600)
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="scene override for every run")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     columns = ["case", "backend", "dofs", "status", "wall_s", "process_wall_s", "iterations", "factorizations",
                "linearisations", "condensed_dofs", "ipopt_time_s", "peak_memory_mb", "factorization_s",
@@ -136,7 +132,8 @@ def main():
             results = run_sizes(args, case, sizes)
             for i, (label, scene, overrides, step) in enumerate(sizes):
                 overrides = overrides + args.set
-                unit, unit_memory = factorization_time(args.build, scene, overrides)
+                unit, unit_memory = factorization_time(args.build, scene, overrides,
+                                                       os.path.join(args.out, "factorize_%s_%d.log" % (case, i)))
                 for backend in args.backends.split(","):
                     r = dict(results.get((i, backend), {"status": "not run"}))
                     r.update({"case": label, "backend": backend, "factorization_s": unit,
@@ -178,7 +175,3 @@ def main():
                    and "wall_s" in r and r["status"] == "converged"]
             print(f"{case} {backend}: time ~ N^{fit_exponent(pts):.2f} (sizes >= 1e4)")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -1,7 +1,6 @@
-#!/usr/bin/python3
 """PNG maps of the positive definiteness of operator A (thesis Fig. 3.1 a-l; docs/monotonicity.md).
 
-Usage: /usr/bin/python3 scripts/plot_monotonicity.py OUT_DIR
+usage: ./rollerpy plot-monotonicity OUT_DIR
 Reads OUT_DIR/monotonicity.json, monotonicity_slices.csv and monotonicity_grid.csv written by
 `roller monotonicity` and writes into OUT_DIR:
   fig3_1_<panel>.png      one map per panel a-l
@@ -16,35 +15,16 @@ sqrt(I2) = sigma_pl with I2 = 1/2 (s11^2 + s22^2 + 2 s12^2), s11 = a/3, s22 = b/
 (found from the captions' numbers, see docs/monotonicity.md).
 Needs numpy and matplotlib (the system python has them).
 """
+import argparse
 import json
 import os
-import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from ..outputs import read_array
+from . import plt
 
 AXIS_LABEL = {"a": "a = 2τ11 − τ22 [MPa]", "b": "b = 2τ22 − τ11 [MPa]", "c": "c = τ12 [MPa]"}
-
-
-def read_csv(path, n_text=0):
-    """A numeric CSV with a header, as a numpy structured array; the first n_text columns are
-    text (read separately, np.loadtxt is much faster than genfromtxt with converters)."""
-    with open(path) as f:
-        header = f.readline().strip().split(",")
-        text = [line.split(",", n_text)[:n_text] for line in f] if n_text else []
-    numbers = np.loadtxt(path, delimiter=",", skiprows=1, usecols=range(n_text, len(header)),
-                         ndmin=2)
-    dtype = [(name, "U16") for name in header[:n_text]] + [(name, "f8") for name in
-                                                            header[n_text:]]
-    data = np.empty(numbers.shape[0], dtype=dtype)
-    for k, name in enumerate(header[:n_text]):
-        data[name] = [row[k] for row in text]
-    for k, name in enumerate(header[n_text:]):
-        data[name] = numbers[:, k]
-    return data
 
 
 def stress(a, b, c, tau33_rule, nu):
@@ -128,10 +108,10 @@ def legend_text(meta):
             f"+/−: PD / not PD on the grid;  red: yield f = 0;  orange dashed: thesis √I2 = σ_pl")
 
 
-def main(out_dir):
+def plot(out_dir):
     with open(os.path.join(out_dir, "monotonicity.json")) as f:
         meta = json.load(f)
-    slices = read_csv(os.path.join(out_dir, "monotonicity_slices.csv"), n_text=2)
+    slices = read_array(os.path.join(out_dir, "monotonicity_slices.csv"), n_text=2)
     written = []
     for panel in meta["panels"]:
         fig, ax = plt.subplots(figsize=(7.2, 6.4) if panel["plane"] == "ab" else (8.5, 4.6))
@@ -156,7 +136,7 @@ def main(out_dir):
 
     # Panel a (c = 0) for every sigma_pl layer: the PD region grows with sigma_pl (an ellipse
     # per layer, thesis: "for successive layers in sigma the PD region is an ellipsoid").
-    grid = read_csv(os.path.join(out_dir, "monotonicity_grid.csv"))
+    grid = read_array(os.path.join(out_dir, "monotonicity_grid.csv"))
     c0 = grid[np.isclose(grid["c"], 0.0)]
     if len(c0):
         sigmas = np.unique(c0["sigma_pl"])
@@ -184,10 +164,13 @@ def main(out_dir):
         fig.savefig(path, dpi=110)
         plt.close(fig)
         written.append(path)
-    print(f"plot_monotonicity: wrote {len(written)} PNG files to {out_dir}")
+    return written
 
 
-if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    main(sys.argv[1])
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy plot-monotonicity", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("out_dir")
+    args = ap.parse_args(argv)
+    written = plot(args.out_dir)
+    print(f"plot_monotonicity: wrote {len(written)} PNG files to {args.out_dir}")

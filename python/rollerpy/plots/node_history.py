@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """Per-step displacement increments of one node over the steps of one or more runs (PNG + CSV).
 
-usage: /usr/bin/python3 scripts/plot_node_history.py OUT [OUT ...] --node 101
-                                                     [--labels "V = 6.25 m/s,V = 50 m/s"] [--out DIR]
+usage: ./rollerpy plot-node-history OUT [OUT ...] --node 101
+                                     [--labels "V = 6.25 m/s,V = 50 m/s"] [--out DIR]
 
 The node is given in the thesis's 1-based numbering, as in scene files (docs/thesis-meshes.md:
 node N is point N-1 of the VTU files; Z4's corner node 101 = set top_right). For every step n
@@ -11,27 +10,17 @@ Writes into DIR (default: the first OUT's figures/):
   node<N>_<run>.png     D_x and D_y against the step, one figure per run
   node<N>_overlay.png   D_y (top) and D_x (bottom) of all runs in one figure
   node<N>_history.csv   run, step, time, x0, y0, u_x, u_y, D_x, D_y for every run
-Needs numpy and matplotlib from Debian; reuses plot_scene.py's VTU reader.
+Needs numpy and matplotlib from Debian.
 """
 import argparse
 import csv
 import os
 import sys
-import xml.etree.ElementTree as ET
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_scene import available_steps, plt, read_vtu, reference_mesh, vtu_path  # noqa: E402
-
-
-def step_times(out):
-    """Time of each step from fields.pvd ({} if the file is missing)."""
-    path = os.path.join(out, "fields.pvd")
-    if not os.path.exists(path):
-        return {}
-    return {int(d.get("file")[5:9]): float(d.get("timestep"))
-            for d in ET.parse(path).getroot().iter("DataSet")}
+from ..vtu import available_steps, read_vtu, reference_mesh, step_times, vtu_path
+from . import plt
 
 
 def history(out, index):
@@ -43,17 +32,18 @@ def history(out, index):
     if index >= len(points0):
         sys.exit("plot_node_history: %s has only %d nodes" % (out, len(points0)))
     times = step_times(out)
-    u = [read_vtu(vtu_path(out, step))[2]["displacement"][index, :2] for step in steps]
+    u = [read_vtu(vtu_path(out, step)).point_data["displacement"][index, :2] for step in steps]
     return np.array(steps), np.array([times.get(s, np.nan) for s in steps]), points0[index], np.array(u)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy plot-node-history", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("outs", nargs="+", metavar="OUT")
     ap.add_argument("--node", type=int, required=True, help="node number, 1-based thesis numbering")
     ap.add_argument("--labels", default="", help="comma-separated legend names (default: folder names)")
     ap.add_argument("--out", help="folder for the PNGs and the CSV (default: the first OUT's figures/)")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     names = [os.path.basename(os.path.normpath(o)) for o in args.outs]
     labels = [t.strip() for t in args.labels.split(",")] if args.labels else names
     if len(labels) != len(args.outs):
@@ -107,7 +97,3 @@ def main():
     fig.savefig(os.path.join(dest, tag + "_overlay.png"), dpi=120)
     plt.close(fig)
     print("plot_node_history: figures and %s_history.csv in %s" % (tag, dest))
-
-
-if __name__ == "__main__":
-    main()

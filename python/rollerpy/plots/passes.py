@@ -1,7 +1,6 @@
-#!/usr/bin/python3
 """Figures (PNG) of a multi-pass run: what each pass left in the strip.
 
-usage: /usr/bin/python3 scripts/plot_passes.py OUT_DIR
+usage: ./rollerpy plot-passes OUT_DIR
 
 Reads OUT_DIR/passes.csv, residual_depth.csv and summary.json (docs/scenes.md, Outputs) and
 writes into OUT_DIR:
@@ -15,19 +14,10 @@ writes into OUT_DIR:
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
 import argparse
-import csv
-import json
 import os
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-
-def read(path):
-    with open(path, newline="") as f:
-        return [{k: (float(v) if k not in ("status",) else v) for k, v in row.items()} for row in csv.DictReader(f)]
+from ..outputs import read_numbers, read_summary
+from . import plt
 
 
 def positive(values):
@@ -84,26 +74,25 @@ def plot_depth(out, rows, title):
 
 
 def _half_width(out):
-    rows = read(os.path.join(out, "passes.csv"))
+    rows = read_numbers(os.path.join(out, "passes.csv"))
     return max(r["contact_half_width"] for r in rows) if rows else 1.0
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("out")
-    args = ap.parse_args()
-    summary = {}
-    if os.path.exists(os.path.join(args.out, "summary.json")):
-        with open(os.path.join(args.out, "summary.json")) as f:
-            summary = json.load(f)
+def plot(out):
+    """passes.png and residual_depth.png of the run in `out`; returns their paths."""
+    summary = read_summary(out) if os.path.exists(os.path.join(out, "summary.json")) else {}
     passes = summary.get("passes", {})
-    title = "%s: %s" % (summary.get("scene", args.out), passes.get("verdict", "").replace("_", " "))
+    title = "%s: %s" % (summary.get("scene", out), passes.get("verdict", "").replace("_", " "))
     if "p0_over_k" in passes:
         title += " (p0/k = %.2f)" % passes["p0_over_k"]
-    plot_passes(args.out, read(os.path.join(args.out, "passes.csv")), title)
-    plot_depth(args.out, read(os.path.join(args.out, "residual_depth.csv")), title)
-    print("wrote %s and %s" % (os.path.join(args.out, "passes.png"), os.path.join(args.out, "residual_depth.png")))
+    plot_passes(out, read_numbers(os.path.join(out, "passes.csv")), title)
+    plot_depth(out, read_numbers(os.path.join(out, "residual_depth.csv")), title)
+    return os.path.join(out, "passes.png"), os.path.join(out, "residual_depth.png")
 
 
-if __name__ == "__main__":
-    main()
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy plot-passes", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("out")
+    args = ap.parse_args(argv)
+    print("wrote %s and %s" % plot(args.out))

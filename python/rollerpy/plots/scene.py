@@ -1,14 +1,13 @@
-#!/usr/bin/python3
 """Thesis-style figures (PNG) from a roller output folder.
 
-usage: /usr/bin/python3 scripts/plot_scene.py OUT_DIR [--steps 4,7] [--profile-steps 0-12]
-                                              [--pressure-steps 13] [--hertz] [--mesh-steps 3,6]
-                                              [--fields sqrt_I2,tau_xy] [--pairs 23/47,63/71]
-                                              [--compare OTHER_OUT --compare-steps 47]
-                                              [--spacing sqrt_I2=10] [--label NAME]
-                                              [--levels 50 | --levels=-50,-30,10,50] [--values element]
-                                              [--xlim 80,160] [--ylim 30,50] [--whole]
-                                              [--mesh-pairs 3/6] [--mark-nodes 5,101]
+usage: ./rollerpy plot-scene OUT_DIR [--steps 4,7] [--profile-steps 0-12]
+                              [--pressure-steps 13] [--hertz] [--mesh-steps 3,6]
+                              [--fields sqrt_I2,tau_xy] [--pairs 23/47,63/71]
+                              [--compare OTHER_OUT --compare-steps 47]
+                              [--spacing sqrt_I2=10] [--label NAME]
+                              [--levels 50 | --levels=-50,-30,10,50] [--values element]
+                              [--xlim 80,160] [--ylim 30,50] [--whole]
+                              [--mesh-pairs 3/6] [--mark-nodes 5,101]
 
 Reads fields.pvd / step_NNNN.vtu, contact.csv, roller.csv and scene.resolved.toml of a run and
 writes into OUT_DIR/figures/:
@@ -40,87 +39,25 @@ writes into OUT_DIR/figures/:
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
 import argparse
-import base64
-import csv
 import math
 import os
-import struct
 import sys
-import xml.etree.ElementTree as ET
-import zlib
 
-import matplotlib
+import matplotlib.tri as mtri
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.tri as mtri  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.ticker import MaxNLocator  # noqa: E402
-
-DTYPES = {"Float64": ("d", 8), "Int64": ("q", 8), "UInt8": ("B", 1), "Int32": ("i", 4)}
-
-
-def decode(array, compressed=False):
-    """Decodes one inline base64 DataArray written by roller: raw (UInt64 byte-count header) or,
-    in a file with compressor="vtkZLibDataCompressor", zlib-compressed (VTK's block header: blocks,
-    block size, last block size, compressed sizes; base64 of the header, then of the blocks)."""
-    text = array.text.strip()
-    code, size = DTYPES[array.get("type")]
-    if compressed:
-        first = base64.b64decode(text[:32])  # 24 bytes: the first three UInt64
-        n_blocks = struct.unpack("<Q", first[:8])[0]
-        header_bytes = 8 * (3 + n_blocks)
-        header_chars = 4 * ((header_bytes + 2) // 3)
-        header = struct.unpack("<%dQ" % (3 + n_blocks), base64.b64decode(text[:header_chars])[:header_bytes])
-        data = base64.b64decode(text[header_chars:])
-        raw, pos = b"", 0
-        for n in header[3:]:
-            raw += zlib.decompress(data[pos:pos + n])
-            pos += n
-    else:
-        decoded = base64.b64decode(text)
-        nbytes = struct.unpack("<Q", decoded[:8])[0]
-        raw = decoded[8:8 + nbytes]
-    values = struct.unpack("<%d%s" % (len(raw) // size, code), raw)
-    n = int(array.get("NumberOfComponents", "1"))
-    return np.array(values).reshape(-1, n) if n > 1 else np.array(values)
-
-
-def read_vtu(path):
-    root = ET.parse(path).getroot()
-    z = root.get("compressor") == "vtkZLibDataCompressor"
-    piece = root.find("UnstructuredGrid/Piece")
-    points = decode(piece.find("Points/DataArray"), z)[:, :2]
-    cells = {a.get("Name"): decode(a, z) for a in piece.find("Cells")}
-    conn, offsets = cells["connectivity"].astype(int), cells["offsets"].astype(int)
-    elements, start = [], 0
-    for end in offsets:
-        elements.append(conn[start:end])
-        start = end
-    point_data = {a.get("Name"): decode(a, z) for a in piece.find("PointData")}
-    cell_data = {a.get("Name"): decode(a, z) for a in piece.find("CellData")}
-    return points, elements, point_data, cell_data
-
-
-def triangles(elements):
-    tris = []
-    for e in elements:
-        tris.append(e[:3])
-        if len(e) == 4:
-            tris.append([e[0], e[2], e[3]])
-    return np.array(tris)
+from ..outputs import read_contact, read_rows, read_scene, roller_at, touching_x
+from ..vtu import available_steps, read_vtu, reference_mesh, top_nodes, triangles, vtu_path
+from . import plt
 
 
 def von_mises(s):  # s: [xx, yy, zz, xy]
     p = (s[:, 0] + s[:, 1] + s[:, 2]) / 3.0
     d = s[:, :3] - p[:, None]
     return np.sqrt(1.5 * (np.sum(d * d, axis=1) + 2.0 * s[:, 3] ** 2))
-
-
-def vtu_path(out, step):
-    return os.path.join(out, "step_%04d.vtu" % step)
 
 
 def parse_steps(text, last):
@@ -132,10 +69,6 @@ def parse_steps(text, last):
         elif part:
             steps.append(int(part))
     return [s for s in steps if 0 <= s <= last]
-
-
-def available_steps(out):
-    return sorted(int(f[5:9]) for f in os.listdir(out) if f.startswith("step_") and f.endswith(".vtu"))
 
 
 FIELDS = {  # name: (label, nodal value from the VTU point data, element value from the cell data)
@@ -172,17 +105,15 @@ def contact_window(out, step, points):
     step the roller's centre (roller.csv) plus and minus the strip's height; None without a roller."""
     top, bottom = points[:, 1].max(), points[:, 1].min()
     left, right = points[:, 0].min(), points[:, 0].max()
-    xs = []
-    if os.path.exists(os.path.join(out, "contact.csv")):
-        xs = [float(r["x"]) for r in read_contact(out) if int(r["step"]) == step and r["status"] != "open"]
+    xs = touching_x(read_contact(out), step) if os.path.exists(os.path.join(out, "contact.csv")) else []
     if xs:
         centre, half = 0.5 * (min(xs) + max(xs)), max(0.5 * (max(xs) - min(xs)), 1.0)
         reach = 6.0 * half
     elif os.path.exists(os.path.join(out, "roller.csv")):
-        rows = [r for r in csv.DictReader(open(os.path.join(out, "roller.csv"))) if int(r["step"]) == step]
-        if not rows:
+        roller = [r for r in read_rows(os.path.join(out, "roller.csv")) if int(r["step"]) == step]
+        if not roller:
             return None
-        centre, reach = float(rows[-1]["xc"]), top - bottom
+        centre, reach = float(roller[-1]["xc"]), top - bottom
     else:
         return None
     x0, x1 = max(left, centre - reach), min(right, centre + reach)
@@ -210,14 +141,16 @@ def label_lines(ax, cs):
 
 def contour_maps(out, figs, steps, fields, levels=None, element_values=False, xlim=None, ylim=None, whole=False):
     for step in steps:
-        points, elements, pd, cd = read_vtu(vtu_path(out, step))
+        vtu = read_vtu(vtu_path(out, step))
+        points, elements, pd, cd = vtu.points, vtu.elements, vtu.point_data, vtu.cell_data
         tris = triangles(elements)
         tri = mtri.Triangulation(points[:, 0], points[:, 1], tris)
         # The element each triangle came from (Q4: two triangles per element).
         owner = np.repeat(np.arange(len(elements)), [1 if len(e) == 3 else 2 for e in elements])
         window = None if whole else contact_window(out, step, points)
         if xlim or ylim:
-            window = (xlim or (points[:, 0].min(), points[:, 0].max()), ylim or (points[:, 1].min(), points[:, 1].max()))
+            window = (xlim or (points[:, 0].min(), points[:, 0].max()),
+                      ylim or (points[:, 1].min(), points[:, 1].max()))
         for name in fields:
             label, nodal, element = FIELDS[name]
             use_elements = element_values and element is not None
@@ -263,9 +196,9 @@ def overlay(path, name, curves, title, spacing=None, levels=None):
     label, get, _ = FIELDS[name]
     data = []
     for out, step, _ in curves:
-        points, elements, pd, _ = read_vtu(vtu_path(out, step))
-        tri = mtri.Triangulation(points[:, 0], points[:, 1], triangles(elements))
-        data.append((tri, get(pd), points, elements))
+        vtu = read_vtu(vtu_path(out, step))
+        tri = mtri.Triangulation(vtu.points[:, 0], vtu.points[:, 1], triangles(vtu.elements))
+        data.append((tri, get(vtu.point_data), vtu.points, vtu.elements))
     values = np.concatenate([d[1] for d in data])
     levels = contour_levels(values, [spacing] if spacing else levels)
     points, elements = data[0][2], data[0][3]
@@ -306,18 +239,6 @@ def run_comparison(out, other, figs, steps, fields, label, other_label, spacing,
                     "%s vs %s, step %d" % (other_label, label, step), spacing.get(name), levels)
 
 
-def reference_mesh(out):
-    """The undeformed node positions and elements (the VTU points are the deformed positions; a
-    run restarted from another's state starts displaced already)."""
-    points, elements, pd, _ = read_vtu(vtu_path(out, 0))
-    return points - pd["displacement"][:, :2], elements
-
-
-def top_nodes(points):
-    top = np.where(np.abs(points[:, 1] - points[:, 1].max()) < 1e-9 * (1 + points[:, 1].max()))[0]
-    return top
-
-
 def profile(out, figs, steps):
     points0, _ = reference_mesh(out)
     top = top_nodes(points0)
@@ -325,8 +246,7 @@ def profile(out, figs, steps):
     fig, ax = plt.subplots(figsize=(10, 4))
     colours = curve_colours(len(steps))
     for step, colour in zip(steps, colours):
-        _, _, pd, _ = read_vtu(vtu_path(out, step))
-        u = pd["displacement"]
+        u = read_vtu(vtu_path(out, step)).point_data["displacement"]
         ax.plot(points0[order, 0] + u[order, 0], 100.0 * u[order, 1], label="step %d" % step, lw=1, color=colour)
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("u_y × 100 [mm]")
@@ -344,11 +264,6 @@ def curve_colours(n):
     if n <= 10:
         return ["C%d" % i for i in range(n)]
     return [plt.get_cmap("turbo")(v) for v in np.linspace(0.05, 0.95, n)]
-
-
-def read_contact(out):
-    rows = list(csv.DictReader(open(os.path.join(out, "contact.csv"))))
-    return rows
 
 
 def pressure(out, figs, steps):
@@ -377,22 +292,11 @@ def pressure(out, figs, steps):
     plt.close(fig)
 
 
-def roller_at(out, step):
-    """(xc, yc, radius) of the roller at a step, or None for a run without one."""
-    path = os.path.join(out, "roller.csv")
-    if not os.path.exists(path):
-        return None
-    import tomllib  # Python 3.11
-    radius = tomllib.load(open(os.path.join(out, "scene.resolved.toml"), "rb")).get("roller", {}).get("radius")
-    rows = [r for r in csv.DictReader(open(path)) if int(r["step"]) == step]
-    return (float(rows[-1]["xc"]), float(rows[-1]["yc"]), float(radius)) if rows and radius else None
-
-
 def draw_extras(ax, out, step, points, marks):
     """The roller's circle at that step and the marked nodes (thesis numbers), on mesh figures."""
     roller = roller_at(out, step)
     if roller:
-        ax.add_patch(plt.Circle(roller[:2], roller[2], fill=False, color="C0", lw=1.0))
+        ax.add_patch(plt.Circle((roller.xc, roller.yc), roller.radius, fill=False, color="C0", lw=1.0))
     for node in marks:
         if 1 <= node <= len(points):
             x, y = points[node - 1]
@@ -407,8 +311,7 @@ def mesh_lines(ax, x, elements, **style):
 def deformed_mesh(out, figs, steps, marks=()):
     points0, elements = reference_mesh(out)
     for step in steps:
-        _, _, pd, _ = read_vtu(vtu_path(out, step))
-        u = pd["displacement"][:, :2]
+        u = read_vtu(vtu_path(out, step)).point_data["displacement"][:, :2]
         fig, axes = plt.subplots(1, 2, figsize=(12, 4))
         for ax, scale in zip(axes, (1.0, 10.0)):
             x = points0 + scale * u
@@ -433,8 +336,7 @@ def mesh_overlay(out, figs, group, marks=()):
     for ax, scale in zip(axes, (1.0, 10.0)):
         handles = []
         for step, (style, colour) in zip(group, LINES):
-            _, _, pd, _ = read_vtu(vtu_path(out, step))
-            x = points0 + scale * pd["displacement"][:, :2]
+            x = points0 + scale * read_vtu(vtu_path(out, step)).point_data["displacement"][:, :2]
             mesh_lines(ax, x, elements, colors=colour, linestyles=style, linewidths=0.7)
             handles.append(Line2D([], [], color=colour, linestyle=style, label="step %d" % step))
         draw_extras(ax, out, group[-1], points0, marks)
@@ -476,11 +378,10 @@ def pressure_comparison(out, other, figs, steps, label, other_label):
 
 
 def hertz(out, figs):
-    import tomllib  # Python 3.11
-    scene = tomllib.load(open(os.path.join(out, "scene.resolved.toml"), "rb"))
+    scene = read_scene(out)
     rows = read_contact(out)
     last = max(int(r["step"]) for r in rows)
-    roller = list(csv.DictReader(open(os.path.join(out, "roller.csv"))))[-1]
+    roller = read_rows(os.path.join(out, "roller.csv"))[-1]
     load, xc = float(roller["fy"]), float(roller["xc"])
     e, nu, radius = scene["material"]["E"], scene["material"]["nu"], scene["roller"]["radius"]
     e_star = e / (1 - nu * nu)
@@ -518,8 +419,9 @@ def number_list(option, text, count=None):
     return values
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy plot-scene", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("out")
     ap.add_argument("--steps", default="", help="steps for the contour maps, e.g. 4,7 (default: the last)")
     ap.add_argument("--profile-steps", default="", help="steps for the surface profile, e.g. 0-12 (default: all)")
@@ -542,7 +444,8 @@ def main():
     ap.add_argument("--compare-label", help="OTHER_OUT's name in the legend (default: its folder name)")
     ap.add_argument("--levels", default="",
                     help="contour lines of maps, overlays and comparisons: a spacing (50) or a list of values "
-                         "(--levels=-50,-30,10,50: with = when the list starts with a minus); default: about ten round values (--spacing FIELD=... wins for its field)")
+                         "(--levels=-50,-30,10,50: with = when the list starts with a minus); default: about ten "
+                         "round values (--spacing FIELD=... wins for its field)")
     ap.add_argument("--values", choices=["nodal", "element"], default="nodal",
                     help="maps of nodal averages (smooth contours) or of element values (unsmoothed peaks)")
     ap.add_argument("--xlim", default="", help="map window in x, e.g. 80,160 [mm] (default: the contact region)")
@@ -552,7 +455,7 @@ def main():
                     help="deformed meshes of a group of steps in one figure, e.g. 3/6 (mesh_steps3-6.png)")
     ap.add_argument("--mark-nodes", default="",
                     help="nodes (thesis numbers) marked and labelled on the mesh figures, e.g. 5,101")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     steps = available_steps(args.out)
     if not steps:
         sys.exit("plot_scene: no step_NNNN.vtu in %s (was the run made with output.vtu = true?)" % args.out)
@@ -601,7 +504,3 @@ def main():
     if args.hertz:
         hertz(args.out, figs)
     print("plot_scene: figures in %s" % figs)
-
-
-if __name__ == "__main__":
-    main()

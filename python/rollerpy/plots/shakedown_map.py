@@ -1,27 +1,22 @@
-#!/usr/bin/python3
-"""Draws a shakedown map from a study's study.csv (scripts/study.py with
+"""Draws a shakedown map from a study's study.csv (`rollerpy study` with
 problems/studies/shakedown_map.toml; docs/validation.md, "Shakedown map"): every point at its
 traction coefficient mu (contact.friction) and load p0/k (passes.p0_over_k), marked by its verdict
 (elastic shakedown, plastic shakedown, ratchetting; failed points as crosses), with Johnson's
-shakedown limit over it (scripts/line_contact_shakedown.py) and the surface limit 1/mu; prints a
+shakedown limit over it (rollerpy.validation.line_contact_shakedown) and the surface limit 1/mu; prints a
 Markdown table of the points against that limit.
 
-usage: /usr/bin/python3 scripts/plot_shakedown_map.py STUDY_CSV [--out MAP.png]
+usage: ./rollerpy plot-shakedown-map STUDY_CSV [--out MAP.png]
 Default --out: shakedown_map.png beside the CSV.
 """
 import argparse
-import csv
 import os
 import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from line_contact_shakedown import shakedown_limit  # noqa: E402
+from ..outputs import read_rows
+from ..validation.line_contact_shakedown import shakedown_limit
+from . import plt
 
 STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
          "plastic_shakedown": ("s", "C1", "plastic shakedown (closed cycle)"),
@@ -29,13 +24,13 @@ STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
          "undetermined": ("D", "0.5", "undetermined")}
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy plot-shakedown-map", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv")
     ap.add_argument("--out")
-    args = ap.parse_args()
-    with open(args.csv, newline="") as f:
-        rows = list(csv.DictReader(f))
+    args = ap.parse_args(argv)
+    rows = read_rows(args.csv)
     if not rows:
         sys.exit("plot_shakedown_map: %s has no points" % args.csv)
     fig, ax = plt.subplots(figsize=(9.5, 5.5))
@@ -78,7 +73,3 @@ def main():
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "shakedown_map.png")
     fig.savefig(out, dpi=110)
     print("wrote", out)
-
-
-if __name__ == "__main__":
-    main()

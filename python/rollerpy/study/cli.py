@@ -1,10 +1,9 @@
-#!/usr/bin/python3
 """Runs a study: every point of a study file (docs/studies.md), in parallel local processes
 through Dask's LocalCluster by default, on a running Dask scheduler with --scheduler, or
 serially with --serial.
 
-usage: /usr/bin/python3 scripts/study.py STUDY.toml [--out DIR] [--jobs N] [--scheduler tcp://HOST:8786]
-                                         [--serial] [--resume] [--roller build/roller] [--quiet]
+usage: ./rollerpy study STUDY.toml [--out DIR] [--jobs N] [--scheduler tcp://HOST:8786]
+                         [--serial] [--resume] [--roller build/roller] [--quiet]
 
 Writes DIR/study.csv (one row per point: index, backend, the varied parameters, the collected
 values, status, message, wall time, output folder) after every finished point, and keeps every
@@ -21,12 +20,10 @@ import os
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from roller_study import engines, table  # noqa: E402
-from roller_study.point import command, finished_record, make_task, run_point  # noqa: E402
-from roller_study.study_file import StudyError, load, toml_value  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..paths import DEFAULT_ROLLER, ROOT
+from . import engines, table
+from .point import command, finished_record, make_task, run_point
+from .study_file import StudyError, load, toml_value
 
 
 def tasks_of(study, args):
@@ -43,17 +40,18 @@ def tasks_of(study, args):
     return tasks
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy study", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("study")
     ap.add_argument("--out")
     ap.add_argument("--jobs", type=int, default=os.cpu_count())
     ap.add_argument("--scheduler", help="address of a running Dask scheduler, e.g. tcp://127.0.0.1:8786")
     ap.add_argument("--serial", action="store_true", help="run the points one after the other without Dask")
     ap.add_argument("--resume", action="store_true", help="skip the points already complete in --out")
-    ap.add_argument("--roller", default=os.path.join(ROOT, "build", "roller"))
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
     ap.add_argument("--quiet", action="store_true", help="no progress bar")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     try:
         study = load(args.study)
     except StudyError as e:
@@ -109,6 +107,3 @@ def main():
     print("study: %d points, %d failed, %.1f s -> %s" % (len(records), failures, time.monotonic() - t0, csv_path))
     return 0
 
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -14,9 +14,9 @@ def run_dask(tasks, run_point, on_done, jobs=None, scheduler=None):
     import cloudpickle
     from distributed import Client, LocalCluster, as_completed
 
-    from . import point
-    # Workers started by hand need not import this package: ship run_point's module by value.
-    cloudpickle.register_pickle_by_value(point)
+    import rollerpy
+    # Workers started by hand need not import this package: ship run_point and what it calls by value.
+    cloudpickle.register_pickle_by_value(rollerpy)
     cluster = None
     if scheduler:
         client = Client(scheduler)

@@ -2,7 +2,8 @@
 status, message, wall time, output folder — sorted by point, rewritten after every finished point
 so that an interrupted study keeps what it has."""
 import csv
-import os
+
+from ..runner import atomic_file
 
 
 def columns(study):
@@ -21,10 +22,8 @@ def row(study, record):
 
 
 def write(study, records, path):
-    tmp = path + ".tmp"
-    with open(tmp, "w", newline="") as f:
+    with atomic_file(path, newline="") as f:
         w = csv.DictWriter(f, fieldnames=columns(study))
         w.writeheader()
         for record in sorted(records, key=lambda rec: rec["index"]):
             w.writerow({k: "" if v is None else v for k, v in row(study, record).items()})
-    os.replace(tmp, path)

@@ -1,10 +1,9 @@
-#!/usr/bin/python3
 """Carter's steady rolling with creep: runs problems/carter.toml for several creeps with both
 contact backends and compares with Carter's theory (docs/validation.md, "Carter: steady rolling
 with creep").
 
-usage: /usr/bin/python3 scripts/carter.py [--out DIR] [--roller BIN] [--refine K] [--quick]
-                                          [--backends ipopt,penalty] [--scene FILE] [--traction]
+usage: ./rollerpy carter [--out DIR] [--roller BIN] [--refine K] [--quick]
+                        [--backends ipopt,penalty] [--scene FILE] [--traction]
 
 Theory (rigid cylinder on an elastic half-plane, plane strain, E* = E/(1 - nu^2), normal and
 tangential problems decoupled): a = sqrt(4 P R/(pi E*)), p0 = 2P/(pi a) = a E*/(2R);
@@ -36,25 +35,22 @@ then an outcome, s = d(load_offset_x)/d(xc) over the last contact width 2a (roll
 with Carter's s = (mu a/R)(1 - sqrt(1 - Q/(mu P))). Tractions Q/(mu P) = 0.36, 0.64, 0.84, 0.96
 (the creeps 0.2 ... 0.8 mu a/R); writes DIR/carter_traction.csv and .png.
 
-Writes DIR/carter.csv and DIR/carter.png (and keeps the runs in DIR/<backend>_<k>/).
+Writes DIR/carter.csv and DIR/carter.png (and keeps the runs in DIR/<backend>_<k>/, each with its
+log DIR/<backend>_<k>.log).
 """
 import argparse
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
-import time
 import tomllib
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..outputs import contact_profile, read_rows, read_summary
+from ..paths import DEFAULT_ROLLER, PROBLEMS, ROOT
+from ..plots import plt
+from ..runner import RunFailed, contact_option, roller_command, run as run_roller
 FRACTIONS = [0.2, 0.4, 0.6, 0.8, 1.5]   # creep / (mu a0 / R)
 QUICK_FRACTIONS = [0.4, 0.8]
 TRACTIONS = [0.36, 0.64, 0.84, 0.96]     # Q/(mu P) = 1 - (1 - f)^2 for f = 0.2, 0.4, 0.6, 0.8
@@ -75,21 +71,6 @@ def carter_traction(x, a, c, p0, mu):
     if c > 0.0:
         q -= mu * p0 * (c / a) * np.sqrt(np.clip(1.0 - ((x - d) / c) ** 2, 0.0, None))
     return q
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def contact_at(rows, step):
-    sel = [r for r in rows if int(r["step"]) == step]
-    sel.sort(key=lambda r: float(r["x"]))
-    x = np.array([float(r["x"]) for r in sel])
-    p = np.array([float(r["p_n"]) for r in sel])
-    t = np.array([float(r["p_t"]) for r in sel])
-    status = [r["status"] for r in sel]
-    return x, p, t, status
 
 
 def fit_parabola(x, y):
@@ -115,7 +96,8 @@ def zone_extent(x, member):
 
 
 def measure(contact_rows, step, mu):
-    x, p, t, status = contact_at(contact_rows, step)
+    profile = contact_profile(contact_rows, step)
+    x, p, t, status = profile.x, profile.p_n, profile.p_t, profile.status
     on = p > 1e-3 * p.max()
     x0, a, p0sq = fit_parabola(x[on], p[on] ** 2)
     a_status, _ = zone_extent(x, on)
@@ -144,18 +126,13 @@ def measure(contact_rows, step, mu):
 
 
 def run(args, out, backend, overrides, steps=None):
-    cmd = [args.roller, "run", args.scene, "--out", out, "--refine", str(args.refine), "--contact", backend]
+    """One run into `out` (its log beside it); returns its wall time, raises RunFailed."""
+    options = ["--refine", args.refine] + contact_option(backend)
     for o in overrides:
-        cmd += ["--set", o]
+        options += ["--set", o]
     if steps:
-        cmd += ["--steps", str(steps)]
-    t0 = time.time()
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    wall = time.time() - t0
-    if proc.returncode != 0:
-        sys.stderr.write(proc.stdout[-3000:])
-        raise SystemExit("roller failed (exit %d): %s" % (proc.returncode, " ".join(cmd)))
-    return wall
+        options += ["--steps", steps]
+    return run_roller(roller_command(args.roller, args.scene, out, *options), out + ".log").check().wall_s
 
 
 def rolling_path(segments, rolling_keys):
@@ -193,17 +170,24 @@ def measured_creep(roller, s_prev):
     return (float(last["load_offset_x"]) - float(first["load_offset_x"])) / dx
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy carter", description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "carter"))
-    ap.add_argument("--roller", default=os.path.join(ROOT, "build", "roller"))
-    ap.add_argument("--scene", default=os.path.join(ROOT, "problems", "carter.toml"))
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
+    ap.add_argument("--scene", default=os.path.join(PROBLEMS, "carter.toml"))
     ap.add_argument("--refine", type=int, default=1)
     ap.add_argument("--quick", action="store_true", help="creeps 0.4 and 0.8 of mu a/R only")
     ap.add_argument("--backends", default="ipopt,penalty")
     ap.add_argument("--reuse", action="store_true", help="analyse the runs already in --out instead of running")
     ap.add_argument("--traction", action="store_true", help="prescribe Q (roller.path fx), measure the creep")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
+    try:
+        return sweep(args)
+    except RunFailed as e:
+        sys.exit(str(e))
+
+
+def sweep(args):
     os.makedirs(args.out, exist_ok=True)
 
     with open(args.scene, "rb") as f:
@@ -219,13 +203,13 @@ def main():
     press = os.path.join(args.out, "press_in")
     if not args.reuse:
         run(args, press, backends[0], [], steps=n_press)
-    m0 = measure(read_csv(os.path.join(press, "contact.csv")), n_press, mu)
+    m0 = measure(read_rows(os.path.join(press, "contact.csv")), n_press, mu)
     a0 = m0["a"]
     print("press-in: a0 = %.4f mm, mu a0/R = %.4e" % (a0, mu * a0 / R))
 
     if args.traction:
         fractions = QUICK_TRACTIONS if args.quick else TRACTIONS
-        p_press = float(read_csv(os.path.join(press, "roller.csv"))[-1]["fy"])
+        p_press = float(read_rows(os.path.join(press, "roller.csv"))[-1]["fy"])
     else:
         fractions = QUICK_FRACTIONS if args.quick else FRACTIONS
     tag = "traction_" if args.traction else ""
@@ -239,12 +223,11 @@ def main():
                 creep = round(frac * mu * a0 / R, 7)
                 override = path_override(segments, creep)
             if args.reuse:  # the run's own wall time
-                with open(os.path.join(out, "summary.json")) as f:
-                    wall = float(json.load(f)["wall_s"])
+                wall = float(read_summary(out)["wall_s"])
             else:
                 wall = run(args, out, backend, [override])
-            roller = read_csv(os.path.join(out, "roller.csv"))
-            contact = read_csv(os.path.join(out, "contact.csv"))
+            roller = read_rows(os.path.join(out, "roller.csv"))
+            contact = read_rows(os.path.join(out, "contact.csv"))
             last = int(roller[-1]["step"])
             fx, fy = float(roller[-1]["fx"]), float(roller[-1]["fy"])
             P, Q = fy, abs(fx)
@@ -335,7 +318,4 @@ def main():
     name = os.path.join(args.out, "carter%s" % ("_traction" if args.traction else ""))
     fig.savefig(name + ".png", dpi=110)
     print("wrote %s.csv and %s.png" % (name, name))
-
-
-if __name__ == "__main__":
-    main()
+    return 0

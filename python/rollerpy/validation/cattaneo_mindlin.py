@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """The Cattaneo-Mindlin protocol under prescribed forces against Cattaneo's stick zone
 (docs/validation.md, "Cattaneo-Mindlin under prescribed forces").
 
-usage: /usr/bin/python3 scripts/cattaneo_mindlin.py [--out out/cattaneo_mindlin] [--refine 1,2,3]
-                                                    [--backends ipopt,penalty] [--roller build/roller]
+usage: ./rollerpy cattaneo-mindlin [--out out/cattaneo_mindlin] [--refine 1,2,3]
+                                  [--backends ipopt,penalty] [--roller build/roller]
 
 Runs problems/cattaneo_mindlin.toml (P = 10000 N/mm pressed frictionlessly, then Q = mu P / 2 with
 mu = 0.15, P held, rotation blocked) and measures from the last step of contact.csv the half-widths
@@ -15,23 +14,22 @@ Compares a with Hertz's sqrt(4PR/(pi E*)) and c/a with Cattaneo's sqrt(1 - Q/(mu
 Markdown table with the centre's horizontal offset (the tangential compliance) and the run time.
 """
 import argparse
-import json
 import math
 import os
-import subprocess
 import sys
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from carter import contact_at, read_csv  # noqa: E402
+from ..outputs import contact_profile, read_rows, read_summary
+from ..paths import DEFAULT_ROLLER, PROBLEMS
+from ..runner import RunFailed, contact_option, roller_command, run
 
 MU, E, NU, R = 0.15, 2.1e5, 0.49, 100.0
 
 
 def half_widths(contact_rows, step):
-    x, p, t, _ = contact_at(contact_rows, step)
+    profile = contact_profile(contact_rows, step)
+    x, p, t = profile.x, profile.p_n, profile.p_t
     mid = 0.5 * (x[1:] + x[:-1])
     length = np.empty_like(x)
     length[1:-1] = mid[1:] - mid[:-1]
@@ -47,26 +45,29 @@ def half_widths(contact_rows, step):
     return a, c
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy cattaneo-mindlin", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="out/cattaneo_mindlin")
     ap.add_argument("--refine", default="1,2,3")
     ap.add_argument("--backends", default="ipopt,penalty")
-    ap.add_argument("--roller", default=os.path.join(ROOT, "build", "roller"))
-    args = ap.parse_args()
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
+    args = ap.parse_args(argv)
     e_star = E / (1.0 - NU ** 2)
     rows = []
     for refine in [int(k) for k in args.refine.split(",")]:
         for backend in args.backends.split(","):
             out = os.path.join(args.out, "%s_r%d" % (backend, refine))
-            cmd = [args.roller, "run", os.path.join(ROOT, "problems", "cattaneo_mindlin.toml"), "--out", out,
-                   "--overwrite", "--refine", str(refine), "--contact", backend]
-            subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-            roller = read_csv(os.path.join(out, "roller.csv"))[-1]
-            with open(os.path.join(out, "summary.json")) as f:
-                summary = json.load(f)
+            cmd = roller_command(args.roller, os.path.join(PROBLEMS, "cattaneo_mindlin.toml"), out, "--overwrite",
+                                 "--refine", refine, *contact_option(backend))
+            try:
+                run(cmd, out + ".log").check()
+            except RunFailed as e:
+                sys.exit(str(e))
+            roller = read_rows(os.path.join(out, "roller.csv"))[-1]
+            summary = read_summary(out)
             fx, fy = float(roller["fx"]), float(roller["fy"])
-            a, c = half_widths(read_csv(os.path.join(out, "contact.csv")), int(roller["step"]))
+            a, c = half_widths(read_rows(os.path.join(out, "contact.csv")), int(roller["step"]))
             a_hertz = math.sqrt(4.0 * fy * R / (math.pi * e_star))
             expected = math.sqrt(1.0 - abs(fx) / (MU * fy))
             rows.append((refine, backend, summary["ndof"], fy, fx, a, a_hertz, c / a, expected,
@@ -78,7 +79,3 @@ def main():
     for r in rows:
         print("| %d | %s | %d | %.2f | %.2f | %.4f | %.4f | %.4f | %.4f | %+.4f | %.5f | %.1f |" % (
             r[0], r[1], r[2], r[3], -r[4], r[5], r[6], r[7], r[8], r[7] - r[8], r[9], r[10]))
-
-
-if __name__ == "__main__":
-    main()

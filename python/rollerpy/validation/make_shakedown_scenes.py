@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """Writes the shakedown validation scenes problems/shakedown_pXX.toml (docs/validation.md,
 "Shakedown: repeated rolling of a line contact").
 
-usage: /usr/bin/python3 scripts/make_shakedown_scenes.py [--loads 3.0,3.7,4.5,5.5] [--passes 5]
-                                                       [--element-size 0.2] [--out problems]
+usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
+                                      [--element-size 0.2] [--out problems]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -13,13 +12,13 @@ its base bonded, acts as a half-space under the track: uniform 0.2 mm elements (
 over x = 88...112 and the top 6 mm, graded outside. One pass: press to P at x = 92 (steps 1-3),
 roll 16 mm = 8a to x = 108 under P (steps 4-19, 0.5a per step), lift 0.3 mm (steps 20-21); the
 window of passes.csv is then x = 96...104. --element-size changes the uniform size (0.1: 40
-elements across 2a, 4.8e4 dofs, the strip of benchmarks/passes.py) and --out the folder.
+elements across 2a, 4.8e4 dofs, the strip of `rollerpy bench-passes`) and --out the folder.
 """
 import argparse
 import math
 import os
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..paths import PROBLEMS
 
 E, NU, R, A = 2.1e5, 0.3, 100.0, 2.0
 E_STAR = E / (1.0 - NU ** 2)
@@ -74,8 +73,9 @@ def scene(ratio, passes, h):
     sigma_y = math.sqrt(3.0) * P0 / ratio
     xs, ys = lines(h)
     name = "shakedown_p%02d" % round(10 * ratio)
-    return name, """# Shakedown validation at p0/k = {ratio}: written by scripts/make_shakedown_scenes.py (edit that
-# script, not this file); docs/validation.md, "Shakedown: repeated rolling of a line contact".
+    return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
+# python/rollerpy/validation/make_shakedown_scenes.py, not this file); docs/validation.md,
+# "Shakedown: repeated rolling of a line contact".
 # Frictionless rolling of a rigid cylinder (R = 100 mm) under P = {load:.1f} N/mm over an
 # elastic-perfectly plastic strip: Hertz a = {a} mm, p0 = {p0:.1f} MPa, k = sigma_y/sqrt(3) =
 # {k:.1f} MPa. Johnson: first yield at p0/k = 3.1, elastic shakedown limit 4.0.
@@ -134,21 +134,26 @@ friction = 0.0
            E=E, NU=NU, sy=sigma_y, R=R)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def write_scenes(loads, passes, element_size, out):
+    """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
+    os.makedirs(out, exist_ok=True)
+    written = []
+    for ratio in loads:
+        name, text = scene(ratio, passes, element_size)
+        path = os.path.join(out, name + ".toml")
+        with open(path, "w") as f:
+            f.write(text)
+        written.append(path)
+    return written
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy make-shakedown-scenes", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--loads", default="3.0,3.7,4.5,5.5")
     ap.add_argument("--passes", type=int, default=5)
     ap.add_argument("--element-size", type=float, default=0.2)
-    ap.add_argument("--out", default=os.path.join(ROOT, "problems"))
-    args = ap.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    for ratio in [float(r) for r in args.loads.split(",")]:
-        name, text = scene(ratio, args.passes, args.element_size)
-        path = os.path.join(args.out, name + ".toml")
-        with open(path, "w") as f:
-            f.write(text)
+    ap.add_argument("--out", default=PROBLEMS)
+    args = ap.parse_args(argv)
+    for path in write_scenes([float(r) for r in args.loads.split(",")], args.passes, args.element_size, args.out):
         print("wrote", path)
-
-
-if __name__ == "__main__":
-    main()

@@ -1,12 +1,11 @@
-#!/usr/bin/python3
 """Rolling-friction robustness suite (docs/stability.md, "Rolling with friction").
 
-usage: /usr/bin/python3 scripts/rolling_suite.py [--out out/rolling_suite] [--refine 1,2,3]
-                                                 [--mu 0.05,0.15,0.3,0.6]
-                                                 [--creep 0,1e-3,3e-3,1e-2,sliding]
-                                                 [--materials elastic,plastic]
-                                                 [--backends ipopt,penalty] [--timeout 900]
-                                                 [--roller ./build/roller] [--no-run] [--resume]
+usage: ./rollerpy rolling-suite [--out out/rolling_suite] [--refine 1,2,3]
+                               [--mu 0.05,0.15,0.3,0.6]
+                               [--creep 0,1e-3,3e-3,1e-2,sliding]
+                               [--materials elastic,plastic]
+                               [--backends ipopt,penalty] [--timeout 900]
+                               [--roller ./build/roller] [--no-run] [--resume]
 
 Steady rolling after a press-in (problems/rolling_friction.toml: the roller pressed 0.1 mm into
 a graded elastic strip over steps 1-4, then rolled 4 mm over steps 5-28) over every combination
@@ -25,10 +24,11 @@ import csv
 import itertools
 import os
 import statistics
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from stability import num, provenance, read_rows, run_one, scan_outputs  # noqa: E402
+from ..outputs import num, read_rows
+from ..paths import ROOT
+from ..scan import scan_outputs
+from .stability import provenance, run_one
 
 SCENE = "problems/rolling_friction.toml"
 PLASTIC = ["--set", "material.yield_stress=1000.0", "--set", "material.tangent_modulus=2100.0"]
@@ -43,8 +43,8 @@ def path_override(creep):
 
 
 def measure(out, log, rc, timed_out, wall, mu):
-    solver = read_rows(os.path.join(out, "solver.csv"))
-    roller = read_rows(os.path.join(out, "roller.csv"))
+    solver = read_rows(os.path.join(out, "solver.csv"), missing_ok=True)
+    roller = read_rows(os.path.join(out, "roller.csv"), missing_ok=True)
     done = [r for r in solver if r.get("status") == "converged"]
     # Friction passes of an increment: the ipopt backend's NLP solves (one per Tresca pass);
     # the penalty backend has none (its return map uses the current F_N).
@@ -55,7 +55,7 @@ def measure(out, log, rc, timed_out, wall, mu):
         fy = num(last["fy"])
         if fy > 0 and mu > 0:
             q = abs(num(last["fx"])) / (mu * fy)
-    _, problems = scan_outputs(out, log)
+    problems = scan_outputs(out, log).flagged
     message = ""
     if rc != 0:
         with open(log, errors="replace") as f:
@@ -91,8 +91,9 @@ def markdown(rows):
     return "\n".join(lines) + "\n"
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy rolling-suite", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="out/rolling_suite")
     ap.add_argument("--refine", default="1,2,3")
     ap.add_argument("--mu", default="0.05,0.15,0.3,0.6")
@@ -103,8 +104,8 @@ def main():
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--no-run", action="store_true")
     ap.add_argument("--resume", action="store_true")
-    args = ap.parse_args()
-    os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    args = ap.parse_args(argv)
+    os.chdir(ROOT)
     os.makedirs(args.out, exist_ok=True)
     grid = itertools.product(args.materials.split(","), args.mu.split(","), args.creep.split(","),
                              args.refine.split(","), args.backends.split(","))
@@ -137,7 +138,8 @@ def main():
                     '"converged": true' in open(os.path.join(out, "summary.json")).read() else 1
                 timed_out, wall = False, None
             else:
-                _, rc, timed_out, wall = run_one(args.roller, SCENE, extra, backend, out, log, args.timeout)
+                result = run_one(args.roller, SCENE, extra, backend, out, log, args.timeout)
+                rc, timed_out, wall = result.exit_code, result.timed_out, result.wall_s
             row = {"material": material, "mu": mu, "creep": creep, "refine": refine, "backend": backend}
             row.update(measure(out, log, rc, timed_out, wall, float(mu)))
             rows.append({k: str(v) for k, v in row.items()})
@@ -158,7 +160,3 @@ def main():
         f.write(markdown(rows))
         f.write("\n" + provenance(args.roller, "") + "\n")
     print("wrote %s and %s" % (os.path.join(args.out, "suite.csv"), os.path.join(args.out, "table.md")))
-
-
-if __name__ == "__main__":
-    main()

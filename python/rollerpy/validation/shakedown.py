@@ -1,10 +1,9 @@
-#!/usr/bin/python3
 """Shakedown of a rolling line contact against Johnson's results (docs/validation.md,
 "Shakedown: repeated rolling of a line contact").
 
-usage: /usr/bin/python3 scripts/shakedown.py [--out out/shakedown] [--backends ipopt,penalty]
-                                             [--loads 30,37,45,55] [--roller ./build/roller]
-                                             [--timeout 3600] [--passes N] [--no-run]
+usage: ./rollerpy shakedown [--out out/shakedown] [--backends ipopt,penalty]
+                           [--loads 30,37,45,55] [--roller ./build/roller]
+                           [--timeout 3600] [--passes N] [--no-run]
 
 1. First yield: problems/shakedown_p30.toml pressed to its load (steps 1-3, one pass; 3.0 k is
    below Johnson's 3.1 k, so the strip stays elastic); the largest element von Mises stress
@@ -15,26 +14,21 @@ usage: /usr/bin/python3 scripts/shakedown.py [--out out/shakedown] [--backends i
 Writes OUT/shakedown.csv (one row per scene and backend), OUT/table.md and OUT/shakedown.png
 (the mean increment of equivalent plastic strain in the track against the pass, one curve per
 load and backend), keeps every run in OUT/<scene>_<backend>/ with its passes.png and
-residual_depth.png (scripts/plot_passes.py), and checks every output file for nan/inf.
+residual_depth.png (`rollerpy plot-passes`), and checks every output file for nan/inf.
 """
 import argparse
 import csv
-import json
 import os
-import subprocess
-import sys
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_scene import read_vtu  # noqa: E402
-from stability import num, read_rows, run_one, scan_outputs  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..outputs import num, read_rows, read_scene, read_summary
+from ..paths import ROOT
+from ..plots import passes as plot_passes
+from ..plots import plt
+from ..scan import scan_outputs
+from ..vtu import read_vtu
+from .stability import run_one
 JOHNSON_FIRST_YIELD = 3.1
 JOHNSON_SHAKEDOWN = 4.0
 
@@ -43,19 +37,17 @@ def first_yield(args):
     out = os.path.join(args.out, "first_yield")
     log = out + ".log"
     extra = ["--set", "passes.count=1", "--steps", "3", "--set", "output.every=1", "--overwrite"]
-    _, rc, _, _ = run_one(args.roller, "problems/shakedown_p30.toml", extra, "ipopt", out, log, args.timeout)
-    if rc != 0:
+    if run_one(args.roller, "problems/shakedown_p30.toml", extra, "ipopt", out, log, args.timeout).exit_code != 0:
         return None, None
-    _, _, _, cells = read_vtu(os.path.join(out, "step_0003.vtu"))
-    with open(os.path.join(out, "scene.resolved.toml"), "rb") as f:
-        import tomllib
-        sigma_y = tomllib.load(f)["material"]["yield_stress"]
+    cells = read_vtu(os.path.join(out, "step_0003.vtu")).cell_data
+    sigma_y = read_scene(out)["material"]["yield_stress"]
     vm = float(np.max(cells["von_mises"]))
     return 3.0 * sigma_y / vm, vm
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy shakedown", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="out/shakedown")
     ap.add_argument("--backends", default="ipopt,penalty")
     ap.add_argument("--loads", default="30,37,45,55")
@@ -63,7 +55,7 @@ def main():
     ap.add_argument("--timeout", type=float, default=3600.0)
     ap.add_argument("--passes", type=int, default=0, help="passes per scene (default: the scenes' 5)")
     ap.add_argument("--no-run", action="store_true", help="measure the runs already in --out")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     os.chdir(ROOT)
     args.roller = os.path.abspath(args.roller)
     os.makedirs(args.out, exist_ok=True)
@@ -77,17 +69,16 @@ def main():
             wall = None
             if not args.no_run:
                 extra = ["--overwrite"] + (["--set", "passes.count=%d" % args.passes] if args.passes else [])
-                _, rc, timed_out, wall = run_one(args.roller, scene, extra, backend, out, log, args.timeout)
-            summary = {}
-            if os.path.exists(os.path.join(out, "summary.json")):
-                with open(os.path.join(out, "summary.json")) as f:
-                    summary = json.load(f)
-            passes = read_rows(os.path.join(out, "passes.csv"))
-            _, problems = scan_outputs(out, log)
+                wall = run_one(args.roller, scene, extra, backend, out, log, args.timeout).wall_s
+            summary = read_summary(out) if os.path.exists(os.path.join(out, "summary.json")) else {}
+            passes = read_rows(os.path.join(out, "passes.csv"), missing_ok=True)
+            problems = scan_outputs(out, log).flagged
             problems_total += len(problems)
             if passes:
-                subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "plot_passes.py"), out],
-                               check=False, capture_output=True)
+                try:
+                    plot_passes.plot(out)
+                except (OSError, ValueError, KeyError) as e:  # a run cut short: its tables incomplete
+                    print("shakedown: no figures of %s: %s" % (out, e))
             p = summary.get("passes", {})
             rows.append({
                 "load": int(load) / 10.0, "backend": backend,
@@ -135,7 +126,3 @@ def main():
         f.write("\nnon-finite values in the outputs: %d\n" % problems_total)
     print(open(os.path.join(args.out, "table.md")).read())
     return 0 if problems_total == 0 else 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

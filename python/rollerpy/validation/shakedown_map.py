@@ -1,39 +1,33 @@
-#!/usr/bin/python3
 """The shakedown map in one command (docs/validation.md, "Shakedown map"): runs the study
-problems/studies/shakedown_map.toml on the study runner (scripts/study.py: a Dask LocalCluster
-of --jobs workers, or --scheduler) and draws the map (scripts/plot_shakedown_map.py).
+problems/studies/shakedown_map.toml on the study runner (`rollerpy study`: a Dask LocalCluster
+of --jobs workers, or --scheduler) and draws the map (`rollerpy plot-shakedown-map`).
 
-usage: /usr/bin/python3 scripts/shakedown_map.py [--out out/studies/shakedown_map] [--jobs N]
-                                                 [--scheduler tcp://HOST:8786] [--resume]
-                                                 [--roller build/roller] [--study FILE]
+usage: ./rollerpy shakedown-map [--out out/studies/shakedown_map] [--jobs N]
+                               [--scheduler tcp://HOST:8786] [--resume]
+                               [--roller build/roller] [--study FILE]
 """
 import argparse
 import os
-import subprocess
-import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..paths import DEFAULT_ROLLER, PROBLEMS, ROOT
+from ..plots import shakedown_map as plot_map
+from ..study import cli as study
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy shakedown-map", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "studies", "shakedown_map"))
     ap.add_argument("--jobs", type=int, default=os.cpu_count())
     ap.add_argument("--scheduler")
     ap.add_argument("--resume", action="store_true")
-    ap.add_argument("--roller", default=os.path.join(ROOT, "build", "roller"))
-    ap.add_argument("--study", default=os.path.join(ROOT, "problems", "studies", "shakedown_map.toml"))
-    args = ap.parse_args()
-    cmd = ["/usr/bin/python3", os.path.join(ROOT, "scripts", "study.py"), args.study, "--out", args.out,
-           "--jobs", str(args.jobs), "--roller", args.roller]
-    cmd += ["--scheduler", args.scheduler] if args.scheduler else []
-    cmd += ["--resume"] if args.resume else []
-    rc = subprocess.run(cmd).returncode
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
+    ap.add_argument("--study", default=os.path.join(PROBLEMS, "studies", "shakedown_map.toml"))
+    args = ap.parse_args(argv)
+    options = [args.study, "--out", args.out, "--jobs", str(args.jobs), "--roller", args.roller]
+    options += ["--scheduler", args.scheduler] if args.scheduler else []
+    options += ["--resume"] if args.resume else []
+    rc = study.main(options)
     if rc != 0:
         return rc
-    return subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "plot_shakedown_map.py"),
-                           os.path.join(args.out, "study.csv")]).returncode
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    return plot_map.main([os.path.join(args.out, "study.csv")])

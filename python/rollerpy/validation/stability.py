@@ -1,9 +1,8 @@
-#!/usr/bin/python3
 """Stiff and extreme cases (docs/stability.md): every case on both contact backends.
 
-usage: /usr/bin/python3 scripts/stability.py [--out out/stability] [--only CASE,CASE]
-                                             [--timeout 600] [--roller ./build/roller]
-                                             [--no-run] [--source TEXT]
+usage: ./rollerpy stability [--out out/stability] [--only CASE,CASE]
+                           [--timeout 600] [--roller ./build/roller]
+                           [--no-run] [--source TEXT]
 
 Runs `roller run` once per case and backend (one process at a time, each under a timeout,
 killed with its process group when it exceeds it) into OUT/<case>/<backend>/ (log beside it:
@@ -13,7 +12,7 @@ OUT/<case>/<backend>.log), then measures every run:
   friction-cone violation max(|p_t| - mu p_n)+ over all contact.csv rows (absolute [MPa] and
   relative to the largest p_n of the run),
   non-finite numbers in ANY output file: csv cells, json values (nlohmann writes NaN as null,
-  so null counts too), every DataArray of every VTU (decoded with plot_scene.py's decoder),
+  so null counts too), every DataArray of every VTU (rollerpy.scan, rollerpy.vtu),
   every float of the CBOR state files, and nan/inf tokens in the text files (pvd, toml, log),
   the failure message (summary.json "message", else the last "error:" line of the log).
 Writes OUT/stability.csv and OUT/table.md (the Markdown table of docs/stability.md).
@@ -22,23 +21,19 @@ The cases, their base scenes and what "dt x10" means: docs/stability.md.
 """
 import argparse
 import csv
-import json
 import math
 import os
 import re
 import shutil
-import struct
 import subprocess
-import sys
 import time
-import tomllib
-import xml.etree.ElementTree as ET
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_scene import decode, read_vtu  # noqa: E402
-from roller_study.point import run_logged  # noqa: E402
+from ..outputs import num, read_rows, read_scene, read_summary
+from ..paths import ROOT
+from ..runner import contact_option, roller_command, run
+from ..scan import scan_outputs
 
 Z1 = "problems/z1_outf05.toml"
 HERTZ = "problems/hertz.toml"
@@ -89,17 +84,15 @@ NOT_RUN = [("layers", "stiffness ratio 1e6 between two strip layers",
             "not run: a strip has one material (no layered strips in roller)")]
 BACKENDS = ["penalty", "ipopt"]
 
-NONFINITE_TOKEN = re.compile(r"(?<![A-Za-z_])[-+]?(nan|inf|infinity)(?![A-Za-z_])", re.I)
-
 
 # ---------------------------------------------------------------- running
 
+
 def run_one(roller, scene, extra, backend, out, log, timeout):
+    """A fresh run of the scene into `out` (an earlier one removed), its log in `log`: a RunResult."""
     if os.path.isdir(out):
         shutil.rmtree(out)
-    cmd = [roller, "run", scene, "--out", out] + (["--contact", backend] if backend else []) + extra
-    rc, timed_out, wall = run_logged(cmd, log, timeout)
-    return cmd, rc, timed_out, wall
+    return run(roller_command(roller, scene, out, *contact_option(backend), *extra), log, timeout)
 
 
 def shell_command(cmd):
@@ -108,143 +101,13 @@ def shell_command(cmd):
     return " ".join(q(a) for a in cmd)
 
 
-# ---------------------------------------------------------------- non-finite scan
-
-def cbor_floats(data):
-    """All floats of a CBOR document (a linear scan of the data item heads)."""
-    out, i, n = [], 0, len(data)
-    while i < n:
-        b = data[i]
-        major, ai = b >> 5, b & 31
-        i += 1
-        if major == 7:
-            if ai == 25:
-                out.append(struct.unpack(">e", data[i:i + 2])[0]); i += 2
-            elif ai == 26:
-                out.append(struct.unpack(">f", data[i:i + 4])[0]); i += 4
-            elif ai == 27:
-                out.append(struct.unpack(">d", data[i:i + 8])[0]); i += 8
-            elif ai == 24:
-                i += 1
-            continue
-        if ai < 24:
-            length = ai
-        elif ai in (24, 25, 26, 27):
-            size = 1 << (ai - 24)
-            length = int.from_bytes(data[i:i + size], "big")
-            i += size
-        elif ai == 31:
-            length = 0  # indefinite length: the items follow, a break (0xff) ends them
-        else:
-            raise ValueError("bad CBOR head 0x%02x at byte %d" % (b, i - 1))
-        if major in (2, 3):
-            i += length
-    return out
-
-
-def json_nonfinite(value):
-    if value is None:
-        return 1
-    if isinstance(value, float):
-        return 0 if math.isfinite(value) else 1
-    if isinstance(value, dict):
-        return sum(json_nonfinite(v) for v in value.values())
-    if isinstance(value, list):
-        return sum(json_nonfinite(v) for v in value)
-    return 0
-
-
-def scan_file(path):
-    """Number of non-finite values in one output file (or a string saying why it is unreadable)."""
-    ext = os.path.splitext(path)[1]
-    if ext == ".csv":
-        bad = 0
-        with open(path, newline="") as f:
-            for row in csv.reader(f):
-                for cell in row:
-                    c = cell.strip()
-                    if NONFINITE_TOKEN.fullmatch(c):
-                        bad += 1
-                        continue
-                    try:
-                        bad += not math.isfinite(float(c))
-                    except ValueError:
-                        pass
-        return bad
-    if ext == ".json":
-        with open(path) as f:
-            text = f.read()
-        try:
-            value = json.loads(text)
-        except ValueError as e:
-            return "invalid JSON (%s)" % e
-        return json_nonfinite(value)
-    if ext == ".vtu":
-        try:
-            read_vtu(path)  # the structure plot_scene.py relies on
-            root = ET.parse(path).getroot()
-            bad = 0
-            compressed = root.get("compressor") == "vtkZLibDataCompressor"
-            for array in root.iter("DataArray"):
-                values = decode(array, compressed)
-                if values.dtype.kind == "f":
-                    bad += int(np.count_nonzero(~np.isfinite(values)))
-            return bad
-        except Exception as e:  # noqa: BLE001
-            return "unreadable VTU (%s)" % e
-    if ext == ".cbor":
-        with open(path, "rb") as f:
-            data = f.read()
-        try:
-            return sum(not math.isfinite(v) for v in cbor_floats(data))
-        except (ValueError, struct.error) as e:
-            return "unreadable CBOR (%s)" % e
-    with open(path, errors="replace") as f:  # pvd, toml, log: text
-        return len(NONFINITE_TOKEN.findall(f.read()))
-
-
-def scan_outputs(out, log):
-    files = [log] if os.path.exists(log) else []
-    for d, _, names in os.walk(out):
-        files += [os.path.join(d, n) for n in sorted(names)]
-    problems = []
-    for p in files:
-        r = scan_file(p)
-        if r:
-            problems.append("%s: %s" % (os.path.relpath(p, os.path.dirname(out)), r))
-    return len(files), problems
-
-
 # ---------------------------------------------------------------- measuring
 
-def read_rows(path):
-    if not os.path.exists(path):
-        return []
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(text):
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return float("nan")
-
-
 def measure(case, scene, backend, out, log, rc, timed_out, wall):
-    summary = {}
-    if os.path.exists(os.path.join(out, "summary.json")):
-        try:
-            with open(os.path.join(out, "summary.json")) as f:
-                summary = json.load(f)
-        except ValueError:
-            summary = {}
-    resolved = {}
-    if os.path.exists(os.path.join(out, "scene.resolved.toml")):
-        with open(os.path.join(out, "scene.resolved.toml"), "rb") as f:
-            resolved = tomllib.load(f)
-    solver = read_rows(os.path.join(out, "solver.csv"))
-    contact = read_rows(os.path.join(out, "contact.csv"))
+    summary = read_summary(out, missing_ok=True)
+    resolved = read_scene(out) if os.path.exists(os.path.join(out, "scene.resolved.toml")) else {}
+    solver = read_rows(os.path.join(out, "solver.csv"), missing_ok=True)
+    contact = read_rows(os.path.join(out, "contact.csv"), missing_ok=True)
     mu = resolved.get("contact", {}).get("friction", float("nan"))
     tol = resolved.get("newton", {}).get("residual_tolerance", float("nan"))
 
@@ -258,7 +121,8 @@ def measure(case, scene, backend, out, log, rc, timed_out, wall):
     pt = np.array([num(r["p_t"]) for r in contact]) if contact else np.zeros(0)
     cone = float(np.max(np.maximum(np.abs(pt) - mu * pn, 0.0))) if len(pn) else float("nan")
     pn_max = float(np.max(pn)) if len(pn) else float("nan")
-    n_files, nonfinite = scan_outputs(out, log)
+    scan = scan_outputs(out, log)
+    n_files, nonfinite = scan.files, scan.problems(out)
 
     message = summary.get("message", "")
     if timed_out:
@@ -287,8 +151,8 @@ def measure(case, scene, backend, out, log, rc, timed_out, wall):
 
 def hertz_note(out, resolved):
     """Largest p_n of the last step against the Hertz p0 for the measured load."""
-    roller = read_rows(os.path.join(out, "roller.csv"))
-    contact = read_rows(os.path.join(out, "contact.csv"))
+    roller = read_rows(os.path.join(out, "roller.csv"), missing_ok=True)
+    contact = read_rows(os.path.join(out, "contact.csv"), missing_ok=True)
     if not roller or not contact:
         return ""
     last = roller[-1]["step"]
@@ -346,8 +210,8 @@ def provenance(roller, source):
         time.strftime("%Y-%m-%d %H:%M", time.gmtime()), roller, built, source)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy stability", description=__doc__.split("\n")[0])
     ap.add_argument("--out", default="out/stability")
     ap.add_argument("--only", default="", help="comma-separated case ids")
     ap.add_argument("--timeout", type=float, default=600.0)
@@ -355,8 +219,8 @@ def main():
     ap.add_argument("--no-run", action="store_true", help="measure existing outputs only")
     ap.add_argument("--source", default="", help="what the binary was built from (for table.md; "
                     "default: git describe of this working tree)")
-    args = ap.parse_args()
-    os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    args = ap.parse_args(argv)
+    os.chdir(ROOT)
     only = set(filter(None, args.only.split(",")))
     os.makedirs(args.out, exist_ok=True)
 
@@ -374,12 +238,11 @@ def main():
             if args.no_run:
                 rc, timed_out, wall = None, False, float("nan")
                 if os.path.exists(os.path.join(out, "summary.json")):
-                    with open(os.path.join(out, "summary.json")) as f:
-                        s = json.load(f)
+                    s = read_summary(out)
                     rc, wall = (0 if s.get("converged") else 1), s.get("wall_s", float("nan"))
             else:
-                cmd, rc, timed_out, wall = run_one(args.roller, scene, extra, backend, out, log,
-                                                   args.timeout)
+                result = run_one(args.roller, scene, extra, backend, out, log, args.timeout)
+                cmd, rc, timed_out, wall = result.command, result.exit_code, result.timed_out, result.wall_s
             r = measure(case, scene, backend, out, log, rc, timed_out, wall)
             if remark and backend in remark.split(":")[0]:
                 r["note"] = (r["note"] + "; " if r["note"] else "") + remark
@@ -406,7 +269,3 @@ def main():
     print("%d runs in %.0f s; %s, %s" % (
         sum(r["exit_code"] != "not run" for r in rows), time.monotonic() - t_start,
         os.path.join(args.out, "stability.csv"), os.path.join(args.out, "table.md")))
-
-
-if __name__ == "__main__":
-    main()

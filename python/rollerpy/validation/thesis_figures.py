@@ -1,13 +1,12 @@
-#!/usr/bin/python3
 """Draws every figure of the thesis's chapter 5: runs the command block of docs/figures.md (between
 its `thesis-figures:begin` and `:end` markers) and copies one PNG per thesis figure to docs/img/,
 where docs/thesis-figures.md shows them.
 
-usage: /usr/bin/python3 scripts/thesis_figures.py [--roller PATH] [--work DIR] [--no-copy]
+usage: ./rollerpy thesis-figures [--roller PATH] [--work DIR] [--no-copy]
   --roller  the roller binary the block's `./build/roller` stands for (default: build/roller)
   --work    the folder to run in (default: the repository; out/ is created there). Another folder
-            gets a copy of problems/ and links to scripts/ and the binary, so a test can run the
-            block in a scratch folder.
+            gets a copy of problems/ and links to the launcher ./rollerpy and the binary, so a
+            test can run the block in a scratch folder.
   --no-copy check that every figure was drawn, copy nothing.
 The block is run by bash with `set -euo pipefail`: the first failing command stops it and this
 script exits 1; a figure that was not drawn is named and exits 1 too.
@@ -18,7 +17,8 @@ import shutil
 import subprocess
 import sys
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from ..paths import DEFAULT_ROLLER, ROOT
+
 FIGURES_MD = os.path.join(ROOT, "docs", "figures.md")
 IMG = os.path.join(ROOT, "docs", "img")
 
@@ -81,12 +81,12 @@ def block():
 def prepare(work, roller):
     """A scratch folder as the block expects it: a copy of problems/ (a scene's relative paths,
     such as z3_data02's ../out/z3_data01/state_final.cbor, must resolve inside the scratch folder,
-    which through a link to problems/ they would not), links to scripts/ and the binary."""
+    which through a link to problems/ they would not), links to the launcher and the binary."""
     os.makedirs(os.path.join(work, "build"), exist_ok=True)
     if not os.path.exists(os.path.join(work, "problems")):
         shutil.copytree(os.path.join(ROOT, "problems"), os.path.join(work, "problems"))
-    if not os.path.exists(os.path.join(work, "scripts")):
-        os.symlink(os.path.join(ROOT, "scripts"), os.path.join(work, "scripts"))
+    if not os.path.exists(os.path.join(work, "rollerpy")):
+        os.symlink(os.path.join(ROOT, "rollerpy"), os.path.join(work, "rollerpy"))
     link = os.path.join(work, "build", "roller")
     if not os.path.exists(link):
         os.symlink(os.path.abspath(roller), link)
@@ -99,18 +99,19 @@ def save_small(source, target):
     Image.open(source).convert("RGB").quantize(colors=128).save(target, optimize=True)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--roller", default=os.path.join(ROOT, "build", "roller"))
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy thesis-figures", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
     ap.add_argument("--work", default=ROOT)
     ap.add_argument("--no-copy", action="store_true")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if not os.access(args.roller, os.X_OK):
         sys.exit("thesis_figures: --roller %s is not an executable (build it: bash scripts/build.sh)" % args.roller)
     work = os.path.abspath(args.work)
     if work != ROOT:
         prepare(work, args.roller)
-    elif os.path.abspath(args.roller) != os.path.join(ROOT, "build", "roller"):
+    elif os.path.abspath(args.roller) != DEFAULT_ROLLER:
         sys.exit("thesis_figures: --roller other than build/roller needs --work (a scratch folder)")
     r = subprocess.run(["bash", "-euo", "pipefail", "-c", block()], cwd=work)
     if r.returncode != 0:
@@ -122,7 +123,3 @@ def main():
         for number, source in sorted(FIGURES.items()):
             save_small(os.path.join(work, source), os.path.join(IMG, "thesis_%s.png" % number))
     print("thesis_figures: %d figures drawn%s" % (len(FIGURES), "" if args.no_copy else ", copied to " + IMG))
-
-
-if __name__ == "__main__":
-    main()

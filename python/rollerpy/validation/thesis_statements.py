@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """Measures the thesis's chapter-5 statements that docs/thesis-figures.md checks against maps
 (Z1: figures 5.4-5.6; Z2: 5.10-5.12), from the output folders of the shipped scenes.
 
-usage: /usr/bin/python3 scripts/thesis_statements.py [--out out]
+usage: ./rollerpy thesis-statements [--out out]
 reads OUT/z1_outf10 and OUT/z2_large, OUT/z2_infini (runs of problems/<name>.toml) and prints,
 per statement, the numbers the page quotes. Element values (integration-point means) are used
 where the thesis says its maps are Gauss-point values (Z1, its figure 5.3); ε is the VTU's
@@ -10,25 +9,26 @@ Green-Lagrange total `strain` and the step's own `strain_increment`, component o
 """
 import argparse
 import os
-import sys
 
+import matplotlib.tri as mtri
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.tri as mtri  # noqa: E402
-from plot_scene import read_contact, read_vtu, reference_mesh, top_nodes, triangles, von_mises, vtu_path  # noqa: E402
+from ..outputs import read_contact, touching_x
+from ..plots import plt
+from ..plots.scene import von_mises
+from ..vtu import read_vtu, reference_mesh, top_nodes, triangles, vtu_path
 
 
 def contact_nodes(out, step):
     """x of the nodes in contact at the step (contact.csv), sorted."""
-    return sorted(float(r["x"]) for r in read_contact(out) if int(r["step"]) == step and r["status"] != "open")
+    return touching_x(read_contact(out), step)
 
 
 def top_layer(out, step):
     """The elements touching the top surface, with their current centroid x, sorted by x, and the
     step's element data."""
-    points, elements, _, cd = read_vtu(vtu_path(out, step))  # points: the deformed positions
+    vtu = read_vtu(vtu_path(out, step))  # points: the deformed positions
+    points, elements, cd = vtu.points, vtu.elements, vtu.cell_data
     top = set(top_nodes(reference_mesh(out)[0]))
     x = points[:, 0]
     layer = [i for i, e in enumerate(elements) if top.intersection(e)]
@@ -60,8 +60,8 @@ def z1_middle_zone(out, step):
 def z1_uy_ellipse(out, step):
     """Figure 5.5: the u_y contours under the roller are near-elliptic. The contour at half the
     surface's largest depression, fitted by a half-ellipse centred on the top surface."""
-    current, elements, pd, _ = read_vtu(vtu_path(out, step))
-    u = pd["displacement"]
+    vtu = read_vtu(vtu_path(out, step))
+    current, elements, u = vtu.points, vtu.elements, vtu.point_data["displacement"]
     points = reference_mesh(out)[0]
     top = top_nodes(points)
     level = 0.5 * u[top, 1].min()
@@ -88,10 +88,10 @@ def z1_fold(out, steps):
     when it moves up and to the left, and grows when it is pressed in again at step 5."""
     top = top_nodes(reference_mesh(out)[0])
     for step in steps:
-        current, _, pd, _ = read_vtu(vtu_path(out, step))
+        vtu = read_vtu(vtu_path(out, step))
         xs = contact_nodes(out, step)
-        x = current[top, 0]
-        uy = pd["displacement"][top, 1]
+        x = vtu.points[top, 0]
+        uy = vtu.point_data["displacement"][top, 1]
         groove = np.argmin(uy)
         highest = np.argmax(uy)
         line = "Z1 step %d: groove bottom u_y = %+.3f mm at x = %.1f; highest top node u_y = %+.3f at x = %.1f" % (
@@ -107,8 +107,8 @@ def z1_fold(out, steps):
 def z2_large_vs_infini(large, infini, step):
     """Figures 5.10-5.12: LARGE and INFINI "similar qualitatively, slightly different
     quantitatively": per field, ||L - I|| / ||L|| over the elements and the correlation of L and I."""
-    _, _, _, cl = read_vtu(vtu_path(large, step))
-    _, _, _, ci = read_vtu(vtu_path(infini, step))
+    cl = read_vtu(vtu_path(large, step)).cell_data
+    ci = read_vtu(vtu_path(infini, step)).cell_data
     fields = {"sqrt_I2 (von Mises)": (von_mises(cl["stress"]), von_mises(ci["stress"]))}
     for k, c in (("xx", 0), ("yy", 1), ("xy", 3)):
         fields["tau_" + k] = (cl["stress"][:, c], ci["stress"][:, c])
@@ -123,10 +123,11 @@ def z2_large_vs_infini(large, infini, step):
               % (name, 100.0 * rel, corr, np.abs(a).max(), np.abs(b).max()))
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="rollerpy thesis-statements", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="out", help="the folder holding the scenes' output folders")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     z1 = os.path.join(args.out, "z1_outf10")
     for step in (4, 7):
         z1_middle_zone(z1, step)
@@ -134,7 +135,3 @@ def main():
         z1_uy_ellipse(z1, step)
     z1_fold(z1, (3, 4, 5, 6))
     z2_large_vs_infini(os.path.join(args.out, "z2_large"), os.path.join(args.out, "z2_infini"), 6)
-
-
-if __name__ == "__main__":
-    main()
