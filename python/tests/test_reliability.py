@@ -1,31 +1,29 @@
-#!/usr/bin/python3
 """Nothing lost, nothing outside, the same answer twice (docs/stability.md, "Reliability").
 
-usage: /usr/bin/python3 tests/scripts/test_reliability.py ROLLER {environment|repeat|kill} [--kills N] [--seed S]
-
-environment: an output folder that cannot be used (in /proc, under a file, a name too long, on a
-  read-only file system) ends with exit 2 and names the path; a disk that fills up while a run
+test_environment: an output folder that cannot be used (in /proc, under a file, a name too long, on
+  a read-only file system) ends with exit 2 and names the path; a disk that fills up while a run
   writes (a small tmpfs in a private mount namespace, `unshare -rm`, at many sizes) ends with exit
   3 or 0, never another code, with summary.json saying so; an Ipopt option naming a file is refused
   and the file is untouched; a memory cap far below the need ends with exit 3 and a summary.json.
-repeat: a multi-pass scene run twice gives byte-identical outputs (the timing columns aside).
-kill: runs of a multi-pass, a dynamic and a frictional scene killed with SIGKILL at random
-  moments and resumed (--resume) leave every file of the uninterrupted run, byte-identical.
-Exit code 0 when every check passed; the first failure raises with what differed.
+test_repeat: a multi-pass scene run twice gives byte-identical outputs (the timing columns aside).
+test_kill_resume: runs of a multi-pass, a dynamic and a frictional scene killed with SIGKILL at
+  random moments (--kills per scene, --seed) and resumed (--resume) leave every file of the
+  uninterrupted run, byte-identical.
+The first failure raises with what differed.
 """
-import argparse
-import json
 import os
 import random
-import resource
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import pytest
+
+from rollerpy.outputs import read_summary
+from rollerpy.paths import PROBLEMS
+from rollerpy.runner import run as run_logged
 # Columns and keys that hold the machine's timing, not the computation's results.
 TIMING_COLUMNS = {"solver.csv": {"wall_s", "ipopt_time_s"}}
 # A resumed run factorises an elastic strip's tangent once afresh, where the uninterrupted run
@@ -35,17 +33,19 @@ TIMING_KEYS = {"wall_s", "peak_memory_mb", "first_step", "resumed"}
 
 
 def scene(name):
-    return os.path.join(ROOT, "problems", name + ".toml")
+    return os.path.join(PROBLEMS, name + ".toml")
 
 
-def run(roller, args, timeout=600, **kwargs):
-    r = subprocess.run([roller] + args, capture_output=True, text=True, timeout=timeout, **kwargs)
-    return r.returncode, r.stdout + r.stderr
-
-
-def read_summary(folder):
-    with open(os.path.join(folder, "summary.json")) as f:
-        return json.load(f)
+def run(roller, args, timeout=600, prefix=()):
+    """roller ARGS (behind a prefix such as prlimit): (exit code, output); a timeout fails the test."""
+    fd, log = tempfile.mkstemp(suffix=".log")
+    os.close(fd)
+    try:
+        result = run_logged(list(prefix) + [roller] + args, log, timeout)
+        assert not result.timed_out, "roller %s: no result within %d s" % (" ".join(args), timeout)
+        return result.exit_code, result.output()
+    finally:
+        os.remove(log)
 
 
 def without_columns(path, columns):
@@ -162,12 +162,8 @@ def check_ipopt_file_options(roller, tmp):
 def check_memory_cap(roller, tmp):
     out = os.path.join(tmp, "capped")
     cap = 300 * 1024 * 1024  # the run needs about 0.7 GiB of address space
-
-    def limit():
-        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
-
     rc, text = run(roller, ["run", scene("block_compression"), "--refine", "24", "--steps", "1", "--out", out],
-                   timeout=120, preexec_fn=limit)
+                   timeout=120, prefix=["prlimit", "--as=%d" % cap, "--"])
     assert rc == 3, "memory cap: exit %d, expected 3\n%s" % (rc, text)
     assert "GiB" in text and "out_of_core = true" in text and "ulimit -v" in text, text
     summary = read_summary(out)
@@ -230,30 +226,23 @@ def check_kill_resume(roller, tmp, kills, rng):
     return done
 
 
-def main():
-    p = argparse.ArgumentParser()
-    p.add_argument("roller")
-    p.add_argument("check", choices=["environment", "repeat", "kill"])
-    p.add_argument("--kills", type=int, default=4, help="kills per scene (3 scenes)")
-    p.add_argument("--seed", type=int, default=1)
-    a = p.parse_args()
-    roller = os.path.abspath(a.roller)
-    tmp = tempfile.mkdtemp(prefix="roller_reliability_")
-    try:
-        if a.check == "environment":
-            check_unusable_folders(roller, tmp)
-            check_read_only(roller, tmp)
-            check_full_disk(roller, tmp)
-            check_ipopt_file_options(roller, tmp)
-            check_memory_cap(roller, tmp)
-        elif a.check == "repeat":
-            check_repeat(roller, tmp)
-        else:
-            check_kill_resume(roller, tmp, a.kills, random.Random(a.seed))
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
-    return 0
+@pytest.fixture
+def tmp(tmp_path):
+    return str(tmp_path)
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def test_environment(roller, tmp):
+    check_unusable_folders(roller, tmp)
+    check_read_only(roller, tmp)
+    check_full_disk(roller, tmp)
+    check_ipopt_file_options(roller, tmp)
+    check_memory_cap(roller, tmp)
+
+
+def test_repeat(roller, tmp):
+    check_repeat(roller, tmp)
+
+
+def test_kill_resume(roller, tmp, request):
+    kills = request.config.getoption("--kills")
+    assert check_kill_resume(roller, tmp, kills, random.Random(request.config.getoption("--seed"))) == 3 * kills
