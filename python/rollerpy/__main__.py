@@ -34,10 +34,9 @@ COMMANDS = {
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
-    ap = argparse.ArgumentParser(prog="rollerpy", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter,
-                                 epilog="commands:\n" + "\n".join("  %-22s %s" % (name, what)
-                                                                 for name, (_, what) in COMMANDS.items()))
+    listing = "\n".join("  %-22s %s" % (name, what) for name, (_, what) in COMMANDS.items())
+    ap = argparse.ArgumentParser(prog="rollerpy", description=__doc__, epilog="commands:\n" + listing,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("command", choices=COMMANDS, metavar="COMMAND")
     ap.add_argument("options", nargs=argparse.REMAINDER, help="the command's options (COMMAND --help)")
     if not argv:

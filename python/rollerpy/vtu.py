@@ -248,5 +248,3 @@ def write_test_vtu(path, displacement, compressed):
                 "      <Cells>\n" + array("Int64", "connectivity", np.array([0, 1, 2, 0, 2, 3], "<i8")) +
                 array("Int64", "offsets", np.array([3, 6], "<i8")) + array("UInt8", "types", np.array([5, 5], "u1")) +
                 "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n")
-
-

@@ -32,7 +32,8 @@ def test_the_named_figures_are_written(cattaneo_out):
         assert is_png(os.path.join(cattaneo_out, "figures", name)), name
 
 
-@pytest.mark.parametrize("args", [["--values", "element", "--fields", "tau_xy"], ["--xlim", "90,110", "--ylim", "80,100"],
+@pytest.mark.parametrize("args", [["--values", "element", "--fields", "tau_xy"],
+                                  ["--xlim", "90,110", "--ylim", "80,100"],
                                   ["--whole", "--levels=-300,-100,100,300", "--fields", "tau_xx"]])
 def test_zoom_element_values_and_level_lists(cattaneo_out, args):
     path = os.path.join(cattaneo_out, "figures", "map_%s_step8.png" % (args[-1] if "--fields" in args else "sqrt_I2"))

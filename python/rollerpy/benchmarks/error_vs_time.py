@@ -8,7 +8,8 @@ Runs DIR/benchmarks/bench_error_time (default DIR: build/ of this checkout; when
 missing it is built first: `bash scripts/build.sh` for build/, a CMake build of the one target
 otherwise), once per scene, as points of the study runner (rollerpy.study): one scene at a time
 by default (timings undisturbed), --jobs N side by side on a Dask LocalCluster or --scheduler on
-a cluster; --resume keeps the scenes already complete in --out (OUT/scenes/SCENE/). The program sweeps mesh refinement, penalty factor and Ipopt tolerance for each
+a cluster; --resume keeps the scenes already complete in --out (OUT/scenes/SCENE/). The program
+sweeps mesh refinement, penalty factor and Ipopt tolerance for each
 scene, times every run and compares it with a reference run (ipopt, one mesh level finer, the
 tightest tolerance; Hertz pressure: the analytic solution). Every run is guarded: a failure, an
 exception or the per-run budget (--max-run-seconds, stopped between steps) ends that run only
@@ -16,7 +17,8 @@ and is recorded as a row with status failed / error / timeout (later, costlier r
 sweep: skipped). Then one log-log PNG per scene and measure is drawn into --out (default
 out/error_vs_time): error, max penetration or equilibrium residual against wall time, one curve
 per backend and swept parameter, the Pareto front marked; only converged runs are drawn; plus
-SCENE_overview.png (all six panels of a scene) and tables.md (the CSV as Markdown tables). At the end: which error is against what, and the wall time spent per scene.
+SCENE_overview.png (all six panels of a scene) and tables.md (the CSV as Markdown tables). At the
+end: which error is against what, and the wall time spent per scene.
 --plot-only redraws from an existing CSV. --check validates the CSV (columns present, every
 run converged, errors of converged runs finite, the finer Hertz mesh has the smaller pressure
 error) and exits non-zero when it is not sane.
@@ -164,7 +166,8 @@ def markdown_tables(rows):
             lines.append(f"| {r['backend']} | {r['parameter']} | {fnum(r['value']):g} | {r['refine']} | {r['dofs']} | "
                          f"{r['status']} | {fnum(r['wall_s']):.2f} | {r['iterations']} | {r['factorizations']} | "
                          f"{g(r['max_penetration'])} | {g(r['residual_max'])} | {g(r['force_error'])} | "
-                         f"{g(r['pressure_l2_error'])} | {g(r['final_sqrt_i2_error'])} | {g(r['final_tau_xx_error'])} |")
+                         f"{g(r['pressure_l2_error'])} | {g(r['final_sqrt_i2_error'])} | "
+                         f"{g(r['final_tau_xx_error'])} |")
     return "\n".join(lines) + "\n"
 
 
@@ -219,7 +222,8 @@ def summary(rows, default_study, elapsed):
                   for s in ("converged", "failed", "error", "timeout", "skipped")]
         total += ref + sweeps
         print(f"  {scene:<12} {ref:10.1f} {sweeps:9.1f} {ref + sweeps:9.1f}  {'/'.join(map(str, counts))}")
-    print(f"  {'all':<12} {'':>10} {'':>9} {total:9.1f}  ({total / 60:.1f} min; the program ran {elapsed / 60:.1f} min)")
+    print(f"  {'all':<12} {'':>10} {'':>9} {total:9.1f}  "
+          f"({total / 60:.1f} min; the program ran {elapsed / 60:.1f} min)")
     if default_study:
         verdict = "fits" if elapsed <= STUDY_BUDGET_S else "does NOT fit"
         print(f"default study: {elapsed / 60:.1f} min, {verdict} in the {STUDY_BUDGET_S / 60:.0f}-minute budget")

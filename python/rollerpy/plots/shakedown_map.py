@@ -67,9 +67,8 @@ def main(argv=None):
         limits.setdefault(mu, shakedown_limit(mu))
         load = float(r["passes.p0_over_k"] or "nan")
         expected = "elastic shakedown" if load < limits[mu] else "not elastic shakedown"
-        print("| %.2f | %.2f | %.2f | %s | %s | %s | %.0f |" % (load, mu, limits[mu], expected,
-                                                             r.get("passes.verdict") or "—", r["status"],
-                                                             float(r["wall_s"])))
+        print("| %.2f | %.2f | %.2f | %s | %s | %s | %.0f |" % (
+            load, mu, limits[mu], expected, r.get("passes.verdict") or "—", r["status"], float(r["wall_s"])))
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "shakedown_map.png")
     fig.savefig(out, dpi=110)
     print("wrote", out)

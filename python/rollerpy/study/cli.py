@@ -106,4 +106,3 @@ def main(argv=None):
     bar.close()
     print("study: %d points, %d failed, %.1f s -> %s" % (len(records), failures, time.monotonic() - t0, csv_path))
     return 0
-

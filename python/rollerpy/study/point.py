@@ -11,8 +11,7 @@ RECORD = "point.json"
 
 
 def command(roller, scene, backend, set_values, out):
-    return roller_command(roller, scene, out, "--overwrite", *contact_option(backend),
-                                 *set_options(set_values))
+    return roller_command(roller, scene, out, "--overwrite", *contact_option(backend), *set_options(set_values))
 
 
 def make_task(index, name, cmd, out, backend=None, values=None, timeout=1e7, collect=(), env=None):

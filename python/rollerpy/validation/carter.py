@@ -252,17 +252,20 @@ def sweep(args):
                 n_stick=m["n_stick"], c_moment=m["c"], d_moment=m["d"], c_parabola=m["c_parabola"],
                 d_parabola=m["d_parabola"], c_status=m["c_status"],
                 d_status=m["d_status"], leading_edge=m["d"] + m["c"],
-                c_carter=c_carter, c_err=(m["c"] - c_carter) / c_carter if m["c"] > 0.0 and c_carter > 0.0 else float("nan"),
+                c_carter=c_carter,
+                c_err=(m["c"] - c_carter) / c_carter if m["c"] > 0.0 and c_carter > 0.0 else float("nan"),
                 c_from_creep=a * max(1.0 - xi_norm, 0.0),
                 dq_last_2a=(q_ratio - q_prev) / q_ratio,
                 dc_last_2a=(m["c"] - m_prev["c"]) / m["c"] if m["c"] > 0.0 else float("nan"),
-                rolled=xc_last - float(next(r for r in roller if int(r["step"]) == n_press)["xc"]), steps=last, wall_s=wall,
+                rolled=xc_last - float(next(r for r in roller if int(r["step"]) == n_press)["xc"]),
+                steps=last, wall_s=wall,
                 creep_carter=mu * a / R * (1.0 - math.sqrt(max(1.0 - q_ratio, 0.0))))
             results.append((row, m, frac))
             print("%-7s xi=%.3e xiR/(mu a)=%.3f  Q/(mu P)=%.4f (Carter %.4f)  a=%.4f  c=%.4f (Carter %.4f, %+.1f %%) "
                   "d+c=%.3f  c_parabola=%.3f c_status=%.3f  dQ,dc over last 2a: %+.2f %%, %+.2f %%  %.1f s"
                   % (backend, creep, xi_norm, q_ratio, row["q_theory"], a, m["c"], c_carter, 100 * row["c_err"],
-                     row["leading_edge"], m["c_parabola"], m["c_status"], 100 * row["dq_last_2a"], 100 * row["dc_last_2a"], wall),
+                     row["leading_edge"], m["c_parabola"], m["c_status"], 100 * row["dq_last_2a"],
+                     100 * row["dc_last_2a"], wall),
                   flush=True)
 
     keys = list(results[0][0].keys())
@@ -287,7 +290,8 @@ def sweep(args):
     ax1.set_ylim(0.0, 1.05)
     ax1.grid(alpha=0.3)
     ax1.legend(loc="lower right")
-    ax1.set_title("Creep (measured) under a prescribed traction" if args.traction else "Traction against creep (last step)")
+    ax1.set_title("Creep (measured) under a prescribed traction" if args.traction
+                  else "Traction against creep (last step)")
 
     target = min(fractions, key=lambda f: abs(f - PROFILE_FRACTION))
     xa = np.linspace(-1.0, 1.0, 401)

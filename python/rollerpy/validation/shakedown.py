@@ -119,10 +119,11 @@ def main(argv=None):
         if yield_ratio:
             f.write("First yield: p0/k = %.3f (Johnson %.1f: %+.1f %%), largest von Mises %.1f MPa at p0/k = 3.0\n\n"
                     % (yield_ratio, JOHNSON_FIRST_YIELD, 100 * (yield_ratio / JOHNSON_FIRST_YIELD - 1), vm))
-        f.write("| p0/k | backend | verdict | mean Δε̄ᵖ per pass | last / first | run [s] |\n|---|---|---|---|---|---|\n")
+        f.write("| p0/k | backend | verdict | mean Δε̄ᵖ per pass | last / first | run [s] |\n"
+                "|---|---|---|---|---|---|\n")
         for r in rows:
-            f.write("| %s | %s | %s | %s | %s | %s |\n" % (r["load"], r["backend"], r["verdict"], r["mean_dep"],
-                                                       r["last_over_first"], r["wall_s"]))
+            f.write("| %s | %s | %s | %s | %s | %s |\n" % (
+                r["load"], r["backend"], r["verdict"], r["mean_dep"], r["last_over_first"], r["wall_s"]))
         f.write("\nnon-finite values in the outputs: %d\n" % problems_total)
     print(open(os.path.join(args.out, "table.md")).read())
     return 0 if problems_total == 0 else 1

@@ -115,7 +115,8 @@ def main(argv=None):
         sys.exit("thesis_figures: --roller other than build/roller needs --work (a scratch folder)")
     r = subprocess.run(["bash", "-euo", "pipefail", "-c", block()], cwd=work)
     if r.returncode != 0:
-        sys.exit("thesis_figures: the block of %s stopped with exit %d (its output is above)" % (FIGURES_MD, r.returncode))
+        sys.exit("thesis_figures: the block of %s stopped with exit %d (its output is above)"
+                 % (FIGURES_MD, r.returncode))
     missing = [f for f in FIGURES.values() if not os.path.exists(os.path.join(work, f))]
     if missing:
         sys.exit("thesis_figures: not drawn: " + ", ".join(missing))
