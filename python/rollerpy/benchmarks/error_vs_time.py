@@ -23,7 +23,6 @@ end: which error is against what, and the wall time spent per scene.
 run converged, errors of converged runs finite, the finer Hertz mesh has the smaller pressure
 error) and exits non-zero when it is not sane.
 """
-import argparse
 import csv
 import math
 import os
@@ -31,6 +30,7 @@ import subprocess
 import sys
 import time
 
+from ..command import parser
 from ..outputs import num as fnum
 from ..outputs import read_rows
 from ..paths import ROOT as REPO
@@ -296,8 +296,7 @@ def run_scenes(args, bench, csv_path):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy bench-error-vs-time", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("bench-error-vs-time", __doc__)
     ap.add_argument("--quick", action="store_true", help="Hertz and Cattaneo on coarse meshes (the CTest check)")
     ap.add_argument("--build", default=os.path.join(REPO, "build"), help="build directory (default: build/)")
     ap.add_argument("--out", default="out/error_vs_time")

@@ -13,11 +13,11 @@ times from solver.csv (wall_s summed over the pass's steps) beside the whole pro
 time, peak memory (/usr/bin/time -v) and output folder size. Writes OUT/passes.csv and prints a
 Markdown table; each run's log (roller's output and /usr/bin/time's report) is OUT/<run>.log.
 """
-import argparse
 import csv
 import os
 import re
 
+from ..command import parser
 from ..outputs import num, read_rows
 from ..paths import DEFAULT_ROLLER
 from ..runner import contact_option, roller_command, run as run_roller
@@ -51,8 +51,7 @@ def run(args, scene, backend, passes):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy bench-passes", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("bench-passes", __doc__)
     ap.add_argument("--roller", default=DEFAULT_ROLLER)
     ap.add_argument("--out", default="out/bench_passes")
     ap.add_argument("--element-size", default="0.1")

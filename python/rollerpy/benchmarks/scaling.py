@@ -17,12 +17,12 @@ Markdown table with the fitted exponent of time against dofs (sizes >= 1e4).
 --set adds scene overrides to every run and to the unit factorisation, e.g.
 --set linear_solver.out_of_core=true (docs/benchmarks.md, memory).
 """
-import argparse
 import csv
 import json
 import math
 import os
 
+from ..command import parser
 from ..outputs import read_rows
 from ..paths import ROOT
 from ..plots import plt
@@ -106,8 +106,7 @@ def fit_exponent(points):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy bench-scaling", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("bench-scaling", __doc__)
     ap.add_argument("--build", default="build")
     ap.add_argument("--out", default="out/scaling")
     ap.add_argument("--min-dofs", type=float, default=0)

@@ -15,12 +15,12 @@ sqrt(I2) = sigma_pl with I2 = 1/2 (s11^2 + s22^2 + 2 s12^2), s11 = a/3, s22 = b/
 (found from the captions' numbers, see docs/monotonicity.md).
 Needs numpy and matplotlib (the system python has them).
 """
-import argparse
 import json
 import os
 
 import numpy as np
 
+from ..command import parser
 from ..outputs import read_array
 from . import plt
 
@@ -168,8 +168,7 @@ def plot(out_dir):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy plot-monotonicity", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("plot-monotonicity", __doc__)
     ap.add_argument("out_dir")
     args = ap.parse_args(argv)
     written = plot(args.out_dir)

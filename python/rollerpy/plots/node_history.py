@@ -12,13 +12,13 @@ Writes into DIR (default: the first OUT's figures/):
   node<N>_history.csv   run, step, time, x0, y0, u_x, u_y, D_x, D_y for every run
 Needs numpy and matplotlib from Debian.
 """
-import argparse
 import csv
 import os
 import sys
 
 import numpy as np
 
+from ..command import parser
 from ..vtu import available_steps, read_vtu, reference_mesh, step_times, vtu_path
 from . import plt
 
@@ -37,8 +37,7 @@ def history(out, index):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy plot-node-history", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("plot-node-history", __doc__)
     ap.add_argument("outs", nargs="+", metavar="OUT")
     ap.add_argument("--node", type=int, required=True, help="node number, 1-based thesis numbering")
     ap.add_argument("--labels", default="", help="comma-separated legend names (default: folder names)")

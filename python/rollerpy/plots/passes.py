@@ -13,9 +13,9 @@ writes into OUT_DIR:
                       one curve per pass
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
-import argparse
 import os
 
+from ..command import parser
 from ..outputs import read_numbers, read_summary
 from . import plt
 
@@ -91,8 +91,7 @@ def plot(out):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy plot-passes", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("plot-passes", __doc__)
     ap.add_argument("out")
     args = ap.parse_args(argv)
     print("wrote %s and %s" % plot(args.out))

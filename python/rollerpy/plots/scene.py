@@ -38,7 +38,6 @@ writes into OUT_DIR/figures/:
                             of this run (dashed) at step N, same levels (e.g. pass 1 vs pass 2)
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
-import argparse
 import math
 import os
 import sys
@@ -49,6 +48,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
 
+from ..command import parser
 from ..outputs import read_contact, read_rows, read_scene, roller_at, touching_x
 from ..vtu import available_steps, read_vtu, reference_mesh, top_nodes, triangles, vtu_path
 from . import plt
@@ -420,8 +420,7 @@ def number_list(option, text, count=None):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy plot-scene", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("plot-scene", __doc__)
     ap.add_argument("out")
     ap.add_argument("--steps", default="", help="steps for the contour maps, e.g. 4,7 (default: the last)")
     ap.add_argument("--profile-steps", default="", help="steps for the surface profile, e.g. 0-12 (default: all)")

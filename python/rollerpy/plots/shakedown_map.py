@@ -8,12 +8,12 @@ Markdown table of the points against that limit.
 usage: ./rollerpy plot-shakedown-map STUDY_CSV [--out MAP.png]
 Default --out: shakedown_map.png beside the CSV.
 """
-import argparse
 import os
 import sys
 
 import numpy as np
 
+from ..command import parser
 from ..outputs import read_rows
 from ..validation.line_contact_shakedown import shakedown_limit
 from . import plt
@@ -25,8 +25,7 @@ STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy plot-shakedown-map", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("plot-shakedown-map", __doc__)
     ap.add_argument("csv")
     ap.add_argument("--out")
     args = ap.parse_args(argv)

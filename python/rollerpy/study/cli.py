@@ -15,11 +15,11 @@ same command (an interrupted study loses at most the points that were running). 
 process is given one BLAS thread when points run side by side (--jobs > 1 or a scheduler).
 Default DIR: out/studies/<study file name>; default --jobs: the number of cores.
 """
-import argparse
 import os
 import sys
 import time
 
+from ..command import parser
 from ..paths import DEFAULT_ROLLER, ROOT
 from . import engines, table
 from .point import command, finished_record, make_task, run_point
@@ -41,8 +41,7 @@ def tasks_of(study, args):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy study", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("study", __doc__)
     ap.add_argument("study")
     ap.add_argument("--out")
     ap.add_argument("--jobs", type=int, default=os.cpu_count())

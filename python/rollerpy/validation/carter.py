@@ -38,7 +38,6 @@ with Carter's s = (mu a/R)(1 - sqrt(1 - Q/(mu P))). Tractions Q/(mu P) = 0.36, 0
 Writes DIR/carter.csv and DIR/carter.png (and keeps the runs in DIR/<backend>_<k>/, each with its
 log DIR/<backend>_<k>.log).
 """
-import argparse
 import csv
 import math
 import os
@@ -47,6 +46,7 @@ import tomllib
 
 import numpy as np
 
+from ..command import parser
 from ..outputs import contact_profile, read_rows, read_summary
 from ..paths import DEFAULT_ROLLER, PROBLEMS, ROOT
 from ..plots import plt
@@ -171,7 +171,7 @@ def measured_creep(roller, s_prev):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy carter", description=__doc__.split("\n")[0])
+    ap = parser("carter", __doc__)
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "carter"))
     ap.add_argument("--roller", default=DEFAULT_ROLLER)
     ap.add_argument("--scene", default=os.path.join(PROBLEMS, "carter.toml"))

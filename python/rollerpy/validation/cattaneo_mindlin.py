@@ -13,13 +13,13 @@ Nodal forces are pressures times tributary lengths (the midpoint rule on the con
 Compares a with Hertz's sqrt(4PR/(pi E*)) and c/a with Cattaneo's sqrt(1 - Q/(mu P)); prints a
 Markdown table with the centre's horizontal offset (the tangential compliance) and the run time.
 """
-import argparse
 import math
 import os
 import sys
 
 import numpy as np
 
+from ..command import parser
 from ..outputs import contact_profile, read_rows, read_summary
 from ..paths import DEFAULT_ROLLER, PROBLEMS
 from ..runner import RunFailed, contact_option, roller_command, run
@@ -46,8 +46,7 @@ def half_widths(contact_rows, step):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy cattaneo-mindlin", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("cattaneo-mindlin", __doc__)
     ap.add_argument("--out", default="out/cattaneo_mindlin")
     ap.add_argument("--refine", default="1,2,3")
     ap.add_argument("--backends", default="ipopt,penalty")

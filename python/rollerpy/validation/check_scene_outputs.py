@@ -13,10 +13,10 @@ every CSV cell, JSON value, VTU DataArray, CBOR float and nan/inf token of the t
 the log (rollerpy.scan). Prints one line per run; exit code 1 if any run failed or wrote a
 non-finite number.
 """
-import argparse
 import glob
 import os
 
+from ..command import parser
 from ..paths import ROOT
 from ..scan import scan_outputs, self_check
 from .stability import run_one
@@ -28,8 +28,7 @@ def has_roller(scene):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy check-scene-outputs", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("check-scene-outputs", __doc__)
     ap.add_argument("--out", default="build/scene_outputs")
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=900.0)

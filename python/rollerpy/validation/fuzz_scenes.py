@@ -48,7 +48,6 @@ The CTest "fuzz" label runs a short fixed-seed variant (300 cases); a sanitizer 
 (-DROLLER_SANITIZE=ON) also runs 40 cases with --sanitized under the "fast" label
 (scripts/test_sanitized.sh). A long run for a night: --cases 10000 --seed $RANDOM.
 """
-import argparse
 import os
 import random
 import re
@@ -57,6 +56,7 @@ import shutil
 import time
 from dataclasses import dataclass
 
+from ..command import parser
 from ..paths import DEFAULT_ROLLER, PROBLEMS, ROOT
 from ..runner import roller_command, run
 from ..scan import FolderScan, Finding, files_under, scan_file, scan_outputs, self_check
@@ -284,8 +284,7 @@ def scan_command(paths):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy fuzz-scenes", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("fuzz-scenes", __doc__)
     ap.add_argument("--cases", type=int, default=200)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--roller", default=DEFAULT_ROLLER)

@@ -14,10 +14,10 @@ roll 16 mm = 8a to x = 108 under P (steps 4-19, 0.5a per step), lift 0.3 mm (ste
 window of passes.csv is then x = 96...104. --element-size changes the uniform size (0.1: 40
 elements across 2a, 4.8e4 dofs, the strip of `rollerpy bench-passes`) and --out the folder.
 """
-import argparse
 import math
 import os
 
+from ..command import parser
 from ..paths import PROBLEMS
 
 E, NU, R, A = 2.1e5, 0.3, 100.0, 2.0
@@ -148,8 +148,7 @@ def write_scenes(loads, passes, element_size, out):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy make-shakedown-scenes", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("make-shakedown-scenes", __doc__)
     ap.add_argument("--loads", default="3.0,3.7,4.5,5.5")
     ap.add_argument("--passes", type=int, default=5)
     ap.add_argument("--element-size", type=float, default=0.2)

@@ -19,12 +19,12 @@ Writes OUT/suite.csv (one row per run, written as it goes: an interrupted suite 
 and OUT/table.md; --no-run re-measures existing outputs; --resume keeps the rows of OUT/suite.csv
 whose run finished (converged or failed) and runs only the others, so a suite can span sessions.
 """
-import argparse
 import csv
 import itertools
 import os
 import statistics
 
+from ..command import parser
 from ..outputs import num, read_rows
 from ..paths import ROOT
 from ..scan import scan_outputs
@@ -92,8 +92,7 @@ def markdown(rows):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy rolling-suite", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("rolling-suite", __doc__)
     ap.add_argument("--out", default="out/rolling_suite")
     ap.add_argument("--refine", default="1,2,3")
     ap.add_argument("--mu", default="0.05,0.15,0.3,0.6")

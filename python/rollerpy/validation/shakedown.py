@@ -16,12 +16,12 @@ Writes OUT/shakedown.csv (one row per scene and backend), OUT/table.md and OUT/s
 load and backend), keeps every run in OUT/<scene>_<backend>/ with its passes.png and
 residual_depth.png (`rollerpy plot-passes`), and checks every output file for nan/inf.
 """
-import argparse
 import csv
 import os
 
 import numpy as np
 
+from ..command import parser
 from ..outputs import num, read_rows, read_scene, read_summary
 from ..paths import ROOT
 from ..plots import passes as plot_passes
@@ -46,8 +46,7 @@ def first_yield(args):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy shakedown", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("shakedown", __doc__)
     ap.add_argument("--out", default="out/shakedown")
     ap.add_argument("--backends", default="ipopt,penalty")
     ap.add_argument("--loads", default="30,37,45,55")

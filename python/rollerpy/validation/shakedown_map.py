@@ -6,17 +6,16 @@ usage: ./rollerpy shakedown-map [--out out/studies/shakedown_map] [--jobs N]
                                [--scheduler tcp://HOST:8786] [--resume]
                                [--roller build/roller] [--study FILE]
 """
-import argparse
 import os
 
+from ..command import parser
 from ..paths import DEFAULT_ROLLER, PROBLEMS, ROOT
 from ..plots import shakedown_map as plot_map
 from ..study import cli as study
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy shakedown-map", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("shakedown-map", __doc__)
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "studies", "shakedown_map"))
     ap.add_argument("--jobs", type=int, default=os.cpu_count())
     ap.add_argument("--scheduler")

@@ -19,7 +19,6 @@ Writes OUT/stability.csv and OUT/table.md (the Markdown table of docs/stability.
 --no-run re-measures the existing outputs without running roller.
 The cases, their base scenes and what "dt x10" means: docs/stability.md.
 """
-import argparse
 import csv
 import math
 import os
@@ -30,6 +29,7 @@ import time
 
 import numpy as np
 
+from ..command import parser
 from ..outputs import num, read_rows, read_scene, read_summary
 from ..paths import ROOT
 from ..runner import contact_option, roller_command, run
@@ -211,7 +211,7 @@ def provenance(roller, source):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy stability", description=__doc__.split("\n")[0])
+    ap = parser("stability", __doc__)
     ap.add_argument("--out", default="out/stability")
     ap.add_argument("--only", default="", help="comma-separated case ids")
     ap.add_argument("--timeout", type=float, default=600.0)

@@ -11,12 +11,12 @@ usage: ./rollerpy thesis-figures [--roller PATH] [--work DIR] [--no-copy]
 The block is run by bash with `set -euo pipefail`: the first failing command stops it and this
 script exits 1; a figure that was not drawn is named and exits 1 too.
 """
-import argparse
 import os
 import shutil
 import subprocess
 import sys
 
+from ..command import parser
 from ..paths import DEFAULT_ROLLER, ROOT
 
 FIGURES_MD = os.path.join(ROOT, "docs", "figures.md")
@@ -100,8 +100,7 @@ def save_small(source, target):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy thesis-figures", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("thesis-figures", __doc__)
     ap.add_argument("--roller", default=DEFAULT_ROLLER)
     ap.add_argument("--work", default=ROOT)
     ap.add_argument("--no-copy", action="store_true")

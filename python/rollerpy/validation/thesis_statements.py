@@ -7,12 +7,12 @@ per statement, the numbers the page quotes. Element values (integration-point me
 where the thesis says its maps are Gauss-point values (Z1, its figure 5.3); ε is the VTU's
 Green-Lagrange total `strain` and the step's own `strain_increment`, component order xx, yy, zz, xy.
 """
-import argparse
 import os
 
 import matplotlib.tri as mtri
 import numpy as np
 
+from ..command import parser
 from ..outputs import read_contact, touching_x
 from ..plots import plt
 from ..plots.scene import von_mises
@@ -124,8 +124,7 @@ def z2_large_vs_infini(large, infini, step):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy thesis-statements", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("thesis-statements", __doc__)
     ap.add_argument("--out", default="out", help="the folder holding the scenes' output folders")
     args = ap.parse_args(argv)
     z1 = os.path.join(args.out, "z1_outf10")

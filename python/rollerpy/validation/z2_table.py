@@ -9,9 +9,9 @@ step 6, the trailing edge of the contact; 21: x = 40, its middle). Values are th
 written to the VTU files; the increment of the strain is the VTU's strain_increment (the strain
 of the step's own displacement), of the stress and displacement the difference to step - 1.
 """
-import argparse
 import sys
 
+from ..command import parser
 from ..vtu import read_vtu, vtu_path
 
 THESIS = {"eps_xx": -3.2, "eps_yy": -0.86, "eps_xy": -22.0, "tau_xx": 3.72, "tau_yy": -11.3,
@@ -37,8 +37,7 @@ def relative(large, infini):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="rollerpy z2-table", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = parser("z2-table", __doc__)
     ap.add_argument("large")
     ap.add_argument("infini")
     ap.add_argument("--node", type=int, default=26)
