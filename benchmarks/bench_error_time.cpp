@@ -10,7 +10,7 @@
 // the final_state column says which.
 // Writes one CSV row per run (the reference included), flushed at once; every run is guarded:
 // an exception, a failed step or the per-run wall-clock budget ends that run only (status
-// error / failed / timeout) and the study goes on. benchmarks/error_vs_time.py drives this
+// error / failed / timeout) and the study goes on. `rollerpy bench-error-vs-time` drives this
 // program and draws the plots.
 //   usage: bench_error_time [--quick] [--out FILE.csv] [--scenes hertz,cattaneo,...]
 //                           [--refine-max N] [--max-run-seconds S] [--max-reference-seconds S]
@@ -270,7 +270,7 @@ std::vector<Plan> plans(bool quick) {
           {"z4_v25", 0, 0, {1, 2, 3, 4}, 2, 5}};
 }
 
-// Columns of the CSV (benchmarks/error_vs_time.py reads them by name).
+// Columns of the CSV (`rollerpy bench-error-vs-time` reads them by name).
 const std::vector<std::string> kColumns = {"scene",
                                            "backend",
                                            "parameter",

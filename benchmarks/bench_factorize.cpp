@@ -1,5 +1,5 @@
 // Time of one sparse factorisation of the strip's tangent K (free dofs) by MUMPS (LDL^T,
-// analysis + factorisation), the unit of the scaling study (benchmarks/scaling.py). Median of
+// analysis + factorisation), the unit of the scaling study (`rollerpy bench-scaling`). Median of
 // `repeats`. Prints one line: dofs free_dofs nnz_lower seconds mumps_memory_mb.
 //   usage: bench_factorize SCENE.toml [repeats=3] [key=value ...]   (scene overrides)
 #include <algorithm>

@@ -1,8 +1,8 @@
 // roller monotonicity: the thesis's study of operator A (Fig. 3.1; docs/monotonicity.md, "The
 // maps"). Sweeps the 4-D grid (sigma_pl, a, b, c), writes the PD flag and lambda_min over it, the
 // twelve slices of Fig. 3.1 at one yield stress (coarse = the grid's own points, fine = for smooth
-// boundaries) and a JSON summary, then renders the PNG maps with scripts/plot_monotonicity.py
-// (/usr/bin/python3).
+// boundaries) and a JSON summary, then renders the PNG maps with `rollerpy plot-monotonicity`
+// (the launcher ./rollerpy of the source tree, /usr/bin/python3).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -99,7 +99,7 @@ std::ofstream open_output(const fs::path& path) {
   return out;
 }
 
-// "python3 'script' 'dir'" with single quotes escaped for the shell.
+// "'launcher' plot-monotonicity 'dir'" with single quotes escaped for the shell.
 std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
@@ -192,8 +192,9 @@ int run_monotonicity(const MonotonicityArgs& args) {
       grid.size(), args.grid, n_pd, 100.0 * n_pd / static_cast<double>(grid.size()), n_disagree, args.slice_sigma,
       to_string(options.layout), args.tau33, options.tangent_modulus, seconds, dir.string());
 
-  const fs::path script = fs::path(ROLLER_SOURCE_DIR) / "scripts" / "plot_monotonicity.py";
-  const std::string command = fmt::format("{} {} {}", kPython, shell_quote(script.string()), shell_quote(dir.string()));
+  const fs::path script = fs::path(ROLLER_SOURCE_DIR) / "rollerpy";
+  const std::string command =
+      fmt::format("{} plot-monotonicity {}", shell_quote(script.string()), shell_quote(dir.string()));
   if (args.no_plot) {
     std::cout << "roller monotonicity: PNG maps not rendered (--no-plot); run: " << command << "\n";
     return 0;

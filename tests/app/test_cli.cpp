@@ -187,7 +187,7 @@ TEST_CASE("a state file that cannot be written ends the run with exit code 2, it
   const fs::path out = fs::temp_directory_path() / ("roller_cli_nowrite_" + std::to_string(::getpid()));
   fs::remove_all(out);
   // A folder where the checkpoint's temporary file would go: the output folder cannot be used as
-  // it is (exit 2, like a read-only one; a full disk is exit 3: tests/scripts/test_reliability.py).
+  // it is (exit 2, like a read-only one; a full disk is exit 3: python/tests/test_reliability.py).
   fs::create_directories(out / "checkpoint.cbor.tmp");
   const Run r = run_roller("run problems/block_compression.toml --steps 3 --overwrite --out " + out.string());
   INFO(r.output);

@@ -1,7 +1,7 @@
 // Carter's steady rolling with creep (problems/carter.toml, docs/validation.md "Carter: steady
 // rolling with creep"): after rolling with creep 0.0013 ~ 0.4 mu a/R the stick zone lies at the
 // leading edge of the contact and its width equals Carter's 2a sqrt(1 - Q/(mu P)) within 5 %.
-// Measured as scripts/carter.py does: a from a least-squares parabola through p_n^2 over the nodes
+// Measured as `rollerpy carter` does: a from a least-squares parabola through p_n^2 over the nodes
 // carrying pressure; the stick zone from the moments of the traction deficit w = mu F_N - |F_T|
 // (zero where the node slips; Carter's w = mu p0 (c/a) sqrt(1 - (x - d)^2/c^2) on the stick zone,
 // so its centroid is d and its standard deviation c/2). The same rolling under a prescribed

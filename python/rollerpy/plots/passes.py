@@ -1,0 +1,97 @@
+"""Figures (PNG) of a multi-pass run: what each pass left in the strip.
+
+usage: ./rollerpy plot-passes OUT_DIR
+
+Reads OUT_DIR/passes.csv, residual_depth.csv and summary.json (docs/scenes.md, Outputs) and
+writes into OUT_DIR:
+  passes.png          per pass, on a log axis: the increment of equivalent plastic strain in the
+                      track window (max and area mean), in the band at the depth of maximum shear,
+                      the net residual shear strain increment there, and the permanent settlement
+                      |du_y| of the mid-track surface; the verdict of summary.json in the title
+  residual_depth.png  residual stresses sigma_xx, sigma_zz (the out-of-plane one) and sigma_xy and
+                      the equivalent plastic strain under the middle of the track against depth,
+                      one curve per pass
+Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
+"""
+import os
+
+from ..command import parser
+from ..outputs import read_numbers, read_summary
+from . import plt
+
+
+def positive(values):
+    """Values for a log axis: zeros and negatives are not drawn."""
+    return [v if v > 0 else float("nan") for v in values]
+
+
+def plot_passes(out, rows, title):
+    passes = [int(r["pass"]) for r in rows]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    series = [
+        ("max_plastic_increment", "max Δε̄ᵖ in the track window", "o-"),
+        ("mean_plastic_increment", "mean Δε̄ᵖ in the track window", "s-"),
+        ("band_plastic_increment", "mean Δε̄ᵖ at the depth of max shear", "^-"),
+    ]
+    for key, label, style in series:
+        ax.semilogy(passes, positive([r[key] for r in rows]), style, label=label)
+    ax.semilogy(passes, positive([abs(r["residual_shear_increment"]) for r in rows]), "v--",
+                label="|net Δγ_xy| at the depth of max shear")
+    ax.semilogy(passes, positive([abs(r["surface_duy"]) for r in rows]), "d:",
+                label="|Δu_y| of the mid-track surface [mm]")
+    ax.set_xlabel("pass")
+    ax.set_ylabel("increment over the pass")
+    ax.set_xticks(passes)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "passes.png"), dpi=150)
+    plt.close(fig)
+
+
+def plot_depth(out, rows, title):
+    passes = sorted({int(r["pass"]) for r in rows})
+    fig, axes = plt.subplots(1, 4, figsize=(12, 4.5), sharey=True)
+    colours = plt.cm.viridis([i / max(1, len(passes) - 1) for i in range(len(passes))])
+    for colour, p in zip(colours, passes):
+        sel = [r for r in rows if int(r["pass"]) == p]
+        depth = [r["depth"] for r in sel]
+        for ax, key in zip(axes, ["sxx", "szz", "sxy", "eq_plastic_strain"]):
+            ax.plot([r[key] for r in sel], depth, color=colour, label="pass %d" % p)
+    labels = ["residual σ_xx [MPa]", "residual σ_zz [MPa]", "residual σ_xy [MPa]", "ε̄ᵖ"]
+    for ax, label in zip(axes, labels):
+        ax.set_xlabel(label)
+        ax.grid(True, alpha=0.3)
+    depth_max = max(r["depth"] for r in rows)
+    axes[0].set_ylim(min(depth_max, 8.0 * max(1e-9, _half_width(out))), 0.0)
+    axes[0].set_ylabel("depth below the surface [mm]")
+    axes[-1].legend(fontsize=8)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "residual_depth.png"), dpi=150)
+    plt.close(fig)
+
+
+def _half_width(out):
+    rows = read_numbers(os.path.join(out, "passes.csv"))
+    return max(r["contact_half_width"] for r in rows) if rows else 1.0
+
+
+def plot(out):
+    """passes.png and residual_depth.png of the run in `out`; returns their paths."""
+    summary = read_summary(out) if os.path.exists(os.path.join(out, "summary.json")) else {}
+    passes = summary.get("passes", {})
+    title = "%s: %s" % (summary.get("scene", out), passes.get("verdict", "").replace("_", " "))
+    if "p0_over_k" in passes:
+        title += " (p0/k = %.2f)" % passes["p0_over_k"]
+    plot_passes(out, read_numbers(os.path.join(out, "passes.csv")), title)
+    plot_depth(out, read_numbers(os.path.join(out, "residual_depth.csv")), title)
+    return os.path.join(out, "passes.png"), os.path.join(out, "residual_depth.png")
+
+
+def main(argv=None):
+    ap = parser("plot-passes", __doc__)
+    ap.add_argument("out")
+    args = ap.parse_args(argv)
+    print("wrote %s and %s" % plot(args.out))

@@ -1,0 +1,73 @@
+"""Draws a shakedown map from a study's study.csv (`rollerpy study` with
+problems/studies/shakedown_map.toml; docs/validation.md, "Shakedown map"): every point at its
+traction coefficient mu (contact.friction) and load p0/k (passes.p0_over_k), marked by its verdict
+(elastic shakedown, plastic shakedown, ratchetting; failed points as crosses), with Johnson's
+shakedown limit over it (rollerpy.validation.line_contact_shakedown) and the surface limit 1/mu; prints a
+Markdown table of the points against that limit.
+
+usage: ./rollerpy plot-shakedown-map STUDY_CSV [--out MAP.png]
+Default --out: shakedown_map.png beside the CSV.
+"""
+import os
+import sys
+
+import numpy as np
+
+from ..command import parser
+from ..outputs import read_rows
+from ..validation.line_contact_shakedown import shakedown_limit
+from . import plt
+
+STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
+         "plastic_shakedown": ("s", "C1", "plastic shakedown (closed cycle)"),
+         "ratchetting": ("^", "C3", "ratchetting"),
+         "undetermined": ("D", "0.5", "undetermined")}
+
+
+def main(argv=None):
+    ap = parser("plot-shakedown-map", __doc__)
+    ap.add_argument("csv")
+    ap.add_argument("--out")
+    args = ap.parse_args(argv)
+    rows = read_rows(args.csv)
+    if not rows:
+        sys.exit("plot_shakedown_map: %s has no points" % args.csv)
+    fig, ax = plt.subplots(figsize=(9.5, 5.5))
+    mus = np.linspace(0.0, 0.5, 51)
+    ax.plot(mus, [shakedown_limit(m) for m in mus], "k-", label="Johnson: shakedown limit (Melan)")
+    ax.plot(mus[mus > 0.15], 1.0 / mus[mus > 0.15], "k:", label="surface limit 1/μ")
+    seen = set()
+    for r in rows:
+        mu = float(r["contact.friction"])
+        verdict = r.get("passes.verdict") or ""
+        if r["status"] != "ok" or verdict not in STYLE:
+            ax.plot(mu, float(r["passes.p0_over_k"] or "nan"), "kx", ms=9,
+                    label=None if "failed" in seen else "failed: %s" % r["status"])
+            seen.add("failed")
+            continue
+        marker, colour, label = STYLE[verdict]
+        ax.plot(mu, float(r["passes.p0_over_k"]), marker, color=colour, ms=10,
+                label=None if verdict in seen else label)
+        seen.add(verdict)
+    ax.set_xlabel("traction coefficient μ = Q/P (sliding)")
+    ax.set_ylabel("load p0/k")
+    ax.set_xlim(-0.02, 0.42)
+    ax.set_ylim(2.0, 5.0)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
+    ax.set_title("Shakedown map of a line contact (%d points)" % len(rows))
+    fig.tight_layout()
+    # The table: each point against Johnson's limit at its mu.
+    limits = {}
+    print("| p0/k | μ | Johnson's limit | expected | verdict | status | run [s] |")
+    print("|---:|---:|---:|---|---|---|---:|")
+    for r in rows:
+        mu = float(r["contact.friction"])
+        limits.setdefault(mu, shakedown_limit(mu))
+        load = float(r["passes.p0_over_k"] or "nan")
+        expected = "elastic shakedown" if load < limits[mu] else "not elastic shakedown"
+        print("| %.2f | %.2f | %.2f | %s | %s | %s | %.0f |" % (
+            load, mu, limits[mu], expected, r.get("passes.verdict") or "—", r["status"], float(r["wall_s"])))
+    out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "shakedown_map.png")
+    fig.savefig(out, dpi=110)
+    print("wrote", out)

@@ -1,0 +1,158 @@
+"""Writes the shakedown validation scenes problems/shakedown_pXX.toml (docs/validation.md,
+"Shakedown: repeated rolling of a line contact").
+
+usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
+                                      [--element-size 0.2] [--out problems]
+
+One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
+over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
+force P = 7250 N/mm, so that the Hertz half-width is a = 2 mm and p0 = a E*/(2R) = 2308 MPa; the
+yield stress sets the load ratio: k = sigma_y/sqrt(3) = p0/(p0/k). The strip, 200 x 100 mm with
+its base bonded, acts as a half-space under the track: uniform 0.2 mm elements (20 across 2a)
+over x = 88...112 and the top 6 mm, graded outside. One pass: press to P at x = 92 (steps 1-3),
+roll 16 mm = 8a to x = 108 under P (steps 4-19, 0.5a per step), lift 0.3 mm (steps 20-21); the
+window of passes.csv is then x = 96...104. --element-size changes the uniform size (0.1: 40
+elements across 2a, 4.8e4 dofs, the strip of `rollerpy bench-passes`) and --out the folder.
+"""
+import math
+import os
+
+from ..command import parser
+from ..paths import PROBLEMS
+
+E, NU, R, A = 2.1e5, 0.3, 100.0, 2.0
+E_STAR = E / (1.0 - NU ** 2)
+LOAD = math.pi * A ** 2 * E_STAR / (4.0 * R)
+P0 = A * E_STAR / (2.0 * R)
+
+
+def graded(x0, x1, h_fine, n, fine_at_end):
+    """n intervals from x0 to x1, geometric, the interval at the fine end h_fine."""
+    length = x1 - x0
+    # ratio q with h (q^n - 1)/(q - 1) = length, by bisection
+    lo, hi = 1.0 + 1e-9, 3.0
+    for _ in range(200):
+        q = 0.5 * (lo + hi)
+        if h_fine * (q ** n - 1.0) / (q - 1.0) > length:
+            hi = q
+        else:
+            lo = q
+    sizes = [h_fine * q ** i for i in range(n)]
+    sizes = [s * length / sum(sizes) for s in sizes]
+    if fine_at_end:
+        sizes = sizes[::-1]
+    out, x = [], x0
+    for s in sizes[:-1]:
+        x += s
+        out.append(x)
+    return out
+
+
+def lines(h):
+    xs = [0.0] + graded(0.0, 88.0, h, 24, fine_at_end=True)
+    xs += [88.0 + h * i for i in range(int(round(24.0 / h)) + 1)]
+    xs += graded(112.0, 200.0, h, 24, fine_at_end=False) + [200.0]
+    ys = [0.0] + graded(0.0, 94.0, h, 22, fine_at_end=True)
+    ys += [94.0 + h * i for i in range(int(round(6.0 / h)) + 1)]
+    return xs, ys
+
+
+def fmt_lines(values):
+    text = ", ".join("%.6g" % v for v in values)
+    out, line = [], "  "
+    for item in text.split(", "):
+        if len(line) + len(item) > 96:
+            out.append(line.rstrip())
+            line = "  "
+        line += item + ", "
+    out.append(line.rstrip().rstrip(","))
+    return "[\n" + "\n".join(out) + "\n]"
+
+
+def scene(ratio, passes, h):
+    sigma_y = math.sqrt(3.0) * P0 / ratio
+    xs, ys = lines(h)
+    name = "shakedown_p%02d" % round(10 * ratio)
+    return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
+# python/rollerpy/validation/make_shakedown_scenes.py, not this file); docs/validation.md,
+# "Shakedown: repeated rolling of a line contact".
+# Frictionless rolling of a rigid cylinder (R = 100 mm) under P = {load:.1f} N/mm over an
+# elastic-perfectly plastic strip: Hertz a = {a} mm, p0 = {p0:.1f} MPa, k = sigma_y/sqrt(3) =
+# {k:.1f} MPa. Johnson: first yield at p0/k = 3.1, elastic shakedown limit 4.0.
+title = "Shakedown: frictionless rolling at p0/k = {ratio}, {passes} passes"
+kinematics = "small"
+
+[mesh]
+element = "Q4"
+length = 200.0
+height = 100.0
+x_lines = {xl}
+y_lines = {yl}
+q4_formulation = "bbar"
+
+[material]
+E = {E}
+nu = {NU}
+yield_stress = {sy:.4f}
+tangent_modulus = 0.0
+
+[steps]
+count = 21              # one pass
+
+[passes]
+count = {passes}
+
+[output]
+every = 21              # fields at the end of every pass
+
+[[displacement]]        # the half-space's far field: base bonded
+nodes = "bottom"
+x = 0.0
+y = 0.0
+
+[roller]
+radius = {R}
+centre = [92.0, 200.0]  # touching the top at x = 92
+
+[[roller.path]]         # press to P
+steps = [1, 3]
+fy = {load:.4f}
+
+[[roller.path]]         # roll 8a under P
+steps = [4, 19]
+dx = 16.0
+fy = {load:.4f}
+
+[[roller.path]]         # lift clear
+steps = [20, 21]
+dy = 0.3
+
+[contact]
+backend = "ipopt"
+friction = 0.0
+""".format(ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
+           E=E, NU=NU, sy=sigma_y, R=R)
+
+
+def write_scenes(loads, passes, element_size, out):
+    """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
+    os.makedirs(out, exist_ok=True)
+    written = []
+    for ratio in loads:
+        name, text = scene(ratio, passes, element_size)
+        path = os.path.join(out, name + ".toml")
+        with open(path, "w") as f:
+            f.write(text)
+        written.append(path)
+    return written
+
+
+def main(argv=None):
+    ap = parser("make-shakedown-scenes", __doc__)
+    ap.add_argument("--loads", default="3.0,3.7,4.5,5.5")
+    ap.add_argument("--passes", type=int, default=5)
+    ap.add_argument("--element-size", type=float, default=0.2)
+    ap.add_argument("--out", default=PROBLEMS)
+    args = ap.parse_args(argv)
+    for path in write_scenes([float(r) for r in args.loads.split(",")], args.passes, args.element_size, args.out):
+        print("wrote", path)
