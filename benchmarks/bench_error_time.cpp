@@ -26,6 +26,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -308,155 +309,117 @@ const char* usage =
     "usage: bench_error_time [--quick] [--out FILE.csv] [--scenes a,b] [--refine-max N]\n"
     "                        [--max-run-seconds S] [--max-reference-seconds S]\n";
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   bool quick = false;
   std::string out = "out/error_vs_time/error_vs_time.csv";
   std::vector<std::string> only;
   int refine_max = 0;
   double max_run_s = 120.0, max_reference_s = 600.0;
+};
+
+// The command line, or nullopt (after the usage) when it is not understood.
+std::optional<Options> parse_options(int argc, char** argv) {
+  Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has_value = i + 1 < argc;
     if (a == "--quick")
-      quick = true;
+      o.quick = true;
     else if (a == "--out" && has_value)
-      out = argv[++i];
+      o.out = argv[++i];
     else if (a == "--scenes" && has_value) {
       std::stringstream s(argv[++i]);
       for (std::string n; std::getline(s, n, ',');)
-        if (!n.empty()) only.push_back(n);
+        if (!n.empty()) o.only.push_back(n);
     } else if (a == "--refine-max" && has_value)
-      refine_max = std::atoi(argv[++i]);
+      o.refine_max = std::atoi(argv[++i]);
     else if (a == "--max-run-seconds" && has_value)
-      max_run_s = std::atof(argv[++i]);
+      o.max_run_s = std::atof(argv[++i]);
     else if (a == "--max-reference-seconds" && has_value)
-      max_reference_s = std::atof(argv[++i]);
+      o.max_reference_s = std::atof(argv[++i]);
     else {
       std::fputs(usage, stderr);
-      return 2;
+      return std::nullopt;
     }
   }
-  if (refine_max < 0 || !(max_run_s > 0) || !(max_reference_s > 0)) {
+  if (o.refine_max < 0 || !(o.max_run_s > 0) || !(o.max_reference_s > 0)) {
     std::fputs(usage, stderr);
-    return 2;
+    return std::nullopt;
   }
+  return o;
+}
+
+// The plans of the chosen scenes, their meshes capped by --refine-max.
+std::vector<Plan> select_plans(const Options& o) {
   std::vector<Plan> selected;
-  for (const Plan& plan : plans(quick))
-    if (only.empty() || std::find(only.begin(), only.end(), plan.scene) != only.end()) selected.push_back(plan);
-  for (const std::string& name : only)
+  for (const Plan& plan : plans(o.quick))
+    if (o.only.empty() || std::find(o.only.begin(), o.only.end(), plan.scene) != o.only.end()) selected.push_back(plan);
+  for (const std::string& name : o.only)
     if (std::none_of(selected.begin(), selected.end(), [&](const Plan& p) { return p.scene == name; }))
       std::fprintf(stderr, "warning: scene '%s' is not in the %s plan; ignored\n", name.c_str(),
-                   quick ? "quick" : "default");
-
-  const std::filesystem::path out_path(out);
-  if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
-  CsvTable csv(out_path, kColumns);
-  const std::vector<Real> factors =
-      quick ? std::vector<Real>{1e1, 1e3, 1e5} : std::vector<Real>{1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
-  // Ordered from cheap to expensive within each sweep, so that once a mesh or penalty-factor run
-  // times out, the rest of that sweep is skipped.
-  const std::vector<Real> tols = quick ? std::vector<Real>{1e-4, 1e-8} : std::vector<Real>{1e-4, 1e-6, 1e-8, 1e-10};
-  const Real tightest = *std::min_element(tols.begin(), tols.end());
-  const int repeats = quick ? 1 : 3;
-  auto cap = [&](int level) { return refine_max > 0 ? std::min(level, refine_max) : level; };
-
-  std::fprintf(stderr, "plan: budget %g s per run (stopped between steps), %g s per reference run\n", max_run_s,
-               max_reference_s);
+                   o.quick ? "quick" : "default");
+  auto cap = [&](int level) { return o.refine_max > 0 ? std::min(level, o.refine_max) : level; };
   for (Plan& plan : selected) {
     std::vector<int> levels;
     for (int l : plan.levels)
-      if (refine_max <= 0 || l <= refine_max) levels.push_back(l);
+      if (o.refine_max <= 0 || l <= o.refine_max) levels.push_back(l);
     plan.levels = levels;
     plan.sweep_level = cap(plan.sweep_level);
     plan.reference_level = cap(plan.reference_level);
-    const std::size_t n = 2 * plan.levels.size() + factors.size() + tols.size();
-    std::fprintf(stderr, "plan: %s: reference ipopt refine %d tol %.0e, %zu runs (worst case %.0f s)\n",
-                 plan.scene.c_str(), plan.reference_level, tightest, n,
-                 max_reference_s + n * std::max(max_run_s, 30.0));
+  }
+  return selected;
+}
+
+// One scene's sweeps against its reference run, written to `csv` as the runs end.
+class SceneSweep {
+ public:
+  SceneSweep(const Plan& plan, const Options& o, const std::vector<Real>& factors, const std::vector<Real>& tols,
+             CsvTable& csv)
+      : plan_(plan), options_(o), factors_(factors), tols_(tols), csv_(csv) {
+    tightest_ = *std::min_element(tols.begin(), tols.end());
   }
 
-  for (const Plan& plan : selected) {
-    const int finest_swept = std::max(plan.sweep_level, plan.levels.empty() ? 0 : plan.levels.back());
+  void run() {
+    const int finest_swept = std::max(plan_.sweep_level, plan_.levels.empty() ? 0 : plan_.levels.back());
     const std::string ref_name = fmt::format(
-        "reference run (ipopt refine {} tol {:.0e}{})", plan.reference_level, tightest,
-        plan.reference_level <= finest_swept ? "; capped by --refine-max: no finer than the swept meshes" : "");
-    const std::string against =
-        plan.scene == "hertz"
-            ? "pressure_l2_error: analytic Hertz solution at the measured load (load step); force_error and "
-              "final_* fields: " +
-                  ref_name
-            : "all errors: " + ref_name;
-    std::fprintf(stderr, "%s: reference (ipopt, refine %d, tol %.0e)\n", plan.scene.c_str(), plan.reference_level,
-                 tightest);
-    const Run ref_run{"ipopt", "reference", tightest, plan.reference_level};
-    const Result ref = run_once(plan, ref_run, max_reference_s);
-    const std::string ref_state =
-        ref.final_contact_nodes < 0 ? "" : (ref.final_contact_nodes > 0 ? "loaded" : "unloaded");
-    auto row = [&](const Run& run, const Result& r, bool is_reference) {
-      const bool ok = r.converged() && ref.converged();
-      const bool hertz = plan.scene == "hertz";
-      const Real pressure = !r.converged()          ? kNaN
-                            : hertz                 ? r.hertz_l2
-                            : (ok && !is_reference) ? profile_l2(r.profile, ref.profile)
-                                                    : kNaN;
-      const bool cmp = ok && !is_reference;
-      const Real force_error = cmp && ref.force > 0.0 ? std::abs(r.force - ref.force) / ref.force : kNaN;
-      const std::string state = r.final_contact_nodes < 0 ? "" : (r.final_contact_nodes > 0 ? "loaded" : "unloaded");
-      csv.add_row({plan.scene,
-                   run.backend,
-                   run.parameter,
-                   run.value,
-                   static_cast<Index>(run.refine),
-                   r.dofs,
-                   r.status,
-                   static_cast<Index>(r.converged() ? 1 : 0),
-                   r.message,
-                   r.wall,
-                   static_cast<Index>(r.repeats),
-                   r.cost,
-                   static_cast<Index>(r.steps),
-                   static_cast<Index>(r.steps_done),
-                   static_cast<Index>(r.iterations),
-                   static_cast<Index>(r.factorizations),
-                   r.residual_max,
-                   r.residual_last,
-                   r.converged() ? r.penetration : kNaN,
-                   static_cast<Index>(r.load_step),
-                   force_error,
-                   pressure,
-                   std::string(hertz ? "analytic Hertz" : "reference run"),
-                   r.final_force,
-                   r.final_contact_nodes,
-                   state,
-                   cmp ? field_l2(r, r.sqrt_i2, ref.sqrt_i2) : kNaN,
-                   cmp ? field_l2(r, r.tau_xx, ref.tau_xx) : kNaN,
-                   std::string("ipopt"),
-                   static_cast<Index>(plan.reference_level),
-                   tightest,
-                   against});
-    };
-    {
-      Result shown = ref;
-      shown.repeats = 1;
-      row(ref_run, shown, true);
-    }
-    std::fprintf(stderr, "%s: reference %s, %.2f s%s%s\n", plan.scene.c_str(), ref.status.c_str(), ref.wall,
-                 ref.message.empty() ? "" : ": ", ref.message.c_str());
-    if (!ref.converged()) {
-      std::fprintf(stderr, "%s: no reference, scene skipped\n", plan.scene.c_str());
-      continue;
+        "reference run (ipopt refine {} tol {:.0e}{})", plan_.reference_level, tightest_,
+        plan_.reference_level <= finest_swept ? "; capped by --refine-max: no finer than the swept meshes" : "");
+    against_ = plan_.scene == "hertz"
+                   ? "pressure_l2_error: analytic Hertz solution at the measured load (load step); force_error and "
+                     "final_* fields: " +
+                         ref_name
+                   : "all errors: " + ref_name;
+    std::fprintf(stderr, "%s: reference (ipopt, refine %d, tol %.0e)\n", plan_.scene.c_str(), plan_.reference_level,
+                 tightest_);
+    const Run ref_run{"ipopt", "reference", tightest_, plan_.reference_level};
+    ref_ = run_once(plan_, ref_run, options_.max_reference_s);
+    Result shown = ref_;
+    shown.repeats = 1;
+    row(ref_run, shown, true);
+    std::fprintf(stderr, "%s: reference %s, %.2f s%s%s\n", plan_.scene.c_str(), ref_.status.c_str(), ref_.wall,
+                 ref_.message.empty() ? "" : ": ", ref_.message.c_str());
+    if (!ref_.converged()) {
+      std::fprintf(stderr, "%s: no reference, scene skipped\n", plan_.scene.c_str());
+      return;
     }
     std::fprintf(stderr, "%s: final step %s (reference: %lld closed contact nodes, roller force %.4g N/mm)\n",
-                 plan.scene.c_str(), ref_state.c_str(), static_cast<long long>(ref.final_contact_nodes),
-                 ref.final_force);
+                 plan_.scene.c_str(), contact_state(ref_).c_str(), static_cast<long long>(ref_.final_contact_nodes),
+                 ref_.final_force);
+    sweeps();
+  }
 
+ private:
+  static std::string contact_state(const Result& r) {
+    return r.final_contact_nodes < 0 ? "" : (r.final_contact_nodes > 0 ? "loaded" : "unloaded");
+  }
+
+  void sweeps() {
+    const int repeats = options_.quick ? 1 : 3;
     std::vector<Run> runs;
-    for (int level : plan.levels)
+    for (int level : plan_.levels)
       for (const char* b : {"penalty", "ipopt"}) runs.push_back({b, "refine", static_cast<Real>(level), level});
-    for (Real f : factors) runs.push_back({"penalty", "penalty_factor", f, plan.sweep_level});
-    for (Real t : tols) runs.push_back({"ipopt", "ipopt_tol", t, plan.sweep_level});
+    for (Real f : factors_) runs.push_back({"penalty", "penalty_factor", f, plan_.sweep_level});
+    for (Real t : tols_) runs.push_back({"ipopt", "ipopt_tol", t, plan_.sweep_level});
     std::map<std::string, std::string> stopped;  // sweep (backend/parameter) -> why it stopped
     for (const Run& run : runs) {
       const std::string sweep = run.backend + "/" + run.parameter;
@@ -465,18 +428,98 @@ int main(int argc, char** argv) {
         r.status = "skipped";
         r.message = stopped[sweep];
       } else {
-        r = run_timed(plan, run, repeats, max_run_s);
+        r = run_timed(plan_, run, repeats, options_.max_run_s);
         // Only where cost surely grows along the sweep: finer meshes, stiffer penalties (a looser
         // Ipopt tolerance is not always cheaper: Z3 ran longer at 1e-4 than at 1e-8).
         if (r.status == "timeout" && run.parameter != "ipopt_tol")
           stopped[sweep] =
               fmt::format("not run: the cheaper {}={:g} (refine {}) timed out", run.parameter, run.value, run.refine);
       }
-      std::fprintf(stderr, "%s %s %s=%g refine %d: %s, %.3f s%s%s\n", plan.scene.c_str(), run.backend.c_str(),
+      std::fprintf(stderr, "%s %s %s=%g refine %d: %s, %.3f s%s%s\n", plan_.scene.c_str(), run.backend.c_str(),
                    run.parameter.c_str(), run.value, run.refine, r.status.c_str(), r.wall,
                    r.message.empty() ? "" : ": ", r.message.c_str());
       row(run, r, false);
     }
   }
+
+  void row(const Run& run, const Result& r, bool is_reference) {
+    const bool ok = r.converged() && ref_.converged();
+    const bool hertz = plan_.scene == "hertz";
+    const Real pressure = !r.converged()          ? kNaN
+                          : hertz                 ? r.hertz_l2
+                          : (ok && !is_reference) ? profile_l2(r.profile, ref_.profile)
+                                                  : kNaN;
+    const bool cmp = ok && !is_reference;
+    const Real force_error = cmp && ref_.force > 0.0 ? std::abs(r.force - ref_.force) / ref_.force : kNaN;
+    csv_.add_row({plan_.scene,
+                  run.backend,
+                  run.parameter,
+                  run.value,
+                  static_cast<Index>(run.refine),
+                  r.dofs,
+                  r.status,
+                  static_cast<Index>(r.converged() ? 1 : 0),
+                  r.message,
+                  r.wall,
+                  static_cast<Index>(r.repeats),
+                  r.cost,
+                  static_cast<Index>(r.steps),
+                  static_cast<Index>(r.steps_done),
+                  static_cast<Index>(r.iterations),
+                  static_cast<Index>(r.factorizations),
+                  r.residual_max,
+                  r.residual_last,
+                  r.converged() ? r.penetration : kNaN,
+                  static_cast<Index>(r.load_step),
+                  force_error,
+                  pressure,
+                  std::string(hertz ? "analytic Hertz" : "reference run"),
+                  r.final_force,
+                  r.final_contact_nodes,
+                  contact_state(r),
+                  cmp ? field_l2(r, r.sqrt_i2, ref_.sqrt_i2) : kNaN,
+                  cmp ? field_l2(r, r.tau_xx, ref_.tau_xx) : kNaN,
+                  std::string("ipopt"),
+                  static_cast<Index>(plan_.reference_level),
+                  tightest_,
+                  against_});
+  }
+
+  const Plan& plan_;
+  const Options& options_;
+  const std::vector<Real>& factors_;
+  const std::vector<Real>& tols_;
+  CsvTable& csv_;
+  Real tightest_ = 0.0;
+  std::string against_;
+  Result ref_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::optional<Options> parsed = parse_options(argc, argv);
+  if (!parsed) return 2;
+  const Options& o = *parsed;
+  const std::vector<Real> factors =
+      o.quick ? std::vector<Real>{1e1, 1e3, 1e5} : std::vector<Real>{1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+  // Ordered from cheap to expensive within each sweep, so that once a mesh or penalty-factor run
+  // times out, the rest of that sweep is skipped.
+  const std::vector<Real> tols = o.quick ? std::vector<Real>{1e-4, 1e-8} : std::vector<Real>{1e-4, 1e-6, 1e-8, 1e-10};
+  const std::vector<Plan> selected = select_plans(o);
+
+  const std::filesystem::path out_path(o.out);
+  if (out_path.has_parent_path()) std::filesystem::create_directories(out_path.parent_path());
+  CsvTable csv(out_path, kColumns);
+  std::fprintf(stderr, "plan: budget %g s per run (stopped between steps), %g s per reference run\n", o.max_run_s,
+               o.max_reference_s);
+  const Real tightest = *std::min_element(tols.begin(), tols.end());
+  for (const Plan& plan : selected) {
+    const std::size_t n = 2 * plan.levels.size() + factors.size() + tols.size();
+    std::fprintf(stderr, "plan: %s: reference ipopt refine %d tol %.0e, %zu runs (worst case %.0f s)\n",
+                 plan.scene.c_str(), plan.reference_level, tightest, n,
+                 o.max_reference_s + n * std::max(o.max_run_s, 30.0));
+  }
+  for (const Plan& plan : selected) SceneSweep(plan, o, factors, tols, csv).run();
   return 0;
 }

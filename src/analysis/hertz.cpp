@@ -70,6 +70,10 @@ HertzSolution hertz_line_contact(Real load, Real radius, Real plane_strain_modul
   return h;
 }
 
+Real hertz_line_load(Real peak_pressure, Real radius, Real plane_strain_modulus) {
+  return M_PI * radius * peak_pressure * peak_pressure / plane_strain_modulus;
+}
+
 HertzComparison compare_with_hertz(const std::vector<PressureSample>& samples, Real load, Real radius,
                                    Real plane_strain_modulus) {
   HertzComparison c;

@@ -1,6 +1,8 @@
 // roller command line: parse, load, run, report. Exit codes: 0 success, 1 a step failed
 // (results of completed steps are on disk), 2 bad input, 3 the machine refused (disk full, out
 // of memory), 4 an internal error (a bug: please report it).
+#include <atomic>
+#include <csignal>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
@@ -8,13 +10,37 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <signal.h>
+#include <unistd.h>
+
 #include "commands.hpp"
 #include "roller/core/error.hpp"
 #include "roller/core/version.hpp"
+#include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
 
 namespace {
+
+// SIGINT (Ctrl-C) or SIGTERM: the run stops after the step under way with its files, checkpoint
+// and summary.json ("interrupted", exit 128 + signal); the handler is reset, so a second signal
+// ends the process at once.
+std::atomic<int> stop_signal{0};
+
+extern "C" void request_stop(int signal) {
+  stop_signal.store(signal);
+  static const char note[] = "\nroller: stopping after the step under way (send the signal again to stop at once)\n";
+  [[maybe_unused]] const auto written = ::write(STDERR_FILENO, note, sizeof(note) - 1);
+}
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
 
 struct RunArgs {
   std::string scene;
@@ -41,6 +67,7 @@ int run_scene(const RunArgs& args) {
   options.progress = &std::cout;
   options.resume = args.resume;
   options.overwrite = args.overwrite;
+  options.stop_signal = &stop_signal;
   const std::string out = options.out_dir.string();
   std::optional<roller::Simulation> built;
   try {
@@ -54,10 +81,13 @@ int run_scene(const RunArgs& args) {
                            sim.scene().name, sim.scene().title, sim.model().mesh().n_elements(),
                            roller::enum_name(sim.model().mesh().element_type), sim.model().n_dofs(),
                            sim.model().dof_map().n_free(), sim.scene().total_steps(), out);
+  for (const std::string& warning : roller::scene_warnings(sim.scene(), sim.model().mesh()))
+    std::cerr << "roller: warning: " << warning << "\n";
+  install_stop_handlers();
   const roller::RunSummary summary = sim.run(options);
   std::cout << fmt::format("roller: {} in {:.2f} s ({} solver iterations, peak memory {:.0f} MiB); results in {}\n",
                            summary.message, summary.wall_s, summary.totals.iterations, summary.peak_memory_mb, out);
-  return roller::exit_code(summary.status);
+  return roller::exit_code(summary.status, summary.signal);
 }
 
 // Exit code 3 without the libraries' exit handlers: out of memory, an OpenBLAS thread may be
@@ -101,6 +131,7 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_args.sets, "override a scene value, e.g. --set material.E=2e5")->type_name("KEY=VALUE");
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
   const roller::app::Command scene_keys = roller::app::add_scene_keys_command(app);
+  const roller::app::Command output_columns = roller::app::add_output_columns_command(app);
 
   try {
     app.parse(argc, argv);
@@ -113,6 +144,7 @@ int main(int argc, char** argv) {
     if (*run) return run_scene(run_args);
     if (app.got_subcommand("monotonicity")) return monotonicity();
     if (app.got_subcommand("scene-keys")) return scene_keys();
+    if (app.got_subcommand("output-columns")) return output_columns();
   } catch (const roller::InputError& e) {
     std::cerr << "roller: input error: " << e.what() << "\n";
     return 2;

@@ -106,58 +106,92 @@ std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
+// The 4-D grid into monotonicity_grid.csv: its points, how many are positive definite, and at
+// how many the three tests disagree.
+struct GridCounts {
+  std::size_t points = 0;
+  Index pd = 0, disagree = 0;
+};
+GridCounts write_grid(const MonotonicityMapOptions& options, const fs::path& dir) {
+  const std::vector<MapPoint> grid = sweep_grid(options);
+  GridCounts counts;
+  counts.points = grid.size();
+  std::ofstream out = open_output(dir / "monotonicity_grid.csv");
+  out << "sigma_pl,a,b,c,lambda_min,pd_eigen,pd_cholesky,pd_minors\n";
+  for (const MapPoint& m : grid) {
+    write_point(out, m);
+    counts.pd += m.d.positive_definite();
+    counts.disagree += !m.d.consistent();
+  }
+  return counts;
+}
+
+// The twelve slices at the figures' yield stress (the grid's own points and a fine grid) into
+// monotonicity_slices.csv; their summaries for monotonicity.json.
+nlohmann::json write_slices(const MonotonicityMapOptions& options, const MonotonicityArgs& args, const fs::path& dir) {
+  nlohmann::json panels = nlohmann::json::array();
+  std::ofstream out = open_output(dir / "monotonicity_slices.csv");
+  out << "panel,resolution,sigma_pl,a,b,c,lambda_min,pd_eigen,pd_cholesky,pd_minors\n";
+  for (const MapSlice& slice : thesis_slices()) {
+    const int n_first = slice.plane == SlicePlane::CB ? options.b.n : options.a.n;
+    const int n_second = slice.plane == SlicePlane::AB ? options.b.n : options.c.n;
+    const auto coarse = sweep_slice(options, slice, args.slice_sigma, n_first, n_second);
+    const auto fine = sweep_slice(options, slice, args.slice_sigma, args.slice_grid, args.slice_grid);
+    Index coarse_pd = 0;
+    for (const MapPoint& m : coarse) {
+      out << slice.id << ",coarse,";
+      write_point(out, m);
+      coarse_pd += m.d.positive_definite();
+    }
+    Real lambda_max_slice = -std::numeric_limits<Real>::infinity();
+    for (const MapPoint& m : fine) {
+      out << slice.id << ",fine,";
+      write_point(out, m);
+      lambda_max_slice = std::max(lambda_max_slice, m.d.lambda_min);
+    }
+    panels.push_back({{"id", slice.id},
+                      {"plane", slice.plane == SlicePlane::AB   ? "ab"
+                                : slice.plane == SlicePlane::CA ? "ca"
+                                                                : "cb"},
+                      {"fixed", slice.fixed},
+                      {"title", slice.describe()},
+                      {"coarse_points", coarse.size()},
+                      {"coarse_pd", coarse_pd},
+                      {"max_lambda_min_fine", lambda_max_slice}});
+  }
+  return panels;
+}
+
+// The PNG maps from the data in `dir` by the Python package (exit code of the command).
+int render_maps(const MonotonicityArgs& args, const fs::path& dir) {
+  const fs::path script = fs::path(ROLLER_SOURCE_DIR) / "rollerpy";
+  const std::string command =
+      fmt::format("{} plot-monotonicity {}", shell_quote(script.string()), shell_quote(dir.string()));
+  if (args.no_plot) {
+    std::cout << "roller monotonicity: PNG maps not rendered (--no-plot); run: " << command << "\n";
+    return 0;
+  }
+  if (!fs::exists(kPython) || !fs::exists(script)) {
+    std::cout << "roller monotonicity: " << kPython << " or " << script.string()
+              << " not found; render the PNG maps with: " << command << "\n";
+    return 0;
+  }
+  std::cout.flush();
+  if (std::system(command.c_str()) != 0) {
+    std::cerr << "roller monotonicity: plotting failed (data are in " << dir.string() << "); rerun: " << command
+              << "\n";
+    return 1;
+  }
+  return 0;
+}
+
 int run_monotonicity(const MonotonicityArgs& args) {
   const MonotonicityMapOptions options = map_options(args);
   const fs::path dir(args.out);
   fs::create_directories(dir);
   const auto t0 = std::chrono::steady_clock::now();
-
-  // 4-D grid.
-  const std::vector<MapPoint> grid = sweep_grid(options);
-  Index n_pd = 0, n_disagree = 0;
-  {
-    std::ofstream out = open_output(dir / "monotonicity_grid.csv");
-    out << "sigma_pl,a,b,c,lambda_min,pd_eigen,pd_cholesky,pd_minors\n";
-    for (const MapPoint& m : grid) {
-      write_point(out, m);
-      n_pd += m.d.positive_definite();
-      n_disagree += !m.d.consistent();
-    }
-  }
-
-  // The twelve slices at the figures' yield stress: the grid's own points and a fine grid.
-  nlohmann::json panels = nlohmann::json::array();
-  {
-    std::ofstream out = open_output(dir / "monotonicity_slices.csv");
-    out << "panel,resolution,sigma_pl,a,b,c,lambda_min,pd_eigen,pd_cholesky,pd_minors\n";
-    for (const MapSlice& slice : thesis_slices()) {
-      const int n_first = slice.plane == SlicePlane::CB ? options.b.n : options.a.n;
-      const int n_second = slice.plane == SlicePlane::AB ? options.b.n : options.c.n;
-      const auto coarse = sweep_slice(options, slice, args.slice_sigma, n_first, n_second);
-      const auto fine = sweep_slice(options, slice, args.slice_sigma, args.slice_grid, args.slice_grid);
-      Index coarse_pd = 0;
-      for (const MapPoint& m : coarse) {
-        out << slice.id << ",coarse,";
-        write_point(out, m);
-        coarse_pd += m.d.positive_definite();
-      }
-      Real lambda_max_slice = -std::numeric_limits<Real>::infinity();
-      for (const MapPoint& m : fine) {
-        out << slice.id << ",fine,";
-        write_point(out, m);
-        lambda_max_slice = std::max(lambda_max_slice, m.d.lambda_min);
-      }
-      panels.push_back({{"id", slice.id},
-                        {"plane", slice.plane == SlicePlane::AB   ? "ab"
-                                  : slice.plane == SlicePlane::CA ? "ca"
-                                                                  : "cb"},
-                        {"fixed", slice.fixed},
-                        {"title", slice.describe()},
-                        {"coarse_points", coarse.size()},
-                        {"coarse_pd", coarse_pd},
-                        {"max_lambda_min_fine", lambda_max_slice}});
-    }
-  }
+  const GridCounts grid = write_grid(options, dir);
+  const nlohmann::json panels = write_slices(options, args, dir);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   const MaterialParams material = options.material();
@@ -178,9 +212,9 @@ int run_monotonicity(const MonotonicityArgs& args) {
                          {"grid", args.grid},
                          {"slice_sigma", args.slice_sigma},
                          {"slice_grid", args.slice_grid},
-                         {"grid_points", grid.size()},
-                         {"grid_pd", n_pd},
-                         {"grid_tests_disagree", n_disagree},
+                         {"grid_points", grid.points},
+                         {"grid_pd", grid.pd},
+                         {"grid_tests_disagree", grid.disagree},
                          {"seconds", seconds},
                          {"panels", panels}};
   open_output(dir / "monotonicity.json") << meta.dump(2) << "\n";
@@ -189,28 +223,9 @@ int run_monotonicity(const MonotonicityArgs& args) {
       "roller monotonicity: {} grid points ({}^4), A positive definite at {} ({:.1f} %), the three "
       "tests disagree at {}; slices at sigma_pl = {} MPa; layout {}, t33 {}, E_T = {:g} MPa; "
       "{:.2f} s -> {}\n",
-      grid.size(), args.grid, n_pd, 100.0 * n_pd / static_cast<double>(grid.size()), n_disagree, args.slice_sigma,
-      to_string(options.layout), args.tau33, options.tangent_modulus, seconds, dir.string());
-
-  const fs::path script = fs::path(ROLLER_SOURCE_DIR) / "rollerpy";
-  const std::string command =
-      fmt::format("{} plot-monotonicity {}", shell_quote(script.string()), shell_quote(dir.string()));
-  if (args.no_plot) {
-    std::cout << "roller monotonicity: PNG maps not rendered (--no-plot); run: " << command << "\n";
-    return 0;
-  }
-  if (!fs::exists(kPython) || !fs::exists(script)) {
-    std::cout << "roller monotonicity: " << kPython << " or " << script.string()
-              << " not found; render the PNG maps with: " << command << "\n";
-    return 0;
-  }
-  std::cout.flush();
-  if (std::system(command.c_str()) != 0) {
-    std::cerr << "roller monotonicity: plotting failed (data are in " << dir.string() << "); rerun: " << command
-              << "\n";
-    return 1;
-  }
-  return 0;
+      grid.points, args.grid, grid.pd, 100.0 * grid.pd / static_cast<double>(grid.points), grid.disagree,
+      args.slice_sigma, to_string(options.layout), args.tau33, options.tangent_modulus, seconds, dir.string());
+  return render_maps(args, dir);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "roller/assembly/increment_energy.hpp"
 
+#include "roller/core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,6 +13,8 @@ IncrementEnergy::IncrementEnergy(StripModel& model, VecX prescribed, VecX extern
       prescribed_(std::move(prescribed)),
       external_(std::move(external_force)),
       inertia_(std::move(inertia)) {
+  ROLLER_ASSERT(prescribed_.size() == model.n_dofs() && external_.size() == model.n_dofs(),
+                "prescribed increments and external forces over all dofs");
   // Internal forces at the start of the increment balance the previous loads; their size is a
   // force scale that exists even for purely displacement-driven or unloaded steps.
   VecX g;

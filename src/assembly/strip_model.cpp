@@ -158,6 +158,7 @@ StripEvaluation StripModel::evaluate(const VecX& u, VecX* gradient, SparseMatrix
 
 StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, SparseMatrix* hessian_free,
                                             std::vector<MaterialState>* trial) {
+  ROLLER_ASSERT(u.size() == n_dofs(), "the strip is evaluated at an increment of all its dofs");
   if (!u.allFinite())
     throw NumericalError(
         "the displacement increment contains NaN or Inf: the solver diverged; "
@@ -231,9 +232,11 @@ Index StripModel::commit(const VecX& u) {
       }
     }
   }
+  ROLLER_ASSERT(trial.size() == committed_.size(), "one committed state per integration point");
   committed_ = std::move(trial);
   total_displacement_ += u;
   if (finite) reference_ = std::move(reference);
+  ROLLER_ASSERT(total_displacement_.allFinite(), "a committed displacement is finite");
   return n_yielded;
 }
 

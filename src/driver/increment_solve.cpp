@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "roller/contact/contact_set.hpp"
+#include "roller/core/error.hpp"
 
 namespace roller {
 
@@ -71,6 +72,8 @@ std::optional<Real> IncrementSolve::solve_height_jointly(const RollerPotential& 
 
 Vec2 IncrementSolve::strip_force() const {
   const BackendResult& r = solution_.contact;
+  ROLLER_ASSERT(r.converged() && r.contact.size() == solution_.candidates.size(),
+                "the strip's force is read from a converged solve, one result per candidate");
   const VecX u = energy_.full_increment(r.x);
   Vec2 f = Vec2::Zero();
   for (std::size_t i = 0; i < solution_.candidates.size(); ++i) {

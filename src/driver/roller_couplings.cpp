@@ -115,8 +115,8 @@ class LoadedRoller {
       if (!force_.fy) ++report.load_passes;  // a solve per x; counted within the vertical iteration otherwise
       return f->x();
     };
-    const ForceControlResult fc = solve_for_force(*force_.fx, solve_.start().load_offset.x(),
-                                                  settings(ForceAxis::Horizontal), fx_at);
+    const ForceControlResult fc =
+        solve_for_force(*force_.fx, solve_.start().load_offset.x(), settings(ForceAxis::Horizontal), fx_at);
     if (!fc.converged) {
       report.converged = false;
       report.message = failure_.empty() ? fc.message : failure_;

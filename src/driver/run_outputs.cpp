@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "roller/driver/output_columns.hpp"
 #include "roller/io/field_output.hpp"
 
 namespace roller {
@@ -29,12 +30,6 @@ VtuField nodal_vector(const std::string& name, const VecX& v) {
   return f;
 }
 
-// Contact pressure and tangential traction of a node [MPa]: its forces over its tributary length
-// (contact.csv's p_n, p_t and the VTU's contact fields).
-Vec2 tractions(const NodeContactRecord& c) {
-  return Vec2(c.contact.normal_force, c.contact.tangential_force) / c.tributary_length;
-}
-
 // tractions() and the status (0 open or not a candidate, 1 stick, 2 slip) at the nodes.
 void append_contact_fields(const std::vector<NodeContactRecord>& contact, Index n_nodes,
                            std::vector<VtuField>& point_data) {
@@ -57,116 +52,6 @@ void append_contact_fields(const std::vector<NodeContactRecord>& contact, Index 
   point_data.push_back(std::move(pressure));
   point_data.push_back(std::move(traction));
   point_data.push_back(std::move(status));
-}
-
-// One table row: each column's name beside its value, so that the header and the rows come
-// from the same list (the header is the names of a row of an empty record).
-using Row = std::vector<std::pair<const char*, CsvTable::Cell>>;
-
-std::vector<std::string> names_of(const Row& row) {
-  std::vector<std::string> names;
-  for (const auto& [name, cell] : row) names.emplace_back(name);
-  return names;
-}
-
-std::vector<CsvTable::Cell> cells_of(const Row& row) {
-  std::vector<CsvTable::Cell> cells;
-  for (const auto& [name, cell] : row) cells.push_back(cell);
-  return cells;
-}
-
-Row solver_row(const Simulation::StepRecord& r, const MonitorReport& monitor, double wall_s) {
-  const BackendStats& stats = r.stats;
-  const StripMonotonicity& mono = monitor.pointwise;
-  const Index not_checked = -1;
-  return {{"step", Index{r.step}},
-          {"pass", Index{r.pass}},
-          {"time", r.time},
-          {"iterations", Index{r.iterations}},
-          {"residual", r.last.residual},
-          {"max_penetration", r.max_penetration},
-          {"wall_s", wall_s},
-          {"cuts", Index{r.cuts}},
-          {"yielded_points", r.n_yielded},
-          {"factorizations", Index{r.factorizations}},
-          {"complementarity", stats.complementarity},
-          {"constraint_violation", stats.constraint_violation},
-          {"fixed_point_iterations", static_cast<Real>(stats.fixed_point_iterations)},
-          {"contact_nodes", r.n_contact()},
-          {"a_not_pd_points", monitor.checked ? mono.n_not_pd : not_checked},
-          {"a_lambda_min", std::isfinite(mono.lambda_min) ? mono.lambda_min : 0.0},
-          {"k_eff_positive_definite",
-           monitor.checked ? static_cast<Index>(monitor.assembled.positive_definite() ? 1 : 0) : not_checked},
-          {"k_eff_negative_pivots", monitor.checked ? monitor.assembled.n_negative : not_checked},
-          {"dt_restore", std::isfinite(mono.dt_restore_all) ? mono.dt_restore_all : 0.0},
-          {"kinetic_energy", r.kinetic_energy},
-          {"suspension_passes", static_cast<Real>(r.last.suspension_passes)},
-          {"load_passes", static_cast<Real>(r.last.load_passes)},
-          {"linearisations", static_cast<Real>(stats.linearisations)},
-          {"nlp_solves", static_cast<Real>(stats.nlp_solves)},
-          {"condensed_dofs", static_cast<Real>(stats.condensed_dofs)},
-          {"ipopt_time_s", stats.ipopt_time_s},
-          {"cold_restarts", static_cast<Real>(stats.cold_restarts)},
-          {"status", std::string(r.converged ? "converged" : "failed")}};
-}
-
-Row contact_row(int step, int pass, const NodeContactRecord& c) {
-  const Vec2 p = tractions(c);
-  return {{"step", Index{step}},   {"pass", Index{pass}}, {"node", c.node + 1},
-          {"x", c.position.x()},   {"y", c.position.y()}, {"gap", c.contact.gap},
-          {"p_n", p.x()},          {"p_t", p.y()},        {"status", std::string(to_string(c.contact.status))},
-          {"slip", c.contact.slip}};
-}
-
-// The prescribed forces, or empty cells in a step whose motion is prescribed.
-CsvTable::Cell optional_cell(const std::optional<Real>& value) {
-  return value ? CsvTable::Cell(*value) : CsvTable::Cell(std::string());
-}
-
-Row roller_row(int step, int pass, Real time, const Simulation::RollerRecord& r) {
-  return {{"step", Index{step}},
-          {"pass", Index{pass}},
-          {"time", time},
-          {"xc", r.pose.centre.x()},
-          {"yc", r.pose.centre.y()},
-          {"phi", r.pose.angle},
-          {"fx", r.force.x()},
-          {"fy", r.force.y()},
-          {"vx", r.velocity.x()},
-          {"vy", r.velocity.y()},
-          {"anchor_y", r.anchor_y},
-          {"deflection", r.deflection},
-          {"deflection_velocity", r.deflection_velocity},
-          {"deflection_acceleration", r.deflection_acceleration},
-          {"fx_prescribed", optional_cell(r.prescribed.fx)},
-          {"fy_prescribed", optional_cell(r.prescribed.fy)},
-          {"load_offset_x", r.load_offset.x()},
-          {"load_offset_y", r.load_offset.y()}};
-}
-
-Row pass_row(int step, const PassRecord& r) {
-  return {{"step", Index{step}},
-          {"pass", Index{r.pass}},
-          {"max_plastic_increment", r.max_plastic_increment},
-          {"mean_plastic_increment", r.mean_plastic_increment},
-          {"band_plastic_increment", r.band_plastic_increment},
-          {"surface_ux", r.surface_ux},
-          {"surface_uy", r.surface_uy},
-          {"surface_dux", r.surface_dux},
-          {"surface_duy", r.surface_duy},
-          {"shear_depth", r.shear_depth},
-          {"residual_shear_strain", r.residual_shear_strain},
-          {"residual_shear_increment", r.residual_shear_increment},
-          {"peak_pressure", r.peak_pressure},
-          {"contact_half_width", r.contact_half_width},
-          {"track_start", r.track_start},
-          {"track_end", r.track_end}};
-}
-
-Row depth_row(int step, int pass, Real x, const DepthSample& d) {
-  return {{"step", Index{step}}, {"pass", Index{pass}}, {"x", x},
-          {"depth", d.depth},    {"sxx", d.stress(0)},  {"syy", d.stress(1)},
-          {"szz", d.stress(2)},  {"sxy", d.stress(3)},  {"eq_plastic_strain", d.plastic_strain}};
 }
 
 }  // namespace

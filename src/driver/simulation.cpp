@@ -54,6 +54,7 @@ std::vector<Index> contact_candidate_nodes(const Scene& scene, const Mesh& mesh)
 
 // The contact of a converged increment, node by node, with the roller centred at `centre`.
 std::vector<NodeContactRecord> contact_records(const IncrementSolution& solution, const Vec2& centre) {
+  ROLLER_ASSERT(solution.contact.contact.size() == solution.candidates.size(), "one contact result per candidate");
   std::vector<NodeContactRecord> records;
   for (std::size_t i = 0; i < solution.candidates.size(); ++i) {
     const ContactCandidate& c = solution.candidates[i];
@@ -146,6 +147,8 @@ VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) c
 
 void Simulation::commit(const IncrementSolution& solution, const RollerMotion& motion, Real s_from, Real s_to,
                         IncrementReport& inc) {
+  ROLLER_ASSERT(inc.converged && solution.u.size() == model_->n_dofs(), "a converged increment of all dofs");
+  ROLLER_ASSERT(s_to > s_from, "an increment moves forward in steps");
   try {
     inc.n_yielded = model_->commit(solution.u);
   } catch (const NumericalError& e) {

@@ -164,6 +164,8 @@ void evaluate(const ElementOptions& options, const MaterialParams& material, con
 
 void evaluate_element(const ElementOptions& options, const MaterialParams& material, const ElementInput& in,
                       bool want_residual, bool want_tangent, ElementOutput& out) {
+  ROLLER_ASSERT(in.geometry && in.committed, "an element is evaluated with its geometry and committed states");
+  ROLLER_ASSERT(in.displacement.size() == 2 * nodes_per_element(in.type), "two dofs per node of the element");
   if (in.type == ElementType::Q4)
     evaluate<4>(options, material, in, want_residual, want_tangent, out);
   else

@@ -16,6 +16,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "roller/analysis/hertz.hpp"
+
 namespace roller {
 
 namespace {
@@ -203,6 +205,32 @@ std::optional<T> read_value(TomlSection& s, const std::string& name, const Rule&
 }
 
 // ---- declarations ----------------------------------------------------------------------------
+
+// roller.path.p0 / p0_over_k: the segment's vertical force in the users' terms, converted to fy
+// with Hertz's line contact on the strip's plane-strain modulus (the roller rigid), the formula
+// kept for the resolved scene. Needs the [material] read before the [roller].
+void read_load_as_pressure(TomlSection& s, Scene& scene, std::size_t i, const char* key) {
+  const std::optional<Real> value = s.real(key);
+  if (!value) return;
+  PathSegment& seg = scene.roller->path[i];
+  if (!(*value > 0.0 && *value < 1e6)) s.fail(key, "expected a value > 0 (and below 1e6)");
+  if (seg.fy || s.has("fy") || (std::string(key) == "p0_over_k" && s.has("p0")))
+    s.fail(key, "give the segment's vertical force once: fy [N/mm], p0 [MPa] or p0_over_k");
+  const MaterialParams& m = scene.material;
+  const Real e_star = m.plane_strain_modulus();
+  const Real radius = scene.roller->radius;
+  Real p0 = *value;
+  std::string how = fmt::format("p0 = {:g} MPa", p0);
+  if (std::string(key) == "p0_over_k") {
+    if (!m.plastic) s.fail(key, "p0/k needs a yield stress: give material.yield_stress (k = yield_stress/sqrt(3))");
+    const Real k = m.yield_stress / std::sqrt(3.0);
+    p0 = *value * k;
+    how = fmt::format("p0_over_k = {:g}: k = yield_stress/sqrt(3) = {:.6g} MPa, p0 = {:.6g} MPa", *value, k, p0);
+  }
+  seg.fy = hertz_line_load(p0, radius, e_star);
+  seg.fy_origin =
+      fmt::format("{}; fy = pi R p0^2 / E* with R = {:g} mm, E* = E/(1 - nu^2) = {:.6g} MPa", how, radius, e_star);
+}
 
 // A scene with one of everything optional, for the defaults of keys inside them.
 const Scene& default_scene() {
@@ -828,6 +856,18 @@ std::vector<SceneKey> make_keys() {
           [](toml::table& t, const Scene& scene, Ref i) {
             if (const auto& fy = scene.roller->path[i].fy) t.insert("fy", *fy);
           }),
+      custom(
+          "roller.path.p0", "number", "absent", "> 0",
+          "the vertical force as the Hertz peak pressure p0 [MPa] of a line contact: fy = pi R p0^2 / E*, "
+          "E* = E/(1 - nu^2) of the strip (rigid roller); instead of fy",
+          [](TomlSection& s, Scene& scene, Ref i) { read_load_as_pressure(s, scene, i, "p0"); },
+          [](toml::table&, const Scene&, Ref) {}),  // written as the fy it gives
+      custom(
+          "roller.path.p0_over_k", "number", "absent", "> 0",
+          "the vertical force as p0/k, the Hertz peak pressure over the strip's shear yield stress "
+          "k = yield_stress/sqrt(3) (Johnson's shakedown measure): fy = pi R (p0/k k)^2 / E*; instead of fy",
+          [](TomlSection& s, Scene& scene, Ref i) { read_load_as_pressure(s, scene, i, "p0_over_k"); },
+          [](toml::table&, const Scene&, Ref) {}),
       custom(
           "roller.path.fx", "number", "absent (dx: motion)", "-1e15 <= fx <= 1e15",
           "horizontal force of the strip on the roller at the segment's end [N per mm], linear from the last "

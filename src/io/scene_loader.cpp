@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -18,20 +19,66 @@ namespace {
 
 // ---- overrides -------------------------------------------------------------------------------
 
+// A key's component "path[1]": the block of an array of tables (0-based), or a plain name.
+struct KeyPart {
+  std::string name;
+  std::optional<std::size_t> block;
+};
+
+KeyPart parse_part(const SceneOverride& o, const std::string& part) {
+  const auto open = part.find('[');
+  if (open == std::string::npos) return {part, std::nullopt};
+  const std::string index = part.substr(open + 1, part.size() - open - 2);
+  const bool digits = !index.empty() && index.size() < 7 &&
+                      std::all_of(index.begin(), index.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (part.back() != ']' || open == 0 || !digits)
+    throw InputError(
+        fmt::format("--set {}={}: '{}': expected name[N] with a block number N >= 0 (e.g. "
+                    "roller.path[1].fy)",
+                    o.key, o.value, part));
+  return {part.substr(0, open), static_cast<std::size_t>(std::stoul(index))};
+}
+
+// The table a component names: a sub-table (made when absent) or a block of an array of tables.
+toml::table* enter_part(toml::table& t, const SceneOverride& o, const KeyPart& part) {
+  toml::node* n = t.get(part.name);
+  if (part.block) {
+    toml::array* blocks = n ? n->as_array() : nullptr;
+    if (!blocks || !blocks->is_array_of_tables())
+      throw InputError(fmt::format("--set {}={}: '{}' is not an array of tables ([[{}]] blocks) in the scene", o.key,
+                                   o.value, part.name, part.name));
+    if (*part.block >= blocks->size())
+      throw InputError(
+          fmt::format("--set {}={}: the scene has {} [[{}]] block(s), numbered from 0; expected "
+                      "{}[0] to {}[{}]",
+                      o.key, o.value, blocks->size(), part.name, part.name, part.name, blocks->size() - 1));
+    return (*blocks)[*part.block].as_table();
+  }
+  if (!n) {
+    t.insert(part.name, toml::table{});
+    n = t.get(part.name);
+  }
+  toml::table* sub = n->as_table();
+  if (!sub) throw InputError(fmt::format("--set {}={}: '{}' is not a table in the scene", o.key, o.value, part.name));
+  return sub;
+}
+
 void apply_override(toml::table& root, const SceneOverride& o) {
   std::vector<std::string> parts;
   std::stringstream ss(o.key);
   for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
   toml::table* t = &root;
-  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    toml::node* n = t->get(parts[i]);
-    if (!n) {
-      t->insert(parts[i], toml::table{});
-      n = t->get(parts[i]);
-    }
-    t = n->as_table();
-    if (!t) throw InputError(fmt::format("--set {}={}: '{}' is not a table in the scene", o.key, o.value, parts[i]));
-  }
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) t = enter_part(*t, o, parse_part(o, parts[i]));
+  if (parse_part(o, parts.back()).block)
+    throw InputError(
+        fmt::format("--set {}={}: a value is set on a key of a block (e.g. roller.path[1].fy), not "
+                    "on the block itself",
+                    o.key, o.value));
+  // A segment's vertical force is given once, as fy, p0 or p0_over_k: an override of one of them
+  // replaces the force the block gives in any (--set roller.path[0].p0_over_k=4 on a scene with fy).
+  const std::vector<std::string> force_keys{"fy", "p0", "p0_over_k"};
+  if (std::find(force_keys.begin(), force_keys.end(), parts.back()) != force_keys.end())
+    for (const std::string& k : force_keys) t->erase(k);
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + o.value);
@@ -62,6 +109,13 @@ void read_table(const SceneTable& table, TomlSection& section, Scene& scene, std
       read_table(*sub, *s, scene, block);
     } else if (!sub->required.empty()) {
       section.fail(sub->name(), sub->required);
+    } else if (!sub->enter && !sub->count) {
+      // An absent table of settings means all its defaults, the ones computed from the rest of
+      // the scene included (output.every of a multi-pass run); a table whose presence makes or
+      // means something (a roller, a restart, passes) stays absent.
+      const toml::table empty;
+      TomlSection defaults(empty, sub->path, section.file());
+      read_table(*sub, defaults, scene, block);
     }
   }
   if (table.check) table.check(section, scene, block);
@@ -119,6 +173,21 @@ void check_nesting(const std::string& text, const std::filesystem::path& file_na
   }
 }
 
+// A [[roller.path]] segment that ends after the run's last step would never be reached: almost
+// surely a typo in its steps or in steps.count.
+void check_path_within_steps(const Scene& scene, int steps, const char* when) {
+  if (!scene.roller) return;
+  for (std::size_t i = 0; i < scene.roller->path.size(); ++i) {
+    const PathSegment& seg = scene.roller->path[i];
+    if (seg.last_step > steps)
+      throw InputError(
+          fmt::format("{}: roller.path[{}].steps = [{}, {}]{}: the segment ends after the run's last "
+                      "step {} (steps.count, one pass); expected a last step <= {}, or a larger "
+                      "steps.count",
+                      scene.file.string(), i, seg.first_step, seg.last_step, when, steps, steps));
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::filesystem::path& file_name,
@@ -131,12 +200,16 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file_nam
     throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", file_name.string(), e.source().begin.line,
                                  e.source().begin.column, e.description()));
   }
-  if (overrides.empty()) return scene_from_table(table, file_name);
   // The file as written is checked first: an override must not hide a bad value in it (a nan in
   // steps.count that --steps replaces would otherwise pass unseen).
-  scene_from_table(table, file_name);
+  const Scene written = scene_from_table(table, file_name);
+  check_path_within_steps(written, written.steps.n_steps, "");
+  if (overrides.empty()) return written;
   for (const auto& o : overrides) apply_override(table, o);
-  return scene_from_table(table, file_name);
+  Scene scene = scene_from_table(table, file_name);
+  // Fewer steps than the file's (--steps) may cut a path short; more steps than both may not.
+  check_path_within_steps(scene, std::max(written.steps.n_steps, scene.steps.n_steps), " (after --set/--steps)");
+  return scene;
 }
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<SceneOverride>& overrides) {

@@ -38,6 +38,12 @@ std::string scene_to_toml(const Scene& scene) {
   write_table(scene_table(""), root, scene, 0);
   std::ostringstream out;
   out << "# Resolved scene: every value roller used, defaults included.\n" << root << "\n";
+  // Forces given as pressures (roller.path.p0, p0_over_k) appear as the fy they gave, and how.
+  if (scene.roller)
+    for (std::size_t i = 0; i < scene.roller->path.size(); ++i)
+      if (!scene.roller->path[i].fy_origin.empty())
+        out << "# roller.path[" << i << "].fy = " << *scene.roller->path[i].fy << " N/mm from "
+            << scene.roller->path[i].fy_origin << "\n";
   return out.str();
 }
 

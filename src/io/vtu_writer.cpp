@@ -188,13 +188,11 @@ void append_field(std::string& xml, const VtuField& field, VtuCompression compre
 
 }  // namespace
 
-void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
-               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
-               VtuCompression compression) {
-  const Index n_nodes = mesh.n_nodes();
-  const Index n_elements = mesh.n_elements();
+namespace {
 
-  // Validate everything before touching the file system.
+// The coordinates and the connectivity checked against the mesh before anything is written.
+void check_mesh(const Mesh& mesh, const std::vector<Vec2>& coordinates) {
+  const Index n_nodes = mesh.n_nodes();
   if (static_cast<Index>(coordinates.size()) != n_nodes) {
     throw std::invalid_argument(
         fmt::format("write_vtu: 'coordinates' has {} points; the mesh has {} nodes", coordinates.size(), n_nodes));
@@ -223,6 +221,63 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
       }
     }
   }
+}
+
+void append_points(std::string& xml, const std::vector<Vec2>& coordinates, VtuCompression compression) {
+  std::string points;
+  points.reserve(24 * coordinates.size());
+  for (const Vec2& x : coordinates) {
+    append_f64(points, x[0]);
+    append_f64(points, x[1]);
+    append_f64(points, 0.0);
+  }
+  xml += "      <Points>\n";
+  xml +=
+      "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
+      "format=\"binary\">\n          ";
+  xml += encode(points, compression);
+  xml += "\n        </DataArray>\n";
+  xml += "      </Points>\n";
+}
+
+void append_cells(std::string& xml, const Mesh& mesh, VtuCompression compression) {
+  const std::size_t npe = static_cast<std::size_t>(nodes_per_element(mesh.element_type));
+  std::string connectivity;
+  std::string offsets;
+  std::string types;
+  connectivity.reserve(8 * npe * mesh.elements.size());
+  offsets.reserve(8 * mesh.elements.size());
+  types.reserve(mesh.elements.size());
+  const std::uint8_t cell_type = mesh.element_type == ElementType::T3 ? kVtkTriangle : kVtkQuad;
+  std::int64_t offset = 0;
+  for (const auto& conn : mesh.elements) {
+    for (const Index node : conn) append_i64(connectivity, node);
+    offset += static_cast<std::int64_t>(conn.size());
+    append_i64(offsets, offset);
+    types.push_back(static_cast<char>(cell_type));
+  }
+  xml += "      <Cells>\n";
+  xml += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"binary\">\n          ";
+  xml += encode(connectivity, compression);
+  xml += "\n        </DataArray>\n";
+  xml += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"binary\">\n          ";
+  xml += encode(offsets, compression);
+  xml += "\n        </DataArray>\n";
+  xml += "        <DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n          ";
+  xml += encode(types, compression);
+  xml += "\n        </DataArray>\n";
+  xml += "      </Cells>\n";
+}
+
+}  // namespace
+
+void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
+               const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
+               VtuCompression compression) {
+  const Index n_nodes = mesh.n_nodes();
+  const Index n_elements = mesh.n_elements();
+  // Validate everything before touching the file system.
+  check_mesh(mesh, coordinates);
   std::set<std::string> point_names;
   for (const auto& f : point_data) check_field(f, n_nodes, "point", point_names);
   std::set<std::string> cell_names;
@@ -236,59 +291,14 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
       compression == VtuCompression::ZLib ? " compressor=\"vtkZLibDataCompressor\"" : "");
   xml += "  <UnstructuredGrid>\n";
   xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n_nodes, n_elements);
-
   xml += "      <PointData>\n";
   for (const auto& f : point_data) append_field(xml, f, compression);
   xml += "      </PointData>\n";
   xml += "      <CellData>\n";
   for (const auto& f : cell_data) append_field(xml, f, compression);
   xml += "      </CellData>\n";
-
-  {
-    std::string points;
-    points.reserve(24 * coordinates.size());
-    for (const Vec2& x : coordinates) {
-      append_f64(points, x[0]);
-      append_f64(points, x[1]);
-      append_f64(points, 0.0);
-    }
-    xml += "      <Points>\n";
-    xml +=
-        "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" "
-        "format=\"binary\">\n          ";
-    xml += encode(points, compression);
-    xml += "\n        </DataArray>\n";
-    xml += "      </Points>\n";
-  }
-
-  {
-    std::string connectivity;
-    std::string offsets;
-    std::string types;
-    connectivity.reserve(8 * npe * mesh.elements.size());
-    offsets.reserve(8 * mesh.elements.size());
-    types.reserve(mesh.elements.size());
-    const std::uint8_t cell_type = mesh.element_type == ElementType::T3 ? kVtkTriangle : kVtkQuad;
-    std::int64_t offset = 0;
-    for (const auto& conn : mesh.elements) {
-      for (const Index node : conn) append_i64(connectivity, node);
-      offset += static_cast<std::int64_t>(conn.size());
-      append_i64(offsets, offset);
-      types.push_back(static_cast<char>(cell_type));
-    }
-    xml += "      <Cells>\n";
-    xml += "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"binary\">\n          ";
-    xml += encode(connectivity, compression);
-    xml += "\n        </DataArray>\n";
-    xml += "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"binary\">\n          ";
-    xml += encode(offsets, compression);
-    xml += "\n        </DataArray>\n";
-    xml += "        <DataArray type=\"UInt8\" Name=\"types\" format=\"binary\">\n          ";
-    xml += encode(types, compression);
-    xml += "\n        </DataArray>\n";
-    xml += "      </Cells>\n";
-  }
-
+  append_points(xml, coordinates, compression);
+  append_cells(xml, mesh, compression);
   xml += "    </Piece>\n";
   xml += "  </UnstructuredGrid>\n";
   xml += "</VTKFile>\n";

@@ -206,7 +206,7 @@ bool advance_substep(const MaterialParams& p, const Mat4& c, const Vec4& d_strai
 }
 
 MaterialUpdate substep_update(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
-  ROLLER_ASSERT(p.n_substeps >= 1);
+  ROLLER_ASSERT(p.n_substeps >= 1, "sub-stepping takes at least one sub-step");
   const int n = std::max(p.n_substeps, 1);
   const Mat4 c = elastic_matrix(p);
   const Vec4 d_strain = strain_increment / static_cast<Real>(n);
@@ -285,6 +285,12 @@ MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_incre
         "update_material: non-finite stress, tangent or energy from a finite strain increment; "
         "check the material with MaterialParams::is_valid (E_T < E, yield_stress > 0)");
   }
+  // The return mapping's plastic multiplier is >= 0: plastic strain only accumulates and work
+  // hardening never softens (the sub-steps' drift correction may take back a little).
+  ROLLER_ASSERT(
+      p.integration == StressIntegration::Substep ||
+          (u.trial.eq_plastic_strain >= committed.eq_plastic_strain && u.trial.yield_stress >= committed.yield_stress),
+      "the return mapping never lowers the plastic strain or the yield stress");
   return u;
 }
 

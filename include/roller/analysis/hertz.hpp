@@ -17,6 +17,9 @@ struct HertzSolution {
 };
 
 HertzSolution hertz_line_contact(Real load, Real radius, Real plane_strain_modulus);
+// The load per unit length whose Hertz peak pressure is p0: P = pi R p0^2 / E* (the inverse of
+// hertz_line_contact's p0 = sqrt(P E* / (pi R))).
+Real hertz_line_load(Real peak_pressure, Real radius, Real plane_strain_modulus);
 
 // A pressure sample at surface position x (mm from the contact centre).
 struct PressureSample {

@@ -44,6 +44,9 @@ struct PathSegment {
   // Vertical force of the strip on the roller at the segment's end [N per mm], reached linearly
   // from the fy of the last earlier segment that has one (0 if none); replaces dy.
   std::optional<Real> fy;
+  // fy given in the users' terms (roller.path.p0 or p0_over_k): how it was computed, for the
+  // resolved scene (empty when fy was given).
+  std::string fy_origin;
   // Horizontal force of the strip on the roller at the segment's end [N per mm], reached linearly
   // from the fx of the last earlier segment that has one (0 if none); the centre's x carries it.
   std::optional<Real> fx;

@@ -1,9 +1,8 @@
 #pragma once
 // Two tiers of checks (deal.II Assert/AssertThrow, MFEM_ASSERT/MFEM_VERIFY):
-//  * ROLLER_ASSERT: internal invariants, compiled out in release builds;
+//  * ROLLER_ASSERT: pre- and post-conditions of the code, compiled out in release builds;
 //  * roller::require / throw InputError / NumericalError: always on, for user input, I/O and
 //    module boundaries. Messages say where, what, and the likely fix.
-#include <cassert>
 #include <stdexcept>
 #include <string>
 
@@ -42,8 +41,17 @@ inline void require(bool condition, const std::string& message) {
 
 }  // namespace roller
 
+namespace roller {
+// A failed ROLLER_ASSERT: prints where and what and aborts (a bug, not the user's input).
+[[noreturn]] void assertion_failed(const char* condition, const char* what, const char* file, int line);
+}  // namespace roller
+
+// ROLLER_ASSERT(condition, "what must hold"): a pre- or post-condition of the code itself
+// (deal.II's Assert: each one a bug found where it starts, not three calls later). Checked in
+// Debug builds (the sanitizer build of CI runs every fast test with them), compiled out in
+// Release; it must not have side effects.
 #ifdef NDEBUG
-#define ROLLER_ASSERT(cond) ((void)0)
+#define ROLLER_ASSERT(cond, what) ((void)0)
 #else
-#define ROLLER_ASSERT(cond) assert(cond)
+#define ROLLER_ASSERT(cond, what) ((cond) ? (void)0 : ::roller::assertion_failed(#cond, what, __FILE__, __LINE__))
 #endif

@@ -2,6 +2,7 @@
 // The step loop (set-up; for each step: predict, solve, cut back if needed, commit,
 // write). Results of completed steps are on disk before the next step starts, so a failure or
 // a kill loses nothing already done.
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
@@ -37,26 +38,31 @@ struct RunOptions {
   // A fresh run into a folder that is not empty and holds another scene's output (or other
   // files): refused unless overwrite (driver/output_folder.hpp).
   bool overwrite = false;
+  // Set (to the signal's number) by the caller's handler of SIGINT or SIGTERM: the run stops
+  // after the step under way, keeps its files and checkpoint, and says "interrupted".
+  const std::atomic<int>* stop_signal = nullptr;
 };
 
 // How a run ended, and the exit code of `roller run` for it (docs/scenes.md, Exit codes).
-enum class RunStatus { Running, Completed, StepFailed, InputError, SystemError, InternalError };
+enum class RunStatus { Running, Completed, StepFailed, InputError, SystemError, InternalError, Interrupted };
 template <>
 struct EnumNames<RunStatus> {
-  static constexpr std::array<std::pair<RunStatus, const char*>, 6> names{
-      {{RunStatus::Running, "running"},
-       {RunStatus::Completed, "completed"},
-       {RunStatus::StepFailed, "step_failed"},
-       {RunStatus::InputError, "input_error"},
-       {RunStatus::SystemError, "system_error"},
-       {RunStatus::InternalError, "internal_error"}}};
+  static constexpr std::array<std::pair<RunStatus, const char*>, 7> names{{{RunStatus::Running, "running"},
+                                                                           {RunStatus::Completed, "completed"},
+                                                                           {RunStatus::StepFailed, "step_failed"},
+                                                                           {RunStatus::InputError, "input_error"},
+                                                                           {RunStatus::SystemError, "system_error"},
+                                                                           {RunStatus::InternalError, "internal_error"},
+                                                                           {RunStatus::Interrupted, "interrupted"}}};
 };
-int exit_code(RunStatus status);
+// `signal`: the signal that interrupted the run (Interrupted: 128 + signal, as a shell reports it).
+int exit_code(RunStatus status, int signal = 0);
 // The status of a run stopped by `e` (InputError, SystemError or out of memory, or a bug).
 RunStatus status_of(const std::exception& e);
 
 struct RunSummary {
   RunStatus status = RunStatus::Running;
+  int signal = 0;  // Interrupted: the signal's number
   bool converged = false;
   int steps_done = 0;
   RunTotals totals;  // over every step of the run, a resumed run's earlier ones included

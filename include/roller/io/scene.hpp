@@ -115,7 +115,7 @@ struct Scene {
   // start afresh): [restart] from = "...", resolved against the scene file's folder.
   std::filesystem::path initial_state;
 
-  int total_steps() const { return steps.n_steps * passes.count; }  // steps of the whole run
+  int total_steps() const;  // steps of the whole run: steps.count times passes.count
 };
 
 }  // namespace roller

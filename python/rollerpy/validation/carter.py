@@ -43,6 +43,7 @@ import math
 import os
 import sys
 import tomllib
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -56,6 +57,8 @@ QUICK_FRACTIONS = [0.4, 0.8]
 TRACTIONS = [0.36, 0.64, 0.84, 0.96]     # Q/(mu P) = 1 - (1 - f)^2 for f = 0.2, 0.4, 0.6, 0.8
 QUICK_TRACTIONS = [0.64, 0.96]
 PROFILE_FRACTION = 0.6
+MARKERS = {"ipopt": ("o", "C0"), "penalty": ("x", "C3")}   # backend: marker, colour
+OTHER_MARKER = ("s", "C2")
 
 
 def carter_ratio(xi_norm):
@@ -187,139 +190,215 @@ def main(argv=None):
         sys.exit(str(e))
 
 
-def sweep(args):
-    os.makedirs(args.out, exist_ok=True)
+@dataclass(frozen=True)
+class CarterScene:
+    """What the sweep takes from the scene file."""
+    e_star: float    # plane-strain modulus E/(1 - nu^2)
+    radius: float    # roller radius R
+    mu: float        # friction coefficient
+    segments: list   # roller.path, the segments the overrides rewrite
+    n_press: int     # last step of the press-in (the segments with dx = 0)
 
-    with open(args.scene, "rb") as f:
+
+def read_scene(path):
+    with open(path, "rb") as f:
         scene = tomllib.load(f)
     E, nu = scene["material"]["E"], scene["material"].get("nu", 0.3)
-    R, mu = scene["roller"]["radius"], scene["contact"]["friction"]
     segments = scene["roller"]["path"]
-    n_press = max(s["steps"][1] for s in segments if float(s.get("dx", 0.0)) == 0.0)
-    e_star = E / (1.0 - nu * nu)
-    backends = args.backends.split(",")
+    return CarterScene(e_star=E / (1.0 - nu * nu), radius=scene["roller"]["radius"],
+                       mu=scene["contact"]["friction"], segments=segments,
+                       n_press=max(s["steps"][1] for s in segments if float(s.get("dx", 0.0)) == 0.0))
 
-    # Press-in alone: a0 sets the creeps.
+
+def press_in(args, scene, backend):
+    """Runs (or reuses) the press-in alone: returns its half-width a0, which sets the creeps, and
+    under --traction its vertical force P0, which sets the tractions (else None)."""
     press = os.path.join(args.out, "press_in")
     if not args.reuse:
-        run(args, press, backends[0], [], steps=n_press)
-    m0 = measure(read_rows(os.path.join(press, "contact.csv")), n_press, mu)
-    a0 = m0["a"]
-    print("press-in: a0 = %.4f mm, mu a0/R = %.4e" % (a0, mu * a0 / R))
+        run(args, press, backend, [], steps=scene.n_press)
+    a0 = measure(read_rows(os.path.join(press, "contact.csv")), scene.n_press, scene.mu)["a"]
+    print("press-in: a0 = %.4f mm, mu a0/R = %.4e" % (a0, scene.mu * a0 / scene.radius))
+    p_press = float(read_rows(os.path.join(press, "roller.csv"))[-1]["fy"]) if args.traction else None
+    return a0, p_press
 
+
+def sweep_fractions(args):
+    """Creeps / (mu a0/R), or under --traction Q/(mu P0)."""
     if args.traction:
-        fractions = QUICK_TRACTIONS if args.quick else TRACTIONS
-        p_press = float(read_rows(os.path.join(press, "roller.csv"))[-1]["fy"])
-    else:
-        fractions = QUICK_FRACTIONS if args.quick else FRACTIONS
+        return QUICK_TRACTIONS if args.quick else TRACTIONS
+    return QUICK_FRACTIONS if args.quick else FRACTIONS
+
+
+def case_override(traction, scene, frac, a0, p_press):
+    """The case's roller.path override and its prescribed creep (None under --traction, where the
+    creep is measured)."""
+    if traction:
+        return traction_override(scene.segments, -frac * scene.mu * p_press), None
+    creep = round(frac * scene.mu * a0 / scene.radius, 7)
+    return path_override(scene.segments, creep), creep
+
+
+def run_or_reuse(args, out, backend, override):
+    """Runs the case unless --reuse; returns the run's own wall time either way."""
+    if args.reuse:
+        return float(read_summary(out)["wall_s"])
+    return run(args, out, backend, [override])
+
+
+def last_step_measures(roller, contact, mu):
+    """Loads and contact at the last step, and the same one contact width 2a of rolling before it
+    (the steadiness check)."""
+    last = roller[-1]
+    fx, fy = float(last["fx"]), float(last["fy"])
+    P, Q = fy, abs(fx)
+    m = measure(contact, int(last["step"]), mu)
+    xc_last = float(last["xc"])
+    earlier = min(roller, key=lambda r: abs(float(r["xc"]) - (xc_last - 2.0 * m["a"])))
+    s_prev = int(earlier["step"])
+    return dict(step=int(last["step"]), xc=xc_last, P=P, Q=Q, q_ratio=Q / (mu * P), m=m, s_prev=s_prev,
+                q_prev=abs(float(earlier["fx"])) / (mu * float(earlier["fy"])), m_prev=measure(contact, s_prev, mu))
+
+
+def carter_row(backend, creep, last, scene, rolled, wall):
+    """The case's CSV row: measured loads and zones beside Carter's and Hertz's values."""
+    mu, R, e_star = scene.mu, scene.radius, scene.e_star
+    m, m_prev, q_ratio = last["m"], last["m_prev"], last["q_ratio"]
+    a, P = m["a"], last["P"]
+    xi_norm = creep * R / (mu * a)
+    c_carter = a * math.sqrt(max(1.0 - q_ratio, 0.0))
+    return dict(
+        backend=backend, creep=creep, xi_norm=xi_norm, P=P, Q=last["Q"], q_ratio=q_ratio,
+        q_theory=float(carter_ratio(xi_norm)), q_err=q_ratio - float(carter_ratio(xi_norm)),
+        a_fit=a, a_hertz=math.sqrt(4.0 * P * R / (math.pi * e_star)), p0_fit=m["p0"],
+        p0_hertz=a * e_star / (2.0 * R), x0_minus_xc=m["x0"] - last["xc"],
+        n_stick=m["n_stick"], c_moment=m["c"], d_moment=m["d"], c_parabola=m["c_parabola"],
+        d_parabola=m["d_parabola"], c_status=m["c_status"],
+        d_status=m["d_status"], leading_edge=m["d"] + m["c"],
+        c_carter=c_carter,
+        c_err=(m["c"] - c_carter) / c_carter if m["c"] > 0.0 and c_carter > 0.0 else float("nan"),
+        c_from_creep=a * max(1.0 - xi_norm, 0.0),
+        dq_last_2a=(q_ratio - last["q_prev"]) / q_ratio,
+        dc_last_2a=(m["c"] - m_prev["c"]) / m["c"] if m["c"] > 0.0 else float("nan"),
+        rolled=rolled, steps=last["step"], wall_s=wall,
+        creep_carter=mu * a / R * (1.0 - math.sqrt(max(1.0 - q_ratio, 0.0))))
+
+
+def analyse_case(out, backend, creep, scene, traction, wall):
+    """Reads one run's outputs: returns its CSV row and its last step's contact measures."""
+    roller = read_rows(os.path.join(out, "roller.csv"))
+    contact = read_rows(os.path.join(out, "contact.csv"))
+    last = last_step_measures(roller, contact, scene.mu)
+    if traction:
+        creep = measured_creep(roller, last["s_prev"])
+    rolled = last["xc"] - float(next(r for r in roller if int(r["step"]) == scene.n_press)["xc"])
+    return carter_row(backend, creep, last, scene, rolled, wall), last["m"]
+
+
+def print_case(row, m):
+    print("%-7s xi=%.3e xiR/(mu a)=%.3f  Q/(mu P)=%.4f (Carter %.4f)  a=%.4f  c=%.4f (Carter %.4f, %+.1f %%) "
+          "d+c=%.3f  c_parabola=%.3f c_status=%.3f  dQ,dc over last 2a: %+.2f %%, %+.2f %%  %.1f s"
+          % (row["backend"], row["creep"], row["xi_norm"], row["q_ratio"], row["q_theory"], row["a_fit"], m["c"],
+             row["c_carter"], 100 * row["c_err"], row["leading_edge"], m["c_parabola"], m["c_status"],
+             100 * row["dq_last_2a"], 100 * row["dc_last_2a"], row["wall_s"]),
+          flush=True)
+
+
+def run_cases(args, scene, backends, fractions, a0, p_press):
+    """Every backend at every fraction, each run (or reused), analysed and printed in turn;
+    returns (row, measures, fraction) per case."""
     tag = "traction_" if args.traction else ""
     results = []
     for backend in backends:
         for k, frac in enumerate(fractions):
             out = os.path.join(args.out, "%s%s_%d" % (tag, backend, k))
-            if args.traction:
-                override = traction_override(segments, -frac * mu * p_press)
-            else:
-                creep = round(frac * mu * a0 / R, 7)
-                override = path_override(segments, creep)
-            if args.reuse:  # the run's own wall time
-                wall = float(read_summary(out)["wall_s"])
-            else:
-                wall = run(args, out, backend, [override])
-            roller = read_rows(os.path.join(out, "roller.csv"))
-            contact = read_rows(os.path.join(out, "contact.csv"))
-            last = int(roller[-1]["step"])
-            fx, fy = float(roller[-1]["fx"]), float(roller[-1]["fy"])
-            P, Q = fy, abs(fx)
-            q_ratio = Q / (mu * P)
-            m = measure(contact, last, mu)
-            a = m["a"]
-            # One contact width 2a of rolling before the last step.
-            xc_last = float(roller[-1]["xc"])
-            earlier = min(roller, key=lambda r: abs(float(r["xc"]) - (xc_last - 2.0 * a)))
-            s_prev = int(earlier["step"])
-            q_prev = abs(float(earlier["fx"])) / (mu * float(earlier["fy"]))
-            m_prev = measure(contact, s_prev, mu)
-            if args.traction:
-                creep = measured_creep(roller, s_prev)
-            xi_norm = creep * R / (mu * a)
-            c_carter = a * math.sqrt(max(1.0 - q_ratio, 0.0))
-            row = dict(
-                backend=backend, creep=creep, xi_norm=xi_norm, P=P, Q=Q, q_ratio=q_ratio,
-                q_theory=float(carter_ratio(xi_norm)), q_err=q_ratio - float(carter_ratio(xi_norm)),
-                a_fit=a, a_hertz=math.sqrt(4.0 * P * R / (math.pi * e_star)), p0_fit=m["p0"],
-                p0_hertz=a * e_star / (2.0 * R), x0_minus_xc=m["x0"] - xc_last,
-                n_stick=m["n_stick"], c_moment=m["c"], d_moment=m["d"], c_parabola=m["c_parabola"],
-                d_parabola=m["d_parabola"], c_status=m["c_status"],
-                d_status=m["d_status"], leading_edge=m["d"] + m["c"],
-                c_carter=c_carter,
-                c_err=(m["c"] - c_carter) / c_carter if m["c"] > 0.0 and c_carter > 0.0 else float("nan"),
-                c_from_creep=a * max(1.0 - xi_norm, 0.0),
-                dq_last_2a=(q_ratio - q_prev) / q_ratio,
-                dc_last_2a=(m["c"] - m_prev["c"]) / m["c"] if m["c"] > 0.0 else float("nan"),
-                rolled=xc_last - float(next(r for r in roller if int(r["step"]) == n_press)["xc"]),
-                steps=last, wall_s=wall,
-                creep_carter=mu * a / R * (1.0 - math.sqrt(max(1.0 - q_ratio, 0.0))))
+            override, creep = case_override(args.traction, scene, frac, a0, p_press)
+            wall = run_or_reuse(args, out, backend, override)
+            row, m = analyse_case(out, backend, creep, scene, args.traction, wall)
             results.append((row, m, frac))
-            print("%-7s xi=%.3e xiR/(mu a)=%.3f  Q/(mu P)=%.4f (Carter %.4f)  a=%.4f  c=%.4f (Carter %.4f, %+.1f %%) "
-                  "d+c=%.3f  c_parabola=%.3f c_status=%.3f  dQ,dc over last 2a: %+.2f %%, %+.2f %%  %.1f s"
-                  % (backend, creep, xi_norm, q_ratio, row["q_theory"], a, m["c"], c_carter, 100 * row["c_err"],
-                     row["leading_edge"], m["c_parabola"], m["c_status"], 100 * row["dq_last_2a"],
-                     100 * row["dc_last_2a"], wall),
-                  flush=True)
+            print_case(row, m)
+    return results
 
+
+def write_csv(path, results):
     keys = list(results[0][0].keys())
-    with open(os.path.join(args.out, "carter%s.csv" % ("_traction" if args.traction else "")), "w", newline="") as f:
+    with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=keys)
         w.writeheader()
         for row, _, _ in results:
             w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in row.items()})
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.8))
+
+def plot_ratio(ax, results, backends, traction):
+    """Left panel: Q/(mu P) against the creep, each backend against Carter's curve."""
     xs = np.linspace(0.0, 1.6, 200)
-    ax1.plot(xs, carter_ratio(xs), "k-", label="Carter: 1 − (1 − ξR/(μa))²")
-    markers = {"ipopt": ("o", "C0"), "penalty": ("x", "C3")}
+    ax.plot(xs, carter_ratio(xs), "k-", label="Carter: 1 − (1 − ξR/(μa))²")
     for backend in backends:
         pts = [(r["xi_norm"], r["q_ratio"]) for r, _, _ in results if r["backend"] == backend]
-        mk, col = markers.get(backend, ("s", "C2"))
-        ax1.plot([p[0] for p in pts], [p[1] for p in pts], mk, color=col, ms=8, mfc="none" if mk == "o" else col,
-                 label=backend)
-    ax1.set_xlabel("creep ξR/(μa)")
-    ax1.set_ylabel("Q/(μP)")
-    ax1.set_xlim(0.0, 1.6)
-    ax1.set_ylim(0.0, 1.05)
-    ax1.grid(alpha=0.3)
-    ax1.legend(loc="lower right")
-    ax1.set_title("Creep (measured) under a prescribed traction" if args.traction
-                  else "Traction against creep (last step)")
+        mk, col = MARKERS.get(backend, OTHER_MARKER)
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], mk, color=col, ms=8, mfc="none" if mk == "o" else col,
+                label=backend)
+    ax.set_xlabel("creep ξR/(μa)")
+    ax.set_ylabel("Q/(μP)")
+    ax.set_xlim(0.0, 1.6)
+    ax.set_ylim(0.0, 1.05)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="lower right")
+    ax.set_title("Creep (measured) under a prescribed traction" if traction
+                 else "Traction against creep (last step)")
 
-    target = min(fractions, key=lambda f: abs(f - PROFILE_FRACTION))
+
+def plot_carter_profile(ax, row, m, mu, xn):
+    """The first backend's pressure beside Carter's traction, Hertz's bound and Carter's stick zone."""
+    a, p0, on = m["a"], m["p0"], m["on"]
     xa = np.linspace(-1.0, 1.0, 401)
+    ax.plot(xn[on], m["p"][on] / p0, ".", color="0.5", ms=4, label="p_n/p0, %s" % row["backend"])
+    c = row["c_carter"]
+    ax.plot(xa, carter_traction(xa * a, a, c, p0, mu) / (mu * p0), "k-",
+            label="Carter q(x), c/a = √(1 − Q/μP) = %.3f" % (c / a))
+    ax.plot(xa, np.sqrt(1.0 - xa ** 2), "k:", lw=0.8, label="μp (Hertz)")
+    ax.axvspan((a - 2 * c) / a, 1.0, color="C2", alpha=0.08, label="Carter's stick zone")
+    ax.set_title("Traction profile, ξR/(μa) = %.2f (roller moving to +x)" % row["xi_norm"])
+
+
+def plot_profile(ax, results, fractions, backends, mu):
+    """Right panel: the traction profiles of the case nearest PROFILE_FRACTION."""
+    target = min(fractions, key=lambda f: abs(f - PROFILE_FRACTION))
     for row, m, frac in results:
         if frac != target:
             continue
-        a, p0 = m["a"], m["p0"]
-        xn = (m["x"] - (m["x0"])) / a
+        xn = (m["x"] - (m["x0"])) / m["a"]
         on = m["on"]
-        mk, col = markers.get(row["backend"], ("s", "C2"))
-        ax2.plot(xn[on], m["t"][on] / (mu * p0), mk + "-", color=col, ms=5, lw=0.8,
-                 mfc="none" if mk == "o" else col, label="p_t/(μp0), %s" % row["backend"])
+        mk, col = MARKERS.get(row["backend"], OTHER_MARKER)
+        ax.plot(xn[on], m["t"][on] / (mu * m["p0"]), mk + "-", color=col, ms=5, lw=0.8,
+                mfc="none" if mk == "o" else col, label="p_t/(μp0), %s" % row["backend"])
         if row["backend"] == backends[0]:
-            ax2.plot(xn[on], m["p"][on] / p0, ".", color="0.5", ms=4, label="p_n/p0, %s" % row["backend"])
-            c = row["c_carter"]
-            ax2.plot(xa, carter_traction(xa * a, a, c, p0, mu) / (mu * p0), "k-",
-                     label="Carter q(x), c/a = √(1 − Q/μP) = %.3f" % (c / a))
-            ax2.plot(xa, np.sqrt(1.0 - xa ** 2), "k:", lw=0.8, label="μp (Hertz)")
-            ax2.axvspan((a - 2 * c) / a, 1.0, color="C2", alpha=0.08, label="Carter's stick zone")
-            ax2.set_title("Traction profile, ξR/(μa) = %.2f (roller moving to +x)" % row["xi_norm"])
-    ax2.set_xlabel("(x − x0)/a")
-    ax2.set_ylabel("p_t/(μp0), p_n/p0")
-    ax2.set_xlim(-1.15, 1.15)
-    ax2.set_ylim(0.0, 1.05)
-    ax2.grid(alpha=0.3)
-    ax2.legend(loc="upper left", fontsize=7)
+            plot_carter_profile(ax, row, m, mu, xn)
+    ax.set_xlabel("(x − x0)/a")
+    ax.set_ylabel("p_t/(μp0), p_n/p0")
+    ax.set_xlim(-1.15, 1.15)
+    ax.set_ylim(0.0, 1.05)
+    ax.grid(alpha=0.3)
+    ax.legend(loc="upper left", fontsize=7)
+
+
+def plot_results(path, results, fractions, backends, mu, traction):
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.8))
+    plot_ratio(ax1, results, backends, traction)
+    plot_profile(ax2, results, fractions, backends, mu)
     fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def sweep(args):
+    """The command: the press-in, then every backend at every creep (or traction), CSV and plot."""
+    os.makedirs(args.out, exist_ok=True)
+    scene = read_scene(args.scene)
+    backends = args.backends.split(",")
+    a0, p_press = press_in(args, scene, backends[0])
+    fractions = sweep_fractions(args)
+    results = run_cases(args, scene, backends, fractions, a0, p_press)
     name = os.path.join(args.out, "carter%s" % ("_traction" if args.traction else ""))
-    fig.savefig(name + ".png", dpi=110)
+    write_csv(name + ".csv", results)
+    plot_results(name + ".png", results, fractions, backends, scene.mu, args.traction)
     print("wrote %s.csv and %s.png" % (name, name))
     return 0

@@ -1,0 +1,77 @@
+#include "roller/driver/scene_warnings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "roller/analysis/hertz.hpp"
+#include "roller_start.hpp"
+
+namespace roller {
+
+namespace {
+
+// The spacing of the top surface's nodes around x (the element size the contact meets) [mm].
+Real surface_spacing_at(const Mesh& mesh, Real x) {
+  const std::vector<Index>& top = mesh.node_set("top");
+  Real spacing = 0.0, distance = 0.0;
+  bool found = false;
+  for (std::size_t k = 0; k + 1 < top.size(); ++k) {
+    const Vec2 a = mesh.nodes[top[k]], b = mesh.nodes[top[k + 1]];
+    const Real d = std::abs(0.5 * (a.x() + b.x()) - x);
+    if (!found || d < distance) {
+      spacing = std::abs(b.x() - a.x());
+      distance = d;
+      found = true;
+    }
+  }
+  return spacing;
+}
+
+// The contact's half-width the scene will reach, from Hertz's line contact: under the largest
+// prescribed force, else for the deepest press (the chord half-width of a press d, sqrt(2 R d),
+// over sqrt(2): Hertz's width for that depth is about that); nullopt without either.
+std::optional<Real> expected_half_width(const Scene& scene) {
+  const RollerSpec& roller = *scene.roller;
+  const Real e_star = scene.material.plane_strain_modulus();
+  Real force = 0.0, depth = 0.0, y = 0.0;
+  for (const PathSegment& seg : roller.path) {
+    if (seg.fy) force = std::max(force, *seg.fy);
+    y += seg.fy ? 0.0 : seg.dy;
+    depth = std::max(depth, -y);
+  }
+  if (force > 0.0) return hertz_line_contact(force, roller.radius, e_star).half_width;
+  if (depth > 0.0) return std::sqrt(roller.radius * depth);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
+  std::vector<std::string> out;
+  const std::string file = scene.file.string();
+  const MaterialParams& m = scene.material;
+  if (m.youngs_modulus < 1e3 && m.plastic && m.yield_stress > 10.0)
+    out.push_back(fmt::format("{}: material.E = {:g} MPa with material.yield_stress = {:g} MPa: E looks like GPa; "
+                              "roller works in MPa (steel: E = 2.1e5)",
+                              file, m.youngs_modulus, m.yield_stress));
+  if (!scene.roller) return out;
+  const Real x = given_start_centre(scene).x();
+  const Real h = surface_spacing_at(mesh, x);
+  const Real radius = scene.roller->radius;
+  if (radius < h)
+    out.push_back(fmt::format("{}: roller.radius = {:g} mm is smaller than the element under it ({:.3g} mm): a radius "
+                              "in metres? roller works in mm",
+                              file, radius, h));
+  // Nodes within the contact width 2a: 2a/h + 1 on average.
+  if (const std::optional<Real> a = expected_half_width(scene); a && h > 0.0 && 2.0 * *a / h + 1.0 < 4.0)
+    out.push_back(fmt::format("{}: the contact will span about {:.1f} nodes (Hertz half-width a = {:.3g} mm for the "
+                              "path's load or press, element size {:.3g} mm under the roller): pressures and stick/slip "
+                              "zones need at least 4; refine the mesh there (mesh.refine, mesh.x_lines)",
+                              file, 2.0 * *a / h + 1.0, *a, h));
+  return out;
+}
+
+}  // namespace roller
