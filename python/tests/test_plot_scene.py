@@ -61,33 +61,34 @@ def test_zoom_element_values_and_level_lists(cattaneo_out, args):
 
 def test_signed_fields_diverge_about_zero_and_magnitudes_are_sequential(hertz_out):
     signed = map_figure(hertz_out, 4, "stress_yy")
-    bands = signed.axes[0].collections[0]
-    assert bands.cmap.name == "RdBu_r"
-    assert bands.norm.vmin == pytest.approx(-bands.norm.vmax)  # white is zero
+    assert signed.bands.cmap.name == "RdBu_r"
+    assert signed.bands.norm.vmin == pytest.approx(-signed.bands.norm.vmax)  # white is zero
     magnitude = map_figure(hertz_out, 4, "von_mises")
-    assert magnitude.axes[0].collections[0].cmap.name == "viridis"
-    assert magnitude.axes[0].collections[0].norm.vmin == 0.0
-    # The contour lines are at the band boundaries (same levels), the labels use them.
-    bands = magnitude.axes[0].collections[0]
-    lines = [c for c in magnitude.axes[0].collections[1:] if hasattr(c, "levels")]
-    assert lines and set(lines[0].levels) <= set(bands.levels)
-    plt.close(signed)
-    plt.close(magnitude)
+    assert magnitude.bands.cmap.name == "viridis"
+    assert magnitude.bands.norm.vmin == 0.0
+    # The colour bands change at the contour lines' levels (and at the data's extremes).
+    assert len(magnitude.levels) >= 3
+    assert list(magnitude.bands.levels[1:-1]) == magnitude.levels
+    labels = {t.get_text() for t in magnitude.ax.texts}  # the contour lines' labels, at those levels
+    assert labels and labels <= {"%g" % v for v in magnitude.levels}
+    plt.close(signed.fig)
+    plt.close(magnitude.fig)
 
 
 def test_maps_zoom_on_the_contact_and_draw_the_roller(hertz_out):
     zoomed, whole = map_figure(hertz_out, 4, "stress_xy"), map_figure(hertz_out, 4, "stress_xy", whole=True)
-    x0, x1 = zoomed.axes[0].get_xlim()
-    w0, w1 = whole.axes[0].get_xlim()
+    x0, x1 = zoomed.ax.get_xlim()
+    w0, w1 = whole.ax.get_xlim()
     assert x1 - x0 < 0.5 * (w1 - w0)
     pose = read_rows(os.path.join(hertz_out, "roller.csv"))[-1]
-    circles = [p for p in zoomed.axes[0].patches if isinstance(p, plt.Circle)]
+    circles = [p for p in zoomed.ax.patches if isinstance(p, plt.Circle)]
     assert len(circles) == 1
     assert circles[0].center == (float(pose["xc"]), float(pose["yc"]))
     assert x0 < float(pose["xc"]) < x1
-    assert "[MPa]" in zoomed.axes[1].get_xlabel()  # the colour bar's unit
-    plt.close(zoomed)
-    plt.close(whole)
+    assert "[MPa]" in zoomed.fig.axes[1].get_xlabel()  # the colour bar's unit
+    assert zoomed.ax.get_xlabel() == "x [mm]" and zoomed.ax.get_ylabel() == "y [mm]"
+    plt.close(zoomed.fig)
+    plt.close(whole.fig)
 
 
 def test_hertz_at_a_chosen_step_and_after_a_lift(hertz_out, tmp_path):

@@ -43,6 +43,7 @@ Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 import math
 import os
 import sys
+from dataclasses import dataclass
 
 import matplotlib.tri as mtri
 import numpy as np
@@ -165,9 +166,19 @@ def draw_field(ax, tri, values, field, levels, owner=None):
     return bands, lines
 
 
+@dataclass
+class Map:
+    """A drawn map: the figure (the caller saves and closes it), its map axes, the colour bands
+    (their cmap and norm) and the contour levels."""
+    fig: object
+    ax: object
+    bands: object
+    levels: list
+
+
 def map_figure(out, step, name, levels=None, element_values=False, window=None, whole=False):
-    """The contour map of one field at one step; returns the figure (the caller saves it).
-    window: ((x0, x1), (y0, y1)), else the contact region (whole: the strip)."""
+    """The contour map of one field at one step (a Map). window: ((x0, x1), (y0, y1)), else the
+    contact region (whole: the strip)."""
     field = FIELDS[name]
     vtu = read_vtu(vtu_path(out, step))
     tri = mtri.Triangulation(vtu.points[:, 0], vtu.points[:, 1], triangles(vtu.elements))
@@ -191,13 +202,13 @@ def map_figure(out, step, name, levels=None, element_values=False, window=None, 
     if lines:  # the bar's ticks at the contour levels, not at the data's extremes
         bar.set_ticks(lines)
         bar.ax.xaxis.set_major_formatter(FuncFormatter(number_text))
-    return fig
+    return Map(fig, ax, mappable, lines)
 
 
 def contour_maps(out, figs, steps, fields, levels=None, element_values=False, window=None, whole=False):
     for step in steps:
         for name in fields:
-            fig = map_figure(out, step, name, levels, element_values, window, whole)
+            fig = map_figure(out, step, name, levels, element_values, window, whole).fig
             fig.savefig(os.path.join(figs, "map_%s_step%d.png" % (name, step)), dpi=110, bbox_inches="tight")
             plt.close(fig)
 

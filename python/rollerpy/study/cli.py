@@ -121,7 +121,9 @@ def main(argv=None):
     return 0
 
 
-class Interrupted(Exception):
+class Interrupted(BaseException):
+    """SIGINT or SIGTERM (a BaseException as KeyboardInterrupt: no `except Exception` stops it)."""
+
     def __init__(self, signum):
         super().__init__(signal.Signals(signum).name)
         self.signum = signum
