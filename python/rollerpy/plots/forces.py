@@ -35,11 +35,12 @@ def forces_figure(out, label=None):
     for ax, name in ((axes[1], "xc"), (axes[2], "yc")):
         ax.plot(step, column[name], "o-", ms=2.5, lw=1.0, color="k")
         ax.set_ylabel("%s [mm]" % name)
+        ax.ticklabel_format(axis="y", useOffset=False)  # positions as read, not as "+1.999e2" offsets
     mark_passes(axes, rows, step)
     for ax in axes:
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel("step")
-    axes[0].set_title("roller force of the strip on the roller, and centre: %s"
+    axes[0].set_title("force of the strip on the roller, and the roller's centre: %s"
                       % (label or os.path.basename(os.path.normpath(out))), fontsize=10)
     return fig
 

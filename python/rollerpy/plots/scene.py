@@ -154,9 +154,9 @@ def draw_field(ax, tri, values, field, levels, owner=None):
     """Colour bands and contour lines at the same levels (element values: flat colours, no
     lines); returns the mappable for the colour bar and the levels."""
     cmap, norm = colours(field, values)
+    if owner is not None:  # a continuous bar with its own ticks: no levels
+        return ax.tripcolor(tri, facecolors=values[owner], cmap=cmap, norm=norm, shading="flat"), []
     lines = contour_levels(values, levels)
-    if owner is not None:
-        return ax.tripcolor(tri, facecolors=values[owner], cmap=cmap, norm=norm, shading="flat"), lines
     lo, hi = float(np.min(values)), float(np.max(values))
     if hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-300):  # a constant field: one colour
         return ax.tripcolor(tri, np.full(len(values), lo), cmap=cmap, norm=norm, shading="gouraud"), []
