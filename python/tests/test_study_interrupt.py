@@ -35,11 +35,12 @@ def finished(out):
                                             (["--serial"], signal.SIGTERM)])
 def test_an_interrupted_study_says_so_in_one_line_and_resumes(roller, tmp_path, engine, signum):
     study, out = write(str(tmp_path), "slow.toml", SLOW), str(tmp_path / "out")
+    table = os.path.join(out, "study.csv")
     proc = subprocess.Popen([LAUNCHER, "study", study, "--out", out, "--quiet", "--roller", roller] + engine,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
     try:
-        deadline = time.monotonic() + 120
-        while not finished(out) and time.monotonic() < deadline:
+        deadline = time.monotonic() + 120  # until study.csv holds a finished point
+        while time.monotonic() < deadline and not (os.path.exists(table) and read_rows(table)):
             time.sleep(0.02)
         os.killpg(proc.pid, signum)
         _, err = proc.communicate(timeout=60)
@@ -48,7 +49,7 @@ def test_an_interrupted_study_says_so_in_one_line_and_resumes(roller, tmp_path, 
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
     assert proc.returncode == 128 + signum, err
-    done = len(read_rows(os.path.join(out, "study.csv")))
+    done = len(read_rows(table))
     assert err.strip().splitlines() == ["study: interrupted after %d of 4 points; rerun with --resume" % done]
     assert 1 <= done < 4
     deadline = time.monotonic() + 5  # the runs die with their parent: no orphan writes into out

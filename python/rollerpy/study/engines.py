@@ -2,6 +2,7 @@
 tasks — on a LocalCluster of --jobs single-threaded worker processes by default, or on a running
 distributed scheduler (--scheduler tcp://HOST:8786) whose workers share this file system. The
 caller's on_done(record) sees every finished point as it finishes, in this process."""
+import logging
 import os
 import signal
 import sys
@@ -60,6 +61,9 @@ def run_dask(tasks, run_point, on_done, jobs=None, scheduler=None):
                 record = lost_record(futures[future], "not run on the cluster: %s: %s" % (type(e).__name__, e))
             on_done(record)
     finally:
+        # Closing while points run (Ctrl-C) makes the scheduler log the results it could not
+        # gather: nothing the user must act on, and the study says in one line what happened.
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)
         client.close()
         if cluster is not None:
             cluster.close()
