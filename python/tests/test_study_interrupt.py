@@ -69,13 +69,16 @@ def free_port():
         return s.getsockname()[1]
 
 
-def test_an_unreachable_scheduler_is_one_line_and_exit_2(roller, tmp_path):
+@pytest.mark.parametrize("address, expected", [
+    ("tcp://127.0.0.1:%d", "no Dask scheduler answered within 10 s"),
+    ("127.0.0.1", "not an address")])
+def test_an_unreachable_scheduler_is_one_line_and_exit_2(roller, tmp_path, address, expected):
     study = write(str(tmp_path), "slow.toml", SLOW)
-    address = "tcp://127.0.0.1:%d" % free_port()
+    address = address % free_port() if "%d" in address else address
     t0 = time.monotonic()
     r = run_study(roller, study, "--out", str(tmp_path / "out"), "--scheduler", address)
     assert r.returncode == 2
     assert time.monotonic() - t0 < 30  # the connect timeout, not Dask's default
     lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("study: --scheduler %s: no Dask scheduler answered" % address)
-    assert "dask-scheduler --port" in lines[0]
+    assert len(lines) == 1 and lines[0].startswith("study: --scheduler %s: %s" % (address, expected))
+    assert "dask-scheduler --port" in lines[0] or "expected tcp://HOST:PORT" in lines[0]

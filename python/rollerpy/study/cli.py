@@ -108,10 +108,12 @@ def main(argv=None):
             elif pending:
                 engines.run_dask(pending, run_point, on_done, jobs=args.jobs, scheduler=args.scheduler)
     except engines.SchedulerUnreachable as e:
+        bar.leave = False  # the bar is cleared: the message is the one line left
         bar.close()
         print("study: %s" % e, file=sys.stderr)
         return 2
     except Interrupted as e:
+        bar.leave = False
         bar.close()
         print("study: interrupted after %d of %d points; rerun with --resume" % (len(records), len(tasks)),
               file=sys.stderr)

@@ -36,7 +36,10 @@ def run_dask(tasks, run_point, on_done, jobs=None, scheduler=None):
     if scheduler:
         try:
             client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-        except (OSError, ValueError) as e:
+        except ValueError as e:
+            raise SchedulerUnreachable("--scheduler %s: not an address (%s); expected tcp://HOST:PORT"
+                                       % (scheduler, e))
+        except OSError as e:
             raise SchedulerUnreachable("--scheduler %s: no Dask scheduler answered within %d s (%s); start one "
                                        "there (dask-scheduler --port PORT, docs/studies.md) or give its address"
                                        % (scheduler, CONNECT_TIMEOUT, e))
