@@ -3,6 +3,7 @@ solver.csv, contact.csv, passes.csv, residual_depth.csv, ...), summary.json and
 scene.resolved.toml, as rows, numbers or numpy arrays. The VTU/PVD files: rollerpy.vtu."""
 import csv
 import json
+import math
 import os
 import tomllib
 from dataclasses import dataclass
@@ -72,23 +73,53 @@ def summary_field(summary, dotted):
     return value
 
 
+CSV_PICKS = ("last", "max", "min")  # and step=N
+
+
+def parse_collect(name):
+    """A study's collect entry (docs/studies.md): a summary.json dotted path, or FILE.csv:COLUMN
+    with an optional row choice :last (the default), :max, :min or :step=N. Returns None for a
+    dotted path, else (file, column, pick, step); ValueError says what is wrong."""
+    if ":" not in name:
+        return None
+    parts = name.split(":")
+    if len(parts) > 3 or not parts[0].endswith(".csv") or not parts[1]:
+        raise ValueError("expected FILE.csv:COLUMN, optionally :last, :max, :min or :step=N")
+    pick = parts[2] if len(parts) == 3 else "last"
+    if pick in CSV_PICKS:
+        return parts[0], parts[1], pick, None
+    step = pick[len("step="):] if pick.startswith("step=") else ""
+    if not step.isdigit():
+        raise ValueError("the row choice %r: expected last, max, min or step=N (N a step number)" % pick)
+    return parts[0], parts[1], "step", int(step)
+
+
+def csv_value(rows, column, pick, step):
+    """The column's text in the row that `pick` chooses: the last row; the row of the largest or
+    smallest number (rows whose cell is not a number skipped); the last row of step N. None when
+    there is no such row or column."""
+    if pick == "step":
+        rows = [r for r in rows if num(r.get("step")) == step]
+    if pick in ("max", "min"):
+        rows = [r for r in rows if not math.isnan(num(r.get(column)))]
+        rows = [(max if pick == "max" else min)(rows, key=lambda r: num(r[column]))] if rows else []
+    return rows[-1].get(column) if rows else None
+
+
 def collect(out, fields):
-    """Values of a finished run: summary.json dotted paths, FILE.csv:COLUMN from the last row;
-    None where the run did not write them."""
+    """Values of a finished run: summary.json dotted paths, FILE.csv:COLUMN[:PICK] from a row of
+    the file (parse_collect); None where the run did not write them."""
     summary = read_summary(out, missing_ok=True)
     values = {}
     for name in fields:
-        value = None
-        if ":" in name:
-            file, column = name.split(":", 1)
-            try:
-                rows = read_rows(os.path.join(out, file))
-                value = rows[-1].get(column) if rows else None
-            except OSError:
-                pass
-        else:
-            value = summary_field(summary, name)
-        values[name] = value
+        spec = parse_collect(name)
+        if spec is None:
+            values[name] = summary_field(summary, name)
+            continue
+        try:
+            values[name] = csv_value(read_rows(os.path.join(out, spec[0])), *spec[1:])
+        except OSError:
+            values[name] = None
     return values
 
 

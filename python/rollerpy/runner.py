@@ -104,6 +104,10 @@ def run(cmd, log, timeout=None, env=None):
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
             rc, timed_out = None, True
+        except BaseException:  # Ctrl-C, SIGTERM turned into an exception: the run ends with its caller
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+            raise
     return RunResult(command=list(cmd), log=log, exit_code=rc, timed_out=timed_out, wall_s=time.monotonic() - t0)
 
 

@@ -98,7 +98,13 @@ def test_ranges(folder):
     (TINY.replace('"steps.count" = 2', '"material.E" = 3.0'), "set.material.E"),
     ("scene = ", "not valid TOML"),
     (TINY.replace('collect = ["converged"', 'collect = ["wall_s"'),
-     "collect = 'wall_s': study.csv has this column already")])
+     "collect = 'wall_s': study.csv has this column already"),
+    (TINY.replace("solver.csv:iterations", "solver.csv:iterations:mean"),
+     "collect = 'solver.csv:iterations:mean': the row choice 'mean': expected last, max, min or step=N"),
+    (TINY.replace("solver.csv:iterations", "solver.csv:iterations:step=two"), "the row choice 'step=two'"),
+    (TINY.replace("solver.csv:iterations", "solver:iterations"),
+     "collect = 'solver:iterations': expected FILE.csv:COLUMN, optionally :last, :max, :min or :step=N"),
+    (TINY.replace("solver.csv:iterations", "solver.csv:iterations:max:min"), "expected FILE.csv:COLUMN")])
 def test_unknown_keys_and_bad_ranges_are_rejected(folder, text, expected):
     assert expected in error(folder, text)
 
@@ -190,3 +196,25 @@ collect = ["converged", "iterations_total"]
     got = rows(os.path.join(out, "study.csv"))
     assert [g["status"] for g in got] == ["ok"] * 4
     assert [g["index"] for g in got] == ["0", "1", "2", "3"]
+
+
+def test_collect_picks_a_row(roller, folder):
+    """FILE.csv:COLUMN takes the last row; :max, :min, :last and :step=N the row they name (a
+    multi-step Hertz run: fy grows with the indentation)."""
+    picks = ["roller.csv:fy", "roller.csv:fy:last", "roller.csv:fy:max", "roller.csv:fy:min", "roller.csv:fy:step=2",
+             "roller.csv:fy:step=99", "roller.csv:nothing:max"]
+    study = write(folder, "hertz.toml", """
+scene = "%s"
+collect = [%s]
+[[point]]
+"material.nu" = 0.3
+""" % (os.path.join(PROBLEMS, "hertz.toml"), ", ".join('"%s"' % p for p in picks)))
+    r = run_study(roller, study, "--out", os.path.join(folder, "out"), "--serial")
+    assert r.returncode == 0, r.stderr
+    got = rows(os.path.join(folder, "out", "study.csv"))[0]
+    fy = {int(row["step"]): row["fy"] for row in rows(os.path.join(got["out"], "roller.csv"))}
+    assert got["roller.csv:fy"] == got["roller.csv:fy:last"] == fy[max(fy)]
+    assert got["roller.csv:fy:max"] == max(fy.values(), key=float)
+    assert got["roller.csv:fy:min"] == min(fy.values(), key=float)
+    assert got["roller.csv:fy:step=2"] == fy[2] != fy[max(fy)]
+    assert got["roller.csv:fy:step=99"] == got["roller.csv:nothing:max"] == ""

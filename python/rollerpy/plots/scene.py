@@ -1,102 +1,99 @@
-"""Thesis-style figures (PNG) from a roller output folder.
+"""Report and thesis figures (PNG) from a roller output folder (docs/figures.md).
 
 usage: ./rollerpy plot-scene OUT_DIR [--steps 4,7] [--profile-steps 0-12]
-                              [--pressure-steps 13] [--hertz] [--mesh-steps 3,6]
-                              [--fields sqrt_I2,tau_xy] [--pairs 23/47,63/71]
+                              [--pressure-steps 13] [--hertz] [--hertz-step N] [--mesh-steps 3,6]
+                              [--fields von_mises,stress_xy] [--pairs 23/47,63/71]
                               [--compare OTHER_OUT --compare-steps 47]
-                              [--spacing sqrt_I2=10] [--label NAME]
+                              [--spacing von_mises=10] [--label NAME]
                               [--levels 50 | --levels=-50,-30,10,50] [--values element]
                               [--xlim 80,160] [--ylim 30,50] [--whole]
                               [--mesh-pairs 3/6] [--mark-nodes 5,101]
 
 Reads fields.pvd / step_NNNN.vtu, contact.csv, roller.csv and scene.resolved.toml of a run and
-writes into OUT_DIR/figures/:
-  map_<field>_step<N>.png   contour maps of sqrt(I2) (thesis: the von Mises value, so the plastic
-                            zone is bounded by the yield stress), tau_xx, tau_yy, tau_xy, the total
-                            strains eps_xx, eps_yy, eps_xy, the strains of the step's increment
-                            deps_xx, deps_yy, deps_xy (the thesis's updated-Lagrangian strain), u_y.
-                            The window is the contact region of that step (six contact half-widths
-                            around it, down to that depth; --whole: the whole strip; --xlim/--ylim:
-                            your own). --values element draws the element (integration-point
-                            mean) values unsmoothed, which keeps peaks that nodal averaging blunts;
-                            --levels sets the contour lines: a spacing (50) or a list of values
-  profile.png               top-surface profile over the steps, u_y magnified x100
-  pressure.png              contact pressure p_n (and p_t) along x at the chosen steps, around the
-                            nodes in contact
+writes into OUT_DIR/figures/. Fields have the VTU's names (docs/scenes.md, Outputs): stress_xx,
+stress_yy, stress_zz, stress_xy [MPa]; sqrt_I2 = sqrt(s:s/2) and von_mises = sqrt(3/2 s:s) (the
+thesis's "sqrt(I2)": the plastic zone is bounded by the yield stress) [MPa]; eq_plastic_strain;
+strain_xx, ... (total), strain_increment_xx, ... (the step's increment, the thesis's
+updated-Lagrangian strain); displacement_x, displacement_y [mm].
+  map_<field>_step<N>.png   contour maps: signed fields in a diverging map centred at zero,
+                            magnitudes in a sequential one; colour bands and lines at the same
+                            levels; the roller's circle. The window is the contact region of that
+                            step (--whole: the whole strip; --xlim/--ylim: your own); --values
+                            element draws the element values unsmoothed; --levels sets the levels:
+                            a spacing (50) or a list of values
+  forces.png                the roller's force and position against the step (rollerpy plot-forces)
+  profile.png               top-surface profile over the steps, displacement_y magnified x100
+  pressure.png              p_n (and p_t) along x at the chosen steps, around the nodes in contact
   mesh_step<N>.png          deformed mesh (true scale and u magnified), with the roller's circle
                             and the nodes of --mark-nodes labelled
   mesh_steps<A>-<B>.png     (--mesh-pairs A/B) the deformed meshes of steps A (solid) and B
                             (dashed) in one figure
   compare_pressure.png      (--compare) p_n of both runs at the comparison steps
-  hertz.png                 (--hertz) the last step's pressure against the Hertz solution
+  hertz.png                 (--hertz, --hertz-step N) p_n at step N (default: the last step whose
+                            roller carries load, fy > 0) against the Hertz solution at its load
   overlay_<field>_steps<A>-<B>.png
                             (--pairs A/B) the contour lines of steps A (solid) and B (dashed) in one
                             map with the same levels, the thesis's way; up to four steps per group
-                            (solid, dashed, dash-dot, dotted)
   compare_<field>_step<N>.png
                             (--compare) the contour lines of OTHER_OUT (the reference, solid) and
                             of this run (dashed) at step N, same levels (e.g. pass 1 vs pass 2)
+A step that the run does not have, or an unknown field, stops with a message (exit 1).
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
 import math
 import os
 import sys
+from dataclasses import dataclass
 
 import matplotlib.tri as mtri
 import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.lines import Line2D
-from matplotlib.ticker import MaxNLocator
+from matplotlib.ticker import FuncFormatter
 
 from ..command import parser
 from ..outputs import read_contact, read_rows, read_scene, roller_at, touching_x
 from ..vtu import available_steps, read_vtu, reference_mesh, top_nodes, triangles, vtu_path
-from . import plt
+from . import forces, plt
+from .fields import (FIELDS, MAP_FIELDS, STRESSES, colours, contour_levels, label_lines, number_text,
+                     unknown_field)
 
 
-def von_mises(s):  # s: [xx, yy, zz, xy]
-    p = (s[:, 0] + s[:, 1] + s[:, 2]) / 3.0
-    d = s[:, :3] - p[:, None]
-    return np.sqrt(1.5 * (np.sum(d * d, axis=1) + 2.0 * s[:, 3] ** 2))
+class PlotError(Exception):
+    """A request the run cannot answer (a step it does not have, an unknown field); main() prints
+    the message and exits 1."""
 
 
-def parse_steps(text, last):
+def parse_steps(option, text, available):
+    """The steps of an option (4,7 or 0-12), each one the run has; [] for an empty option."""
     steps = []
-    for part in text.split(","):
-        if "-" in part:
-            a, b = part.split("-")
-            steps.extend(range(int(a), int(b) + 1))
-        elif part:
-            steps.append(int(part))
-    return [s for s in steps if 0 <= s <= last]
+    try:
+        for part in (p for p in text.replace("/", ",").split(",") if p):
+            a, _, b = part.partition("-")
+            steps.extend(range(int(a), int(b) + 1) if b else [int(a)])
+    except ValueError:
+        raise PlotError("%s %s: expected steps such as 4,7 or 0-12" % (option, text))
+    missing = [s for s in steps if s not in set(available)]
+    if missing:
+        raise PlotError("%s %s: the run has no step %d (it has steps %s)"
+                        % (option, text, missing[0], step_ranges(available)))
+    return steps
 
 
-FIELDS = {  # name: (label, nodal value from the VTU point data, element value from the cell data)
-    "sqrt_I2": ("√I2 (von Mises) [MPa]", lambda pd: von_mises(pd["stress_nodal"]), lambda cd: cd["von_mises"]),
-    "tau_xx": ("τ_xx [MPa]", lambda pd: pd["stress_nodal"][:, 0], lambda cd: cd["stress"][:, 0]),
-    "tau_yy": ("τ_yy [MPa]", lambda pd: pd["stress_nodal"][:, 1], lambda cd: cd["stress"][:, 1]),
-    "tau_xy": ("τ_xy [MPa]", lambda pd: pd["stress_nodal"][:, 3], lambda cd: cd["stress"][:, 3]),
-    "eps_xx": ("ε_xx [-]", lambda pd: pd["strain_nodal"][:, 0], lambda cd: cd["strain"][:, 0]),
-    "eps_yy": ("ε_yy [-]", lambda pd: pd["strain_nodal"][:, 1], lambda cd: cd["strain"][:, 1]),
-    "eps_xy": ("ε_xy [-]", lambda pd: pd["strain_nodal"][:, 3], lambda cd: cd["strain"][:, 3]),
-    "deps_xx": ("Δε_xx of the step [-]", lambda pd: pd["strain_increment_nodal"][:, 0],
-                lambda cd: cd["strain_increment"][:, 0]),
-    "deps_yy": ("Δε_yy of the step [-]", lambda pd: pd["strain_increment_nodal"][:, 1],
-                lambda cd: cd["strain_increment"][:, 1]),
-    "deps_xy": ("Δε_xy of the step [-]", lambda pd: pd["strain_increment_nodal"][:, 3],
-                lambda cd: cd["strain_increment"][:, 3]),
-    "u_y": ("u_y [mm]", lambda pd: pd["displacement"][:, 1], None),
-}
-STRESSES = ["sqrt_I2", "tau_xx", "tau_yy", "tau_xy"]
+def step_ranges(steps):
+    """0-12,20,30-31: a list of steps written short."""
+    parts, start = [], None
+    for i, s in enumerate(steps):
+        start = s if start is None else start
+        if i + 1 == len(steps) or steps[i + 1] != s + 1:
+            parts.append("%d" % s if s == start else "%d-%d" % (start, s))
+            start = None
+    return ",".join(parts) or "none"
 
 
-def strip_figure(points, extra, window=None):
-    """A figure whose height follows the aspect ratio of the strip (or of the window
-    ((x0, x1), (y0, y1))), plus `extra` inches for labels."""
-    span = points.max(axis=0) - points.min(axis=0)
-    if window:
-        span = np.array([window[0][1] - window[0][0], window[1][1] - window[1][0]])
-    return plt.subplots(figsize=(11, extra + min(9.0 * span[1] / span[0], 9.0)), layout="constrained")
+def strip_window(points):
+    top, bottom = points[:, 1].max(), points[:, 1].min()
+    return (points[:, 0].min(), points[:, 0].max()), (bottom, top + 0.02 * (top - bottom))
 
 
 def contact_window(out, step, points):
@@ -118,59 +115,100 @@ def contact_window(out, step, points):
         return None
     x0, x1 = max(left, centre - reach), min(right, centre + reach)
     y0 = max(bottom, top - max(reach, 2.0))
-    return (x0, x1), (y0, top + 0.02 * (top - y0))
+    return (x0, x1), (y0, top + 0.08 * (top - y0))  # room above the surface: the roller shows
 
 
-def contour_levels(values, levels):
-    """Explicit levels: a list of values, or a spacing (one number) turned into the multiples of
-    it inside the data's range; None: about ten round values."""
+# A window wider than this many times its height is drawn with y stretched (stated in the title):
+# at true scale a whole strip is a thin band whose colours cannot be read.
+MAX_ASPECT = 4.0
+
+
+def window_axes(window, extra):
+    """A figure for a map of that window ((x0, x1), (y0, y1)), and the vertical exaggeration."""
+    width, height = window[0][1] - window[0][0], window[1][1] - window[1][0]
+    stretch = max(1.0, round(width / height / MAX_ASPECT))
+    fig, ax = plt.subplots(figsize=(11, extra + min(9.0 * stretch * height / width, 9.0)), layout="constrained")
+    ax.set_aspect(stretch)
+    ax.set_xlim(*window[0])
+    ax.set_ylim(*window[1])
+    return fig, ax, stretch
+
+
+def strip_figure(points, extra):
+    """A figure for the whole strip at true scale plus `extra` inches for labels (overlays)."""
+    span = points.max(axis=0) - points.min(axis=0)
+    return plt.subplots(figsize=(11, extra + min(9.0 * span[1] / span[0], 9.0)), layout="constrained")
+
+
+def draw_roller(ax, out, step, filled=True):
+    """The roller's circle at the step (roller.csv's xc, yc, the scene's radius), if there is one;
+    filled grey on maps, an outline over meshes (whose magnified displacements it would hide)."""
+    roller = roller_at(out, step)
+    if roller:
+        ax.add_patch(plt.Circle((roller.xc, roller.yc), roller.radius, facecolor="0.85" if filled else "none",
+                                edgecolor="k" if filled else "C0", lw=1.2, alpha=0.8, zorder=2.5))
+    return roller
+
+
+def draw_field(ax, tri, values, field, levels, owner=None):
+    """Colour bands and contour lines at the same levels (element values: flat colours, no
+    lines); returns the mappable for the colour bar and the levels."""
+    cmap, norm = colours(field, values)
+    if owner is not None:  # a continuous bar with its own ticks: no levels
+        return ax.tripcolor(tri, facecolors=values[owner], cmap=cmap, norm=norm, shading="flat"), []
+    lines = contour_levels(values, levels)
     lo, hi = float(np.min(values)), float(np.max(values))
-    if levels is None:
-        return [v for v in MaxNLocator(nbins=10).tick_values(lo, hi) if lo < v < hi]
-    if len(levels) == 1:
-        step = levels[0]
-        return [k * step for k in range(math.floor(lo / step), math.ceil(hi / step) + 1) if lo < k * step < hi]
-    return [v for v in levels if lo < v < hi]
+    if hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-300):  # a constant field: one colour
+        return ax.tripcolor(tri, np.full(len(values), lo), cmap=cmap, norm=norm, shading="gouraud"), []
+    bands = ax.tricontourf(tri, values, levels=[lo] + lines + [hi], cmap=cmap, norm=norm)
+    if lines:
+        label_lines(ax, ax.tricontour(tri, values, levels=lines, colors="k", linewidths=0.5, linestyles="solid"))
+    return bands, lines
 
 
-def label_lines(ax, cs):
-    """Contour labels that stay readable: every other level when there are many, inline, small."""
-    shown = cs.levels if len(cs.levels) <= 8 else cs.levels[::2]
-    ax.clabel(cs, shown, inline=True, fmt="%g", fontsize=7, inline_spacing=3)
+@dataclass
+class Map:
+    """A drawn map: the figure (the caller saves and closes it), its map axes, the colour bands
+    (their cmap and norm) and the contour levels."""
+    fig: object
+    ax: object
+    bands: object
+    levels: list
 
 
-def contour_maps(out, figs, steps, fields, levels=None, element_values=False, xlim=None, ylim=None, whole=False):
+def map_figure(out, step, name, levels=None, element_values=False, window=None, whole=False):
+    """The contour map of one field at one step (a Map). window: ((x0, x1), (y0, y1)), else the
+    contact region (whole: the strip)."""
+    field = FIELDS[name]
+    vtu = read_vtu(vtu_path(out, step))
+    tri = mtri.Triangulation(vtu.points[:, 0], vtu.points[:, 1], triangles(vtu.elements))
+    use_elements = element_values and field.element is not None
+    # The element each triangle came from (Q4: two triangles per element).
+    owner = np.repeat(np.arange(len(vtu.elements)), [1 if len(e) == 3 else 2 for e in vtu.elements])
+    values = field.element(vtu) if use_elements else field.nodal(vtu)
+    window = window or (None if whole else contact_window(out, step, vtu.points)) or strip_window(vtu.points)
+    fig, ax, stretch = window_axes(window, 2.0)
+    mappable, lines = draw_field(ax, tri, values, field, levels, owner if use_elements else None)
+    draw_roller(ax, out, step)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    notes = [field.meaning] if field.meaning else []
+    notes += ["element values"] if use_elements else []
+    notes += ["y stretched ×%g" % stretch] if stretch > 1 else []
+    ax.set_title("%s, step %d%s" % (name, step, "".join(", " + n for n in notes)))
+    bar = fig.colorbar(mappable, ax=ax, location="bottom", aspect=60, shrink=0.7,
+                       label="%s (min %s, max %s)" % (field.label(name), number_text(float("%.4g" % values.min())),
+                                                      number_text(float("%.4g" % values.max()))))
+    if lines:  # the bar's ticks at the contour levels, not at the data's extremes
+        bar.set_ticks(lines)
+        bar.ax.xaxis.set_major_formatter(FuncFormatter(number_text))
+    return Map(fig, ax, mappable, lines)
+
+
+def contour_maps(out, figs, steps, fields, levels=None, element_values=False, window=None, whole=False):
     for step in steps:
-        vtu = read_vtu(vtu_path(out, step))
-        points, elements, pd, cd = vtu.points, vtu.elements, vtu.point_data, vtu.cell_data
-        tris = triangles(elements)
-        tri = mtri.Triangulation(points[:, 0], points[:, 1], tris)
-        # The element each triangle came from (Q4: two triangles per element).
-        owner = np.repeat(np.arange(len(elements)), [1 if len(e) == 3 else 2 for e in elements])
-        window = None if whole else contact_window(out, step, points)
-        if xlim or ylim:
-            window = (xlim or (points[:, 0].min(), points[:, 0].max()),
-                      ylim or (points[:, 1].min(), points[:, 1].max()))
         for name in fields:
-            label, nodal, element = FIELDS[name]
-            use_elements = element_values and element is not None
-            values = element(cd)[owner] if use_elements else nodal(pd)
-            fig, ax = strip_figure(points, 2.0, window)
-            if use_elements:
-                cs = ax.tripcolor(tri, facecolors=values, cmap="viridis", shading="flat")
-            else:
-                cs = ax.tricontourf(tri, values, levels=20, cmap="viridis")
-                lines = contour_levels(values, levels)
-                if lines:
-                    label_lines(ax, ax.tricontour(tri, values, levels=lines, colors="k", linewidths=0.4))
-            ax.set_aspect("equal")
-            if window:
-                ax.set_xlim(*window[0])
-                ax.set_ylim(*window[1])
-            ax.set_xlabel("x [mm]")
-            ax.set_ylabel("y [mm]")
-            ax.set_title("%s, step %d%s" % (label, step, ", element values" if use_elements else ""))
-            fig.colorbar(cs, ax=ax, label=label, location="bottom", aspect=60, shrink=0.7)
+            fig = map_figure(out, step, name, levels, element_values, window, whole).fig
             fig.savefig(os.path.join(figs, "map_%s_step%d.png" % (name, step)), dpi=110, bbox_inches="tight")
             plt.close(fig)
 
@@ -193,12 +231,13 @@ def overlay(path, name, curves, title, spacing=None, levels=None):
     the same levels (every `spacing`, or about ten round values), the first solid, then dashed,
     dash-dot, dotted; lines labelled with values. Each curve is drawn on its own deformed mesh;
     the outline is the first curve's."""
-    label, get, _ = FIELDS[name]
+    field = FIELDS[name]
+    label = field.label(name)
     data = []
     for out, step, _ in curves:
         vtu = read_vtu(vtu_path(out, step))
         tri = mtri.Triangulation(vtu.points[:, 0], vtu.points[:, 1], triangles(vtu.elements))
-        data.append((tri, get(vtu.point_data), vtu.points, vtu.elements))
+        data.append((tri, field.nodal(vtu), vtu.points, vtu.elements))
     values = np.concatenate([d[1] for d in data])
     levels = contour_levels(values, [spacing] if spacing else levels)
     points, elements = data[0][2], data[0][3]
@@ -216,7 +255,7 @@ def overlay(path, name, curves, title, spacing=None, levels=None):
     ax.set_title("%s: %s" % (label, title), fontsize=10)
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
               title="levels: %s %s" % (", ".join("%g" % v for v in levels) if len(levels) <= 6 else
-                                       "every %g" % (levels[1] - levels[0]), label.split("[")[-1].rstrip("]"))
+                                       "every %g" % (levels[1] - levels[0]), field.unit)
               if len(levels) > 1 else None,
               title_fontsize=7)
     fig.savefig(path, dpi=130, bbox_inches="tight")
@@ -249,8 +288,8 @@ def profile(out, figs, steps):
         u = read_vtu(vtu_path(out, step)).point_data["displacement"]
         ax.plot(points0[order, 0] + u[order, 0], 100.0 * u[order, 1], label="step %d" % step, lw=1, color=colour)
     ax.set_xlabel("x [mm]")
-    ax.set_ylabel("u_y × 100 [mm]")
-    ax.set_title("top surface profile (u_y magnified ×100)")
+    ax.set_ylabel("displacement_y × 100 [mm]")
+    ax.set_title("top surface profile (displacement_y magnified ×100)")
     ax.legend(fontsize=7, ncol=max(1, len(steps) // 12 + 1))
     ax.grid(alpha=0.3)
     fig.tight_layout()
@@ -283,7 +322,7 @@ def pressure(out, figs, steps):
         margin = max(hi - lo, 1.0)
         ax.set_xlim(lo - margin, hi + margin)
     ax.set_xlabel("x [mm]")
-    ax.set_ylabel("contact pressure [MPa]")
+    ax.set_ylabel("p_n, p_t [MPa]")
     ax.set_title("p_n (solid) and p_t (dashed)", fontsize=10)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=max(1, (len(steps) + 15) // 16))
     ax.grid(alpha=0.3)
@@ -294,9 +333,7 @@ def pressure(out, figs, steps):
 
 def draw_extras(ax, out, step, points, marks):
     """The roller's circle at that step and the marked nodes (thesis numbers), on mesh figures."""
-    roller = roller_at(out, step)
-    if roller:
-        ax.add_patch(plt.Circle((roller.xc, roller.yc), roller.radius, fill=False, color="C0", lw=1.0))
+    draw_roller(ax, out, step, filled=False)
     for node in marks:
         if 1 <= node <= len(points):
             x, y = points[node - 1]
@@ -323,6 +360,8 @@ def deformed_mesh(out, figs, steps, marks=()):
             ax.set_xlim(points0[:, 0].min() - 0.05 * span[0], points0[:, 0].max() + 0.05 * span[0])
             ax.set_ylim(points0[:, 1].min() - 0.05 * span[1], points0[:, 1].max() + 0.3 * span[1])
             ax.set_title("step %d, displacement ×%g (grey: initial)" % (step, scale))
+            ax.set_xlabel("x [mm]")
+            ax.set_ylabel("y [mm]")
         fig.tight_layout()
         fig.savefig(os.path.join(figs, "mesh_step%d.png" % step), dpi=110)
         plt.close(fig)
@@ -343,6 +382,8 @@ def mesh_overlay(out, figs, group, marks=()):
         ax.set_aspect("equal")
         ax.autoscale_view()
         ax.set_title("displacement ×%g" % scale)
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("y [mm]")
         ax.legend(handles=handles, fontsize=8, loc="lower right")
     fig.tight_layout()
     fig.savefig(os.path.join(figs, "mesh_steps%s.png" % "-".join(map(str, group))), dpi=110)
@@ -377,59 +418,83 @@ def pressure_comparison(out, other, figs, steps, label, other_label):
     plt.close(fig)
 
 
-def hertz(out, figs):
+def loaded_rows(out):
+    """roller.csv's last row of each step whose roller carries load, by step: fy > 0 beyond
+    round-off (a lifted roller's fy is 1e-5 N/mm, not 0; 1e-4 of the run's largest fy)."""
+    rows = read_rows(os.path.join(out, "roller.csv"), missing_ok=True)
+    last = {int(r["step"]): r for r in rows}
+    largest = max([float(r["fy"] or 0.0) for r in last.values()] + [0.0])
+    return {s: r for s, r in last.items() if float(r["fy"] or 0.0) > 1e-4 * largest > 0.0}
+
+
+def hertz_figure(out, step=None):
+    """The nodal pressures at `step` (default: the last step whose roller carries load) against
+    the Hertz solution at that step's load fy; returns the figure."""
+    loaded = loaded_rows(out)
+    if not loaded:
+        raise PlotError("--hertz: no step of %s has a roller that carries load (fy > 0 in roller.csv)" % out)
+    step = max(loaded) if step is None else step
+    if step not in loaded:
+        raise PlotError("--hertz-step %d: the roller carries no load at that step; loaded steps: %s"
+                        % (step, step_ranges(sorted(loaded))))
     scene = read_scene(out)
-    rows = read_contact(out)
-    last = max(int(r["step"]) for r in rows)
-    roller = read_rows(os.path.join(out, "roller.csv"))[-1]
-    load, xc = float(roller["fy"]), float(roller["xc"])
+    load, xc = float(loaded[step]["fy"]), float(loaded[step]["xc"])
     e, nu, radius = scene["material"]["E"], scene["material"]["nu"], scene["roller"]["radius"]
-    e_star = e / (1 - nu * nu)
-    a = math.sqrt(4 * load * radius / (math.pi * e_star))
+    a = math.sqrt(4 * load * radius / (math.pi * e / (1 - nu * nu)))
     p0 = 2 * load / (math.pi * a)
-    r = sorted((row for row in rows if int(row["step"]) == last), key=lambda row: float(row["x"]))
+    r = sorted((row for row in read_contact(out) if int(row["step"]) == step), key=lambda row: float(row["x"]))
     x = np.array([float(row["x"]) - xc for row in r])
     p = np.array([float(row["p_n"]) if row["status"] != "open" else 0.0 for row in r])
     xs = np.linspace(-1.5 * a, 1.5 * a, 400)
-    ps = p0 * np.sqrt(np.clip(1 - (xs / a) ** 2, 0, None))
     fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(xs, ps, "k-", label="Hertz: a = %.3f mm, p0 = %.0f MPa" % (a, p0))
-    ax.plot(x, p, "o", ms=4, label="roller (%s)" % scene.get("contact", {}).get("backend", "?"))
+    ax.plot(xs, p0 * np.sqrt(np.clip(1 - (xs / a) ** 2, 0, None)), "k-",
+            label="Hertz: a = %.3f mm, p0 = %.0f MPa" % (a, p0))
+    ax.plot(x, p, "o", ms=4, label="roller p_n (%s)" % scene.get("contact", {}).get("backend", "?"))
     ax.set_xlim(-1.5 * a, 1.5 * a)
-    ax.set_xlabel("x − x_c [mm]")
-    ax.set_ylabel("p [MPa]")
-    ax.set_title("Hertz line contact, P = %.0f N/mm" % load)
+    ax.set_xlabel("x − xc [mm]")
+    ax.set_ylabel("p_n [MPa]")
+    ax.set_title("Hertz line contact at step %d, fy = %.0f N/mm" % (step, load))
     ax.legend()
     ax.grid(alpha=0.3)
     fig.tight_layout()
-    fig.savefig(os.path.join(figs, "hertz.png"), dpi=110)
-    plt.close(fig)
+    return fig
 
 
 def number_list(option, text, count=None):
-    """A comma-separated list of numbers (None when empty); exits naming the option otherwise."""
+    """A comma-separated list of numbers (None when empty); PlotError naming the option otherwise."""
     if not text:
         return None
     try:
         values = [float(v) for v in text.split(",")]
     except ValueError:
-        sys.exit("plot_scene: %s %s: expected numbers separated by commas" % (option, text))
+        raise PlotError("%s %s: expected numbers separated by commas" % (option, text))
     if count is not None and len(values) != count:
-        sys.exit("plot_scene: %s %s: expected %d numbers" % (option, text, count))
+        raise PlotError("%s %s: expected %d numbers" % (option, text, count))
     return values
 
 
-def main(argv=None):
+def step_groups(option, text, steps):
+    """Groups such as 23/47,6/8/14/16: 2 to 4 steps of the run each."""
+    groups = [parse_steps(option, g, steps) for g in text.split(",") if g]
+    if any(not 2 <= len(g) <= len(LINES) for g in groups):
+        raise PlotError("%s %s: groups of 2 to %d steps" % (option, text, len(LINES)))
+    return groups
+
+
+def arguments():
     ap = parser("plot-scene", __doc__)
     ap.add_argument("out")
     ap.add_argument("--steps", default="", help="steps for the contour maps, e.g. 4,7 (default: the last)")
     ap.add_argument("--profile-steps", default="", help="steps for the surface profile, e.g. 0-12 (default: all)")
     ap.add_argument("--pressure-steps", default="", help="steps for the pressure plot (default: the last)")
     ap.add_argument("--mesh-steps", default="", help="steps for deformed-mesh plots, e.g. 3,6")
-    ap.add_argument("--hertz", action="store_true", help="also plot the pressure against Hertz")
+    ap.add_argument("--hertz", action="store_true", help="also plot p_n against Hertz (hertz.png)")
+    ap.add_argument("--hertz-step", type=int,
+                    help="the step of hertz.png (implies --hertz; default: the last step whose roller carries load)")
     ap.add_argument("--fields", default="",
-                    help="fields for maps, overlays and comparisons, from %s (default: all for "
-                         "the maps, the four stresses for overlays and comparisons)" % ",".join(FIELDS))
+                    help="fields for maps, overlays and comparisons, from %s (default: all but the zz "
+                         "components for the maps, %s for overlays and comparisons)"
+                         % (",".join(FIELDS), ",".join(STRESSES)))
     ap.add_argument("--pairs", default="",
                     help="step groups overlaid in one map, e.g. 23/47,63/71 or 6/8/14/16 "
                          "(solid, dashed, dash-dot, dotted)")
@@ -437,12 +502,12 @@ def main(argv=None):
                     help="a reference run whose contour lines (solid) are overlaid with this run's (dashed)")
     ap.add_argument("--compare-steps", default="", help="steps of the comparison (default: the last)")
     ap.add_argument("--spacing", default="",
-                    help="contour spacing of overlays and comparisons per field, e.g. sqrt_I2=10,tau_xy=10 "
+                    help="contour spacing of overlays and comparisons per field, e.g. von_mises=10,stress_xy=10 "
                          "(default: about ten round levels)")
     ap.add_argument("--label", help="this run's name in titles and legends (default: the folder name)")
     ap.add_argument("--compare-label", help="OTHER_OUT's name in the legend (default: its folder name)")
     ap.add_argument("--levels", default="",
-                    help="contour lines of maps, overlays and comparisons: a spacing (50) or a list of values "
+                    help="contour levels of maps, overlays and comparisons: a spacing (50) or a list of values "
                          "(--levels=-50,-30,10,50: with = when the list starts with a minus); default: about ten "
                          "round values (--spacing FIELD=... wins for its field)")
     ap.add_argument("--values", choices=["nodal", "element"], default="nodal",
@@ -454,52 +519,90 @@ def main(argv=None):
                     help="deformed meshes of a group of steps in one figure, e.g. 3/6 (mesh_steps3-6.png)")
     ap.add_argument("--mark-nodes", default="",
                     help="nodes (thesis numbers) marked and labelled on the mesh figures, e.g. 5,101")
-    args = ap.parse_args(argv)
-    steps = available_steps(args.out)
-    if not steps:
-        sys.exit("plot_scene: no step_NNNN.vtu in %s (was the run made with output.vtu = true?)" % args.out)
-    last = steps[-1]
-    figs = os.path.join(args.out, "figures")
-    os.makedirs(figs, exist_ok=True)
+    return ap
+
+
+def checked_options(args, steps):
+    """Every option checked before a figure is drawn: PlotError names the first bad one."""
     fields = [f for f in args.fields.split(",") if f]
-    if any(f not in FIELDS for f in fields):
-        sys.exit("plot_scene: --fields: known fields are %s" % ", ".join(FIELDS))
-    groups = [[int(n) for n in g.split("/")] for g in args.pairs.split(",") if g]
-    if any(not 2 <= len(g) <= len(LINES) or set(g) - set(steps) for g in groups):
-        sys.exit("plot_scene: --pairs: groups of 2 to %d steps that have VTU files" % len(LINES))
-    spacing = {k: float(v) for k, v in (item.split("=") for item in args.spacing.split(",") if item)}
-    if set(spacing) - set(FIELDS) or any(v <= 0 for v in spacing.values()):
-        sys.exit("plot_scene: --spacing: FIELD=positive value, fields %s" % ", ".join(FIELDS))
-    label = args.label or os.path.basename(os.path.normpath(args.out))
-    levels, xlim, ylim = number_list("--levels", args.levels), number_list("--xlim", args.xlim, 2), \
-        number_list("--ylim", args.ylim, 2)
+    spacing = {}
+    for item in (i for i in args.spacing.split(",") if i):
+        name, _, value = item.partition("=")
+        spacing[name] = number_list("--spacing " + name, value, 1)[0] if value else 0.0
+        if spacing[name] <= 0:
+            raise PlotError("--spacing %s: expected FIELD=positive value" % item)
+    for option, names in (("--fields", fields), ("--spacing", spacing)):
+        for name in names:
+            if unknown_field(name):
+                raise PlotError("%s %s" % (option, unknown_field(name)))
+    levels = number_list("--levels", args.levels)
     if levels is not None and len(levels) == 1 and levels[0] <= 0:
-        sys.exit("plot_scene: --levels %s: a spacing must be positive" % args.levels)
+        raise PlotError("--levels %s: a spacing must be positive" % args.levels)
+    xlim, ylim = number_list("--xlim", args.xlim, 2), number_list("--ylim", args.ylim, 2)
     for name, lim in (("--xlim", xlim), ("--ylim", ylim)):
         if lim is not None and not lim[0] < lim[1]:
-            sys.exit("plot_scene: %s %g,%g: expected LOW,HIGH with LOW < HIGH" % (name, lim[0], lim[1]))
-    contour_maps(args.out, figs, parse_steps(args.steps, last) or [last], fields or list(FIELDS), levels,
-                 args.values == "element", xlim, ylim, args.whole)
+            raise PlotError("%s %g,%g: expected LOW,HIGH with LOW < HIGH" % (name, lim[0], lim[1]))
+    return fields, spacing, levels, xlim, ylim
+
+
+def save(fig, path):
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def plot(args):
+    steps = available_steps(args.out)
+    if not steps:
+        raise PlotError("no step_NNNN.vtu in %s (was the run made with output.vtu = true?)" % args.out)
+    fields, spacing, levels, xlim, ylim = checked_options(args, steps)
+    last, has_contact = steps[-1], os.path.exists(os.path.join(args.out, "contact.csv"))
+    map_steps = parse_steps("--steps", args.steps, steps) or [last]
+    groups, mesh_groups = step_groups("--pairs", args.pairs, steps), step_groups("--mesh-pairs", args.mesh_pairs, steps)
+    profile_steps = parse_steps("--profile-steps", args.profile_steps, steps) or steps
+    contact_steps = sorted({int(r["step"]) for r in read_contact(args.out)}) if has_contact else []
+    pressure_steps = parse_steps("--pressure-steps", args.pressure_steps, contact_steps) or contact_steps[-1:]
+    mesh_steps = parse_steps("--mesh-steps", args.mesh_steps, steps)
+    marks = [int(v) for v in number_list("--mark-nodes", args.mark_nodes) or []]
+    compare_steps = []
+    if args.compare:
+        compare_steps = parse_steps("--compare-steps", args.compare_steps, steps) or [last]
+        parse_steps("--compare-steps (of %s)" % args.compare, ",".join(map(str, compare_steps)),
+                    available_steps(args.compare))
+    hertz = hertz_figure(args.out, args.hertz_step) if args.hertz or args.hertz_step is not None else None
+    figs = os.path.join(args.out, "figures")
+    os.makedirs(figs, exist_ok=True)
+    if hertz:
+        save(hertz, os.path.join(figs, "hertz.png"))
+    window = None
+    if xlim or ylim:
+        points = read_vtu(vtu_path(args.out, last)).points
+        window = (xlim or strip_window(points)[0], ylim or strip_window(points)[1])
+    contour_maps(args.out, figs, map_steps, fields or MAP_FIELDS, levels, args.values == "element", window,
+                 args.whole)
+    label = args.label or os.path.basename(os.path.normpath(args.out))
     step_overlays(args.out, figs, groups, fields or STRESSES, label, spacing, levels)
     if args.compare:
-        other = available_steps(args.compare)
-        both = [n for n in parse_steps(args.compare_steps, last) or [last] if n in other]
         other_label = args.compare_label or os.path.basename(os.path.normpath(args.compare))
-        run_comparison(args.out, args.compare, figs, both, fields or STRESSES, label, other_label, spacing, levels)
-        if os.path.exists(os.path.join(args.out, "contact.csv")) and \
-                os.path.exists(os.path.join(args.compare, "contact.csv")):
-            pressure_comparison(args.out, args.compare, figs, both, label, other_label)
-    profile(args.out, figs, parse_steps(args.profile_steps, last) or steps)
-    if os.path.exists(os.path.join(args.out, "contact.csv")):
-        pressure(args.out, figs, parse_steps(args.pressure_steps, last) or [last])
-    marks = [int(v) for v in number_list("--mark-nodes", args.mark_nodes) or []]
-    if args.mesh_steps:
-        deformed_mesh(args.out, figs, parse_steps(args.mesh_steps, last), marks)
-    mesh_groups = [[int(n) for n in g.split("/")] for g in args.mesh_pairs.split(",") if g]
-    if any(not 2 <= len(g) <= len(LINES) or set(g) - set(steps) for g in mesh_groups):
-        sys.exit("plot_scene: --mesh-pairs: groups of 2 to %d steps that have VTU files" % len(LINES))
+        run_comparison(args.out, args.compare, figs, compare_steps, fields or STRESSES, label, other_label,
+                       spacing, levels)
+        if has_contact and os.path.exists(os.path.join(args.compare, "contact.csv")):
+            pressure_comparison(args.out, args.compare, figs, compare_steps, label, other_label)
+    profile(args.out, figs, profile_steps)
+    if has_contact:
+        pressure(args.out, figs, pressure_steps)
+    if os.path.exists(os.path.join(args.out, "roller.csv")):
+        save(forces.forces_figure(args.out, label), os.path.join(figs, "forces.png"))
+    if mesh_steps:
+        deformed_mesh(args.out, figs, mesh_steps, marks)
     for group in mesh_groups:
         mesh_overlay(args.out, figs, group, marks)
-    if args.hertz:
-        hertz(args.out, figs)
-    print("plot_scene: figures in %s" % figs)
+    return figs
+
+
+def main(argv=None):
+    args = arguments().parse_args(argv)
+    try:
+        figs = plot(args)
+    except PlotError as e:
+        sys.exit("plot-scene: %s" % e)
+    print("plot-scene: figures in %s" % figs)

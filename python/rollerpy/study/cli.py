@@ -10,12 +10,16 @@ values, status, message, wall time, output folder) after every finished point, a
 point's output folder DIR/points/pNNN_BACKEND/ with its run.log and point.json. A point that
 fails (a step that does not converge, bad input, a crash, the study's timeout) is recorded with
 its status and message and the study goes on; exit code 0 when every point ran (whatever their
-status), 2 for a bad study file. --resume skips the points whose point.json is there with the
-same command (an interrupted study loses at most the points that were running). Each roller
+status), 2 for a bad study file or an unreachable scheduler, 130 (143) after Ctrl-C (SIGTERM),
+which stops the running points and keeps study.csv of the finished ones. --resume skips the
+points whose point.json is there with the same command (an interrupted study loses at most the
+points that were running). Each roller
 process is given one BLAS thread when points run side by side (--jobs > 1 or a scheduler).
 Default DIR: out/studies/<study file name>; default --jobs: the number of cores.
 """
+import contextlib
 import os
+import signal
 import sys
 import time
 
@@ -97,11 +101,49 @@ def main(argv=None):
         if record["status"] != "ok":
             bar.write("point %s: %s: %s" % (record["name"], record["status"], record["message"]))
 
-    if pending:
-        if args.serial:
-            engines.run_serial(pending, run_point, on_done)
-        else:
-            engines.run_dask(pending, run_point, on_done, jobs=args.jobs, scheduler=args.scheduler)
+    try:
+        with interrupts():
+            if pending and args.serial:
+                engines.run_serial(pending, run_point, on_done)
+            elif pending:
+                engines.run_dask(pending, run_point, on_done, jobs=args.jobs, scheduler=args.scheduler)
+    except engines.SchedulerUnreachable as e:
+        bar.leave = False  # the bar is cleared: the message is the one line left
+        bar.close()
+        print("study: %s" % e, file=sys.stderr)
+        return 2
+    except Interrupted as e:
+        bar.leave = False
+        bar.close()
+        print("study: interrupted after %d of %d points; rerun with --resume" % (len(records), len(tasks)),
+              file=sys.stderr)
+        return 128 + e.signum
     bar.close()
     print("study: %d points, %d failed, %.1f s -> %s" % (len(records), failures, time.monotonic() - t0, csv_path))
     return 0
+
+
+class Interrupted(BaseException):
+    """SIGINT or SIGTERM (a BaseException as KeyboardInterrupt: no `except Exception` stops it)."""
+
+    def __init__(self, signum):
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+@contextlib.contextmanager
+def interrupts():
+    """Ctrl-C (SIGINT) and SIGTERM raise Interrupted inside the block: the running points are
+    stopped (the runner kills their roller processes, Dask's clean-up its workers) and study.csv,
+    written after every point, keeps the finished ones. Further signals are ignored during that
+    clean-up, so that a second Ctrl-C does not end it half-way with a traceback."""
+    def handler(signum, frame):
+        for s in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(s, signal.SIG_IGN)
+        raise Interrupted(signum)
+    before = {s: signal.signal(s, handler) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, h in before.items():
+            signal.signal(s, h)

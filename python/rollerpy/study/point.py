@@ -38,6 +38,14 @@ def run_point(task):
     return record
 
 
+def lost_record(task, message):
+    """The record of a point that did not run (its task failed on the cluster): status crashed,
+    and no point.json, so --resume runs it again."""
+    return {"index": task["index"], "name": task["name"], "backend": task["backend"], "values": task["values"],
+            "status": Status.CRASHED.value, "message": message, "wall_s": 0.0, "out": task["out"], "collected": {},
+            "command": task["cmd"]}
+
+
 def finished_record(out, task):
     """The record of a point already complete in `out` with the same command, else None."""
     record = read_record(os.path.join(out, RECORD))

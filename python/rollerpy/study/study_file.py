@@ -7,6 +7,8 @@ import os
 import tomllib
 from dataclasses import dataclass, field
 
+from ..outputs import parse_collect
+
 TOP_KEYS = {"title", "scene", "backends", "timeout", "collect", "set", "grid", "point"}
 BACKENDS = ("ipopt", "penalty")
 RUNNER_COLUMNS = ("index", "backend", "status", "message", "wall_s", "out")
@@ -34,7 +36,7 @@ class Study:
     scene: str                  # absolute path of the base scene
     backends: list              # None: the scene's own backend
     timeout: float              # per point [s]
-    collect: list               # summary.json dotted paths, or FILE.csv:COLUMN (last row)
+    collect: list               # summary.json dotted paths, or FILE.csv:COLUMN[:last|max|min|step=N]
     fixed: dict                 # --set for every point
     parameters: list            # the varied keys, in order
     points: list = field(default_factory=list)
@@ -117,10 +119,12 @@ def load(path):
         _fail(path, "timeout", timeout, "expected seconds per point, 0 < timeout <= 1e7")
     collect = doc.get("collect", [])
     if not isinstance(collect, list) or any(not isinstance(c, str) or not c for c in collect):
-        _fail(path, "collect", collect, "expected a list of summary.json fields (a.b) or FILE.csv:COLUMN")
+        _fail(path, "collect", collect, "expected a list of summary.json fields (a.b) or FILE.csv:COLUMN[:PICK]")
     for c in collect:
-        if ":" in c and not (c.split(":", 1)[0].endswith(".csv") and c.split(":", 1)[1]):
-            _fail(path, "collect", c, "expected FILE.csv:COLUMN (the column's value in the last row)")
+        try:
+            parse_collect(c)
+        except ValueError as e:
+            _fail(path, "collect", c, str(e))
     clash = [c for c in collect if c in RUNNER_COLUMNS]
     if clash:
         _fail(path, "collect", clash[0], "study.csv has this column already (the runner's: %s)"

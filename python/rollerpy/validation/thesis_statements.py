@@ -15,7 +15,7 @@ import numpy as np
 from ..command import parser
 from ..outputs import read_contact, touching_x
 from ..plots import plt
-from ..plots.scene import von_mises
+from ..plots.fields import von_mises
 from ..vtu import read_vtu, reference_mesh, top_nodes, triangles, vtu_path
 
 
