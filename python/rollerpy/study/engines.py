@@ -22,6 +22,10 @@ def run_serial(tasks, run_point, on_done):
 
 
 def run_dask(tasks, run_point, on_done, jobs=None, scheduler=None):
+    # Distributed's own notes (an event loop slowed down by a busy machine, workers coming and
+    # going) are not the user's business: errors only, here and in the workers this process starts
+    # (they read the environment when they import distributed).
+    os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "error")
     import cloudpickle
     from distributed import Client, LocalCluster, as_completed
 
