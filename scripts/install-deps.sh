@@ -20,6 +20,7 @@ packages=(
   python3 python3-numpy python3-matplotlib  # figures (PNG)
   python3-distributed python3-tqdm       # studies: Dask LocalCluster or a cluster, progress bar
   python3-pytest python3-flake8          # the Python tests (CTest) and their lint (check_format.sh)
+  paraview python3-paraview xvfb         # the outputs checked in ParaView's pvpython, headless (CTest)
 )
 
 missing=()

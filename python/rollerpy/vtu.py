@@ -92,7 +92,8 @@ def decode_vtu(path):
     pieces = root.findall("UnstructuredGrid/Piece")
     if not pieces:
         raise VtuError("no UnstructuredGrid/Piece")
-    arrays = []
+    arrays = [("FieldData", a.get("Name", ""), np.array((a.text or "").split(), dtype=float).reshape(1, -1))
+              for a in root.findall("UnstructuredGrid/FieldData/DataArray")]
     for k, piece in enumerate(pieces):
         try:
             n_points = int(piece.get("NumberOfPoints"))
@@ -153,13 +154,17 @@ def decode_vtu(path):
 
 @dataclass
 class Vtu:
-    """One step's mesh and fields: points (deformed positions, x and y), the elements as arrays of
-    point indices, and the point and cell data by name (one column per component; a
-    one-component array is one-dimensional)."""
+    """One step's mesh and fields: points (the deformed positions, x and y), the reference
+    positions the file holds (roller writes the reference configuration and the displacement:
+    ParaView's Warp By Vector), the elements as arrays of point indices, the point and cell data by
+    name (one column per component; a one-component array is one-dimensional) and the file's field
+    data (step, pass, time)."""
     points: np.ndarray
     elements: list
     point_data: dict
     cell_data: dict
+    reference: np.ndarray = None
+    field_data: dict = None
 
 
 def _squeezed(values):
@@ -172,13 +177,20 @@ def read_vtu(path):
     section = {}
     for where, name, values in arrays:
         section.setdefault(where, {}).setdefault(name, values)
-    points = next(iter(section["Points"].values()))[:, :2]
+    stored = next(iter(section["Points"].values()))[:, :2]
     conn = section["Cells"]["connectivity"][:, 0].astype(int)
     offsets = section["Cells"]["offsets"][:, 0].astype(int)
     elements = [conn[start:end] for start, end in zip(np.concatenate([[0], offsets[:-1]]), offsets)]
-    return Vtu(points=points, elements=elements,
-               point_data={k: _squeezed(v) for k, v in section.get("PointData", {}).items()},
-               cell_data={k: _squeezed(v) for k, v in section.get("CellData", {}).items()})
+    point_data = {k: _squeezed(v) for k, v in section.get("PointData", {}).items()}
+    field_data = {k: v[0, 0] if v.size == 1 else v[0] for k, v in section.get("FieldData", {}).items()}
+    # Files with field data hold the reference configuration; older ones the deformed one.
+    if "step" in field_data:
+        reference, points = stored, stored + point_data["displacement"][:, :2]
+    else:
+        reference, points = stored - point_data["displacement"][:, :2], stored
+    return Vtu(points=points, elements=elements, point_data=point_data,
+               cell_data={k: _squeezed(v) for k, v in section.get("CellData", {}).items()},
+               reference=reference, field_data=field_data)
 
 
 def vtu_path(out, step):
@@ -199,10 +211,10 @@ def step_times(out):
 
 
 def reference_mesh(out):
-    """The undeformed node positions and elements (the VTU points are the deformed positions; a
-    run restarted from another's state starts displaced already)."""
+    """The undeformed node positions and elements (a run restarted from another's state starts
+    displaced already)."""
     step0 = read_vtu(vtu_path(out, 0))
-    return step0.points - step0.point_data["displacement"][:, :2], step0.elements
+    return step0.reference, step0.elements
 
 
 def top_nodes(points):

@@ -120,7 +120,7 @@ def check_full_disk(roller, tmp):
     """A disk that fills up at some point of the run, at many sizes: exit 3 (or 0 when all fits),
     and a summary.json that says so; the fields of the steps done complete."""
     seen, failed_files = {}, set()
-    for size_kib in list(range(24, 208, 8)) + [400, 600]:
+    for size_kib in list(range(24, 208, 4)) + [400, 600]:
         mnt, keep = os.path.join(tmp, "full%d" % size_kib), os.path.join(tmp, "kept%d" % size_kib)
         os.makedirs(mnt)
         script = ("mount -t tmpfs -o size={k}k none {m} && {r} run {s} --steps 4 --out {m}/out; echo $? > {m}.rc; "

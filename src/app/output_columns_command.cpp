@@ -30,7 +30,8 @@ Command add_output_columns_command(CLI::App& app) {
     }
     std::cout << fmt::format("{:<{}}  {:<{}}  {}\n", "file", w_file, "column", w_name, "unit");
     for (const TableColumns& t : output_tables())
-      for (const Column& c : t.columns) std::cout << fmt::format("{:<{}}  {:<{}}  {}\n", t.file, w_file, c.name, w_name, c.unit);
+      for (const Column& c : t.columns)
+        std::cout << fmt::format("{:<{}}  {:<{}}  {}\n", t.file, w_file, c.name, w_name, c.unit);
     return 0;
   };
 }

@@ -120,15 +120,9 @@ Row pass_row(int step, const PassRecord& r) {
 }
 
 Row depth_row(int step, int pass, Real x, const DepthSample& d) {
-  return {{"step", "-", Index{step}},
-          {"pass", "-", Index{pass}},
-          {"x", "mm", x},
-          {"depth", "mm", d.depth},
-          {"sxx", "MPa", d.stress(0)},
-          {"syy", "MPa", d.stress(1)},
-          {"szz", "MPa", d.stress(2)},
-          {"sxy", "MPa", d.stress(3)},
-          {"eq_plastic_strain", "1", d.plastic_strain}};
+  return {{"step", "-", Index{step}},  {"pass", "-", Index{pass}},  {"x", "mm", x},
+          {"depth", "mm", d.depth},    {"sxx", "MPa", d.stress(0)}, {"syy", "MPa", d.stress(1)},
+          {"szz", "MPa", d.stress(2)}, {"sxy", "MPa", d.stress(3)}, {"eq_plastic_strain", "1", d.plastic_strain}};
 }
 
 std::vector<TableColumns> output_tables() {

@@ -65,7 +65,8 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
       writer_(writer),
       out_dir_(out_dir),
       step_start_displacement_(model.total_displacement()),
-      series_(out_dir / "fields.pvd") {
+      series_(out_dir / "fields.pvd"),
+      roller_series_(out_dir / "roller.pvd") {
   const Simulation::StepRecord empty;
   solver_csv_ =
       open_table(out_dir / "solver.csv", names_of(solver_row(empty, MonitorReport{}, 0.0)), resume, steps_done);
@@ -84,16 +85,36 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
         open_table(out_dir / "residual_depth.csv", names_of(depth_row(0, 1, 0.0, DepthSample{})), resume, steps_done);
   }
   if (resume) {
-    for (int step = 0; step <= steps_done; ++step)
+    for (int step = 0; step <= steps_done; ++step) {
       if (std::filesystem::exists(vtu_path(step))) series_.add(step * scene.steps.dt, vtu_path(step));
+      if (std::filesystem::exists(vtp_path(step))) roller_series_.add(step * scene.steps.dt, vtp_path(step));
+    }
   } else {
-    write_fields(0, {});
+    write_fields(0, 1, {}, scene.roller ? std::optional<RollerPose>(start_pose) : std::nullopt);
   }
 }
 
 std::filesystem::path RunOutputs::vtu_path(int step) const { return out_dir_ / fmt::format("step_{:04d}.vtu", step); }
+std::filesystem::path RunOutputs::vtp_path(int step) const { return out_dir_ / fmt::format("roller_{:04d}.vtp", step); }
 
-void RunOutputs::write_fields(int step, const std::vector<NodeContactRecord>& contact) {
+namespace {
+
+// What a file of step `step` is (ParaView shows field data under Information): step, pass, time.
+std::vector<VtuField> step_field_data(int step, int pass, Real time) {
+  std::vector<VtuField> data(3);
+  data[0].name = "step";
+  data[0].values = {static_cast<Real>(step)};
+  data[1].name = "pass";
+  data[1].values = {static_cast<Real>(pass)};
+  data[2].name = "time";
+  data[2].values = {time};
+  return data;
+}
+
+}  // namespace
+
+void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactRecord>& contact,
+                              const std::optional<RollerPose>& roller) {
   if (!scene_.output.vtu) return;
   StripFields f = strip_fields(model_, model_.total_displacement() - step_start_displacement_);
   if (scene_.roller) append_contact_fields(contact, model_.mesh().n_nodes(), f.point_data);
@@ -101,13 +122,21 @@ void RunOutputs::write_fields(int step, const std::vector<NodeContactRecord>& co
     f.point_data.push_back(nodal_vector("velocity", dynamics_.velocity()));
     f.point_data.push_back(nodal_vector("acceleration", dynamics_.acceleration()));
   }
-  // The mesh's topology never changes; the coordinates and fields are this step's copies. The
-  // series lists the file once it is complete.
-  writer_.submit([this, path = vtu_path(step), time = step * scene_.steps.dt, &mesh = model_.mesh(),
-                  x = model_.current_coordinates(), f = std::move(f)] {
-    write_vtu(path, mesh, x, f.point_data, f.cell_data);
+  const Real time = step * scene_.steps.dt;
+  // The mesh and its reference coordinates never change; the fields are this step's copies. A
+  // series lists a file once it is complete.
+  writer_.submit([this, path = vtu_path(step), time, &mesh = model_.mesh(), f = std::move(f),
+                  info = step_field_data(step, pass, time)] {
+    write_vtu(path, mesh, mesh.nodes, f.point_data, f.cell_data, VtuCompression::ZLib, info);
     const std::lock_guard<std::mutex> lock(series_mutex_);
     series_.add(time, path);
+  });
+  if (!roller) return;
+  writer_.submit([this, path = vtp_path(step), time, pose = *roller, radius = scene_.roller->radius,
+                  info = step_field_data(step, pass, time)] {
+    write_roller_vtp(path, pose.centre, radius, pose.angle, info);
+    const std::lock_guard<std::mutex> lock(series_mutex_);
+    roller_series_.add(time, path);
   });
 }
 
@@ -126,7 +155,9 @@ void RunOutputs::write_step(const Simulation::StepRecord& step) {
     for (const auto& c : step.contact) contact_csv_->add_row(cells_of(contact_row(step.step, step.pass, c)));
     roller_csv_->add_row(cells_of(roller_row(step.step, step.pass, step.time, *step.roller)));
   }
-  if (step.step % scene_.output.every == 0 || step.step == scene_.total_steps()) write_fields(step.step, step.contact);
+  if (step.step % scene_.output.every == 0 || step.step == scene_.total_steps())
+    write_fields(step.step, step.pass, step.contact,
+                 step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt);
   step_start_displacement_ = model_.total_displacement();
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // The files of a run's output folder (docs/scenes.md, Output): solver.csv, contact.csv and
 // roller.csv (one row per step, flushed before the next step starts), fields.pvd with its VTU
-// files. A resumed run continues the tables after the resumed step and keeps the earlier VTU
-// files in the series. Each table's columns are one list of (name, value) pairs, its header the
-// names of that list (run_outputs.cpp).
+// files (points in the reference configuration with the displacement: ParaView's Warp By Vector
+// gives the deformed strip) and, with a roller, roller.pvd with its circle at the same steps. A resumed run continues
+// the tables after the resumed step and keeps the earlier VTU files in the series. Each table's columns are one list of
+// (name, value) pairs, its header the names of that list (run_outputs.cpp).
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -38,8 +39,11 @@ class RunOutputs {
   void write_step(const Simulation::StepRecord& step);
 
  private:
-  void write_fields(int step, const std::vector<NodeContactRecord>& contact);
+  // The strip's fields of a step, and the roller (its pose; none without a roller) beside them.
+  void write_fields(int step, int pass, const std::vector<NodeContactRecord>& contact,
+                    const std::optional<RollerPose>& roller);
   std::filesystem::path vtu_path(int step) const;
+  std::filesystem::path vtp_path(int step) const;
 
   const Scene& scene_;
   const StripModel& model_;
@@ -49,6 +53,7 @@ class RunOutputs {
   std::unique_ptr<CsvTable> solver_csv_, contact_csv_, roller_csv_, passes_csv_, depth_csv_;
   VecX step_start_displacement_;  // total displacement at the start of the step being written
   PvdSeries series_;              // added to by the writer's jobs, one at a time (series_mutex_)
+  PvdSeries roller_series_;       // roller.pvd: the roller's circle at the same steps
   std::mutex series_mutex_;
 };
 

@@ -54,23 +54,26 @@ std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
   const std::string file = scene.file.string();
   const MaterialParams& m = scene.material;
   if (m.youngs_modulus < 1e3 && m.plastic && m.yield_stress > 10.0)
-    out.push_back(fmt::format("{}: material.E = {:g} MPa with material.yield_stress = {:g} MPa: E looks like GPa; "
-                              "roller works in MPa (steel: E = 2.1e5)",
-                              file, m.youngs_modulus, m.yield_stress));
+    out.push_back(
+        fmt::format("{}: material.E = {:g} MPa with material.yield_stress = {:g} MPa: E looks like GPa; "
+                    "roller works in MPa (steel: E = 2.1e5)",
+                    file, m.youngs_modulus, m.yield_stress));
   if (!scene.roller) return out;
   const Real x = given_start_centre(scene).x();
   const Real h = surface_spacing_at(mesh, x);
   const Real radius = scene.roller->radius;
   if (radius < h)
-    out.push_back(fmt::format("{}: roller.radius = {:g} mm is smaller than the element under it ({:.3g} mm): a radius "
-                              "in metres? roller works in mm",
-                              file, radius, h));
+    out.push_back(
+        fmt::format("{}: roller.radius = {:g} mm is smaller than the element under it ({:.3g} mm): a radius "
+                    "in metres? roller works in mm",
+                    file, radius, h));
   // Nodes within the contact width 2a: 2a/h + 1 on average.
   if (const std::optional<Real> a = expected_half_width(scene); a && h > 0.0 && 2.0 * *a / h + 1.0 < 4.0)
-    out.push_back(fmt::format("{}: the contact will span about {:.1f} nodes (Hertz half-width a = {:.3g} mm for the "
-                              "path's load or press, element size {:.3g} mm under the roller): pressures and stick/slip "
-                              "zones need at least 4; refine the mesh there (mesh.refine, mesh.x_lines)",
-                              file, 2.0 * *a / h + 1.0, *a, h));
+    out.push_back(
+        fmt::format("{}: the contact will span about {:.1f} nodes (Hertz half-width a = {:.3g} mm for the "
+                    "path's load or press, element size {:.3g} mm under the roller): pressures and stick/slip "
+                    "zones need at least 4; refine the mesh there (mesh.refine, mesh.x_lines)",
+                    file, 2.0 * *a / h + 1.0, *a, h));
   return out;
 }
 

@@ -6,7 +6,10 @@ namespace roller {
 
 namespace {
 
-const std::vector<std::string> kTensorComponents{"xx", "yy", "zz", "xy"};
+// ParaView's order of a symmetric tensor's six components: it then offers eigenvalues, principal
+// directions and tensor glyphs. The strip is plane: YZ = XZ = 0.
+const std::vector<std::string> kTensorComponents{"XX", "YY", "ZZ", "XY", "YZ", "XZ"};
+constexpr int kTensor = 6;
 
 VtuField field(std::string name, int n_components, Index n_items, std::vector<std::string> component_names = {}) {
   VtuField f;
@@ -32,9 +35,9 @@ StripFields strip_fields(const StripModel& model, const VecX& step_increment) {
     displacement.values[3 * a + 1] = model.total_displacement()(2 * a + 1);
   }
 
-  VtuField stress = field("stress", 4, n_el, kTensorComponents);
-  VtuField strain = field("strain", 4, n_el, kTensorComponents);
-  VtuField strain_inc = field("strain_increment", 4, n_el, kTensorComponents);
+  VtuField stress = field("stress", kTensor, n_el, kTensorComponents);
+  VtuField strain = field("strain", kTensor, n_el, kTensorComponents);
+  VtuField strain_inc = field("strain_increment", kTensor, n_el, kTensorComponents);
   VtuField sqrt_i2 = field("sqrt_I2", 1, n_el);
   VtuField mises = field("von_mises", 1, n_el);
   VtuField eps_p = field("eq_plastic_strain", 1, n_el);
@@ -56,39 +59,38 @@ StripFields strip_fields(const StripModel& model, const VecX& step_increment) {
     e_avg(3) *= 0.5;  // output the tensor shear component, like the stress
     de_avg(3) *= 0.5;
     for (int c = 0; c < 4; ++c) {
-      stress.values[4 * e + c] = s_avg(c);
-      strain.values[4 * e + c] = e_avg(c);
-      strain_inc.values[4 * e + c] = de_avg(c);
+      stress.values[kTensor * e + c] = s_avg(c);
+      strain.values[kTensor * e + c] = e_avg(c);
+      strain_inc.values[kTensor * e + c] = de_avg(c);
     }
   }
 
   // Nodal averages of the element values, weighted equally per adjacent element.
   std::vector<Real> count(n_nodes, 0.0);
-  VtuField stress_n = field("stress_nodal", 4, n_nodes, kTensorComponents);
+  VtuField stress_n = field("stress_nodal", kTensor, n_nodes, kTensorComponents);
   VtuField sqrt_i2_n = field("sqrt_I2_nodal", 1, n_nodes);
-  VtuField strain_n = field("strain_nodal", 4, n_nodes, kTensorComponents);
-  VtuField strain_inc_n = field("strain_increment_nodal", 4, n_nodes, kTensorComponents);
+  VtuField mises_n = field("von_mises_nodal", 1, n_nodes);
+  VtuField eps_p_n = field("eq_plastic_strain_nodal", 1, n_nodes);
+  VtuField strain_n = field("strain_nodal", kTensor, n_nodes, kTensorComponents);
+  VtuField strain_inc_n = field("strain_increment_nodal", kTensor, n_nodes, kTensorComponents);
+  const std::vector<std::pair<VtuField*, const VtuField*>> averaged{{&stress_n, &stress}, {&sqrt_i2_n, &sqrt_i2},
+                                                                    {&mises_n, &mises},   {&eps_p_n, &eps_p},
+                                                                    {&strain_n, &strain}, {&strain_inc_n, &strain_inc}};
   for (Index e = 0; e < n_el; ++e)
     for (Index a : mesh.elements[e]) {
       count[a] += 1.0;
-      sqrt_i2_n.values[a] += sqrt_i2.values[e];
-      for (int c = 0; c < 4; ++c) {
-        stress_n.values[4 * a + c] += stress.values[4 * e + c];
-        strain_n.values[4 * a + c] += strain.values[4 * e + c];
-        strain_inc_n.values[4 * a + c] += strain_inc.values[4 * e + c];
-      }
+      for (auto [nodal, cell] : averaged)
+        for (int c = 0; c < nodal->n_components; ++c)
+          nodal->values[nodal->n_components * a + c] += cell->values[nodal->n_components * e + c];
     }
   for (Index a = 0; a < n_nodes; ++a) {
     if (count[a] == 0.0) continue;
-    sqrt_i2_n.values[a] /= count[a];
-    for (int c = 0; c < 4; ++c) {
-      stress_n.values[4 * a + c] /= count[a];
-      strain_n.values[4 * a + c] /= count[a];
-      strain_inc_n.values[4 * a + c] /= count[a];
-    }
+    for (const auto& pair : averaged)
+      for (int c = 0; c < pair.first->n_components; ++c)
+        pair.first->values[pair.first->n_components * a + c] /= count[a];
   }
 
-  out.point_data = {displacement, stress_n, sqrt_i2_n, strain_n, strain_inc_n};
+  out.point_data = {displacement, stress_n, sqrt_i2_n, mises_n, eps_p_n, strain_n, strain_inc_n};
   out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl};
   return out;
 }

@@ -269,11 +269,25 @@ void append_cells(std::string& xml, const Mesh& mesh, VtuCompression compression
   xml += "      </Cells>\n";
 }
 
+// The dataset's own arrays (one tuple each), as ASCII: a few numbers that any reader shows.
+void append_field_data(std::string& xml, const std::vector<VtuField>& field_data) {
+  if (field_data.empty()) return;
+  xml += "    <FieldData>\n";
+  for (const VtuField& f : field_data) {
+    xml += fmt::format(
+        R"(      <DataArray type="Float64" Name="{}" NumberOfTuples="1" NumberOfComponents="{}" format="ascii">)",
+        xml_attr(f.name), f.n_components);
+    for (const Real v : f.values) xml += fmt::format(" {:.17g}", v);
+    xml += " </DataArray>\n";
+  }
+  xml += "    </FieldData>\n";
+}
+
 }  // namespace
 
 void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
                const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
-               VtuCompression compression) {
+               VtuCompression compression, const std::vector<VtuField>& field_data) {
   const Index n_nodes = mesh.n_nodes();
   const Index n_elements = mesh.n_elements();
   // Validate everything before touching the file system.
@@ -282,6 +296,8 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
   for (const auto& f : point_data) check_field(f, n_nodes, "point", point_names);
   std::set<std::string> cell_names;
   for (const auto& f : cell_data) check_field(f, n_elements, "cell", cell_names);
+  std::set<std::string> field_names;
+  for (const auto& f : field_data) check_field(f, 1, "field", field_names);
 
   std::string xml;
   xml += "<?xml version=\"1.0\"?>\n";
@@ -290,6 +306,7 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
       "header_type=\"UInt64\"{}>\n",
       compression == VtuCompression::ZLib ? " compressor=\"vtkZLibDataCompressor\"" : "");
   xml += "  <UnstructuredGrid>\n";
+  append_field_data(xml, field_data);
   xml += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", n_nodes, n_elements);
   xml += "      <PointData>\n";
   for (const auto& f : point_data) append_field(xml, f, compression);
@@ -303,6 +320,40 @@ void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::v
   xml += "  </UnstructuredGrid>\n";
   xml += "</VTKFile>\n";
 
+  write_file_atomically(path, xml);
+}
+
+void write_roller_vtp(const std::filesystem::path& path, const Vec2& centre, Real radius, Real angle,
+                      const std::vector<VtuField>& field_data, int segments) {
+  std::set<std::string> field_names;
+  for (const auto& f : field_data) check_field(f, 1, "field", field_names);
+  if (!centre.allFinite() || !std::isfinite(radius) || !std::isfinite(angle))
+    throw std::invalid_argument("write_roller_vtp: a non-finite centre, radius or angle; refusing to write NaN/Inf");
+  // Points 0..segments-1 on the circle, then the centre; line 1 the closed circle, line 2 the
+  // radius from the centre to the rim point at the rotation angle.
+  std::string points, circle;
+  for (int k = 0; k < segments; ++k) {
+    const Real t = angle + 2.0 * M_PI * k / segments;
+    points += fmt::format(" {:.17g} {:.17g} 0", centre.x() + radius * std::cos(t), centre.y() + radius * std::sin(t));
+    circle += fmt::format(" {}", k);
+  }
+  points += fmt::format(" {:.17g} {:.17g} 0", centre.x(), centre.y());
+  std::string xml = "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  xml += "  <PolyData>\n";
+  append_field_data(xml, field_data);
+  xml += fmt::format(
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"2\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"0\">\n",
+      segments + 1);
+  xml += "      <Points>\n        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">" + points +
+         " </DataArray>\n      </Points>\n";
+  xml += "      <Lines>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" + circle +
+         fmt::format(" 0 {} 0 </DataArray>\n", segments);
+  xml += fmt::format(
+      "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\"> {} {} </DataArray>\n      </Lines>\n",
+      segments + 1, segments + 3);
+  xml += "    </Piece>\n  </PolyData>\n</VTKFile>\n";
   write_file_atomically(path, xml);
 }
 

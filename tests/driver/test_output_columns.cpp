@@ -28,8 +28,8 @@ TEST_CASE("output columns: each has a known unit and a name unique in its table"
 
 TEST_CASE("output columns: a run's CSV headers are the schema's names", "[driver][outputs]") {
   const test::TempDir dir("output_columns");
-  const test::Run r = test::run_roller("run " + std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml --steps 1 --out " +
-                                       (dir.path() / "out").string());
+  const test::Run r = test::run_roller("run " + std::string(ROLLER_SOURCE_DIR) +
+                                       "/problems/hertz.toml --steps 1 --out " + (dir.path() / "out").string());
   REQUIRE(r.exit_code == 0);
   for (const TableColumns& t : output_tables()) {
     if (t.file == "passes.csv" || t.file == "residual_depth.csv") continue;  // multi-pass runs only

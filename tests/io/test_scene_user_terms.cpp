@@ -69,7 +69,8 @@ TEST_CASE("a load given as p0 or p0/k is the force with that Hertz peak pressure
 }
 
 TEST_CASE("a load given twice, or p0/k without a yield stress, is refused", "[io][scene][loads][errors]") {
-  CHECK_THAT(test::error_of(with_load("fy = 400.0\np0 = 800.0")), Catch::Contains("give the segment's vertical force once"));
+  CHECK_THAT(test::error_of(with_load("fy = 400.0\np0 = 800.0")),
+             Catch::Contains("give the segment's vertical force once"));
   CHECK_THAT(test::error_of(with_load("p0 = 800.0\np0_over_k = 4.0")), Catch::Contains("once"));
   CHECK_THAT(test::error_of(with_load("p0 = -1.0")), Catch::Contains("roller.path[0].p0"));
   std::string elastic = with_load("p0_over_k = 4.0");
@@ -77,7 +78,8 @@ TEST_CASE("a load given twice, or p0/k without a yield stress, is refused", "[io
   CHECK_THAT(test::error_of(elastic), Catch::Contains("p0/k needs a yield stress"));
 }
 
-TEST_CASE("command-line overrides reach a block of an array of tables (--set roller.path[1].fy)", "[io][scene][overrides]") {
+TEST_CASE("command-line overrides reach a block of an array of tables (--set roller.path[1].fy)",
+          "[io][scene][overrides]") {
   const Scene s = load_scene(kBurnishing, {{"roller.path[1].fy", "300.0"}, {"roller.path[0].p0_over_k", "3.0"}});
   CHECK(*s.roller->path[1].fy == 300.0);
   CHECK(s.roller->path[2].dy == 0.1);  // the other blocks as written
@@ -94,8 +96,7 @@ TEST_CASE("command-line overrides reach a block of an array of tables (--set rol
   CHECK_THROWS_WITH(load_scene(kBurnishing, {{"mesh[0].nx", "1"}}), Catch::Contains("not an array of tables"));
 }
 
-TEST_CASE("a path segment beyond the run's steps is refused unless --steps shortened the run",
-          "[io][scene][errors]") {
+TEST_CASE("a path segment beyond the run's steps is refused unless --steps shortened the run", "[io][scene][errors]") {
   std::string text = with_load("fy = 400.0");
   text.replace(text.find("steps = [3, 4]"), 14, "steps = [3, 6]");
   CHECK_THAT(test::error_of(text), Catch::Contains("roller.path[1].steps = [3, 6]: the segment ends after the run's "

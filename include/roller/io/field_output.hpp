@@ -3,7 +3,8 @@
 // element the integration-point averages of stress, sqrt(I2), von Mises stress, total strain,
 // equivalent plastic strain and plastic work, and the strain of the step's increment (the
 // thesis's updated-Lagrangian strain, StripModel::increment_strain); stress and strains averaged
-// to the nodes (for smooth contour maps).
+// to the nodes (for smooth contour maps). Tensors have ParaView's six components XX, YY, ZZ, XY,
+// YZ, XZ (YZ = XZ = 0).
 #include <vector>
 
 #include "roller/assembly/strip_model.hpp"

@@ -25,13 +25,19 @@ struct VtuField {
 // ParaView reads; a 2.9e5-dof step shrinks several times) or raw.
 enum class VtuCompression { ZLib, None };
 
-// Writes `mesh` with node coordinates `coordinates` (current configuration; may differ from
-// mesh.nodes) and the given point and cell data. Throws std::runtime_error naming the path if
-// the file cannot be written, and std::invalid_argument naming the field when a field's size
-// does not match n_nodes * n_components (point) or n_elements * n_components (cell).
+// Writes `mesh` with node coordinates `coordinates` (may differ from mesh.nodes) and the given
+// point and cell data, and `field_data` (arrays of the whole dataset: one tuple each, e.g. the step
+// and time). Throws std::runtime_error naming the path if the file cannot be written, and
+// std::invalid_argument naming the field when a field's size does not match n_nodes *
+// n_components (point), n_elements * n_components (cell) or n_components (field data).
 void write_vtu(const std::filesystem::path& path, const Mesh& mesh, const std::vector<Vec2>& coordinates,
                const std::vector<VtuField>& point_data, const std::vector<VtuField>& cell_data,
-               VtuCompression compression = VtuCompression::ZLib);
+               VtuCompression compression = VtuCompression::ZLib, const std::vector<VtuField>& field_data = {});
+
+// The roller as VTK PolyData (.vtp, ASCII): its circle (a closed line of `segments` points) and a
+// radius at its rotation angle, so that rolling and slip show in ParaView beside the strip.
+void write_roller_vtp(const std::filesystem::path& path, const Vec2& centre, Real radius, Real angle,
+                      const std::vector<VtuField>& field_data = {}, int segments = 180);
 
 // A .pvd collection. Each add() inserts a dataset entry in time order and rewrites the .pvd file
 // at once, so a run that stops early leaves a valid series of the steps already written.

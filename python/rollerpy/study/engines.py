@@ -54,8 +54,9 @@ def run_dask(tasks, run_point, on_done, jobs=None, scheduler=None):
         # it so), so that the study alone answers it and stops them, without their tracebacks.
         previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
         try:
+            # The dashboard's port picked free (":0"): two studies at once must not meet at 8787.
             cluster = LocalCluster(n_workers=jobs or os.cpu_count(), threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
+                                   dashboard_address=":0")
         finally:
             signal.signal(signal.SIGINT, previous)
         client = Client(cluster)

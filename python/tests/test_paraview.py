@@ -1,0 +1,37 @@
+"""The outputs as a ParaView user sees them (docs/scenes.md, Outputs), checked with the real client:
+ParaView's pvpython (Debian's paraview, headless under xvfb-run) opens a Hertz run's fields.pvd
+and roller.pvd, warps the strip by `displacement`, takes principal stresses of the six-component
+`stress` and renders the last step (python/tests/paraview/check_outputs.py). The warped points must
+be the deformed positions roller reports in contact.csv."""
+import json
+import os
+import subprocess
+
+import numpy as np
+
+from conftest import run_scene
+from rollerpy.outputs import read_rows
+
+SCRIPT = os.path.join(os.path.dirname(__file__), "paraview", "check_outputs.py")
+
+
+def test_paraview_opens_warps_and_renders_a_run(roller, tmp_path):
+    out = run_scene(roller, "hertz", str(tmp_path))
+    png = str(tmp_path / "hertz.png")
+    r = subprocess.run(["xvfb-run", "-a", "pvpython", SCRIPT, out, png], capture_output=True, text=True,
+                       timeout=300, cwd=str(tmp_path))
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    found = json.loads(r.stdout.strip().splitlines()[-1])
+    assert found["times"] == [0.0, 1.0, 2.0, 3.0, 4.0]
+    assert found["field_data"] == {"step": 4.0, "pass": 1.0, "time": 4.0}
+    assert found["stress_components"] == ["XX", "YY", "ZZ", "XY", "YZ", "XZ"]
+    np.testing.assert_allclose(found["principal_paraview"], found["principal_numpy"], rtol=1e-9, atol=1e-9)
+    # Warp By Vector gives the deformed strip: the candidates' positions of contact.csv's last step.
+    warped = np.array(found["warped"])
+    last = [row for row in read_rows(os.path.join(out, "contact.csv")) if int(row["step"]) == 4]
+    assert len(last) > 10
+    for row in last:
+        node = int(row["node"]) - 1  # thesis numbering from 1
+        np.testing.assert_allclose(warped[node], [float(row["x"]), float(row["y"])], rtol=1e-12, atol=1e-9)
+    assert found["roller_points"] == 181 and found["roller_lines"] == 2  # circle and radius
+    assert os.path.getsize(png) > 5000
