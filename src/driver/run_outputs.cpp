@@ -76,19 +76,19 @@ std::vector<CsvTable::Cell> cells_of(const Row& row) {
 }
 
 Row solver_row(const Simulation::StepRecord& r, const MonitorReport& monitor, double wall_s) {
-  const BackendStats& stats = r.stats;
+  const IpoptDetails& stats = r.details.get<IpoptDetails>();
   const StripMonotonicity& mono = monitor.pointwise;
   const Index not_checked = -1;
   return {{"step", Index{r.step}},
           {"pass", Index{r.pass}},
           {"time", r.time},
-          {"iterations", Index{r.iterations}},
+          {"iterations", Index{r.counters.iterations}},
           {"residual", r.last.residual},
           {"max_penetration", r.max_penetration},
           {"wall_s", wall_s},
           {"cuts", Index{r.cuts}},
           {"yielded_points", r.n_yielded},
-          {"factorizations", Index{r.factorizations}},
+          {"factorizations", Index{r.counters.factorizations}},
           {"complementarity", stats.complementarity},
           {"constraint_violation", stats.constraint_violation},
           {"fixed_point_iterations", static_cast<Real>(stats.fixed_point_iterations)},
