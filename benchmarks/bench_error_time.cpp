@@ -153,8 +153,8 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
     r.status = "converged";
     for (int step = 1; step <= r.steps; ++step) {
       const auto s = sim.advance_step(step);
-      r.iterations += s.iterations;
-      r.factorizations += s.factorizations;
+      r.iterations += s.counters.iterations;
+      r.factorizations += s.counters.factorizations;
       r.penetration = std::max(r.penetration, s.max_penetration);
       if (!s.converged) {
         r.status = "failed";

@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
         for (int step = 1; step <= sim.scene().steps.n_steps && ok; ++step) {
           const auto res = sim.advance_step(step);
           ok = res.converged;
-          iterations += res.iterations;
+          iterations += res.counters.iterations;
           penetration = std::max(penetration, res.max_penetration);
         }
         walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

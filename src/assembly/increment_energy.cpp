@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "roller/core/error.hpp"
+
 namespace roller {
 
 IncrementEnergy::IncrementEnergy(StripModel& model, VecX prescribed, VecX external_force,
@@ -31,11 +33,15 @@ VecX IncrementEnergy::full_increment(const VecX& x) const {
   return u;
 }
 
-ObjectiveValue IncrementEnergy::evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
+Expected<ObjectiveValue> IncrementEnergy::evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
   VecX full_gradient;
-  const ObjectiveValue v = evaluate_all(x, full_gradient, hessian);
-  if (gradient) *gradient = model_.dof_map().restrict_to_free(full_gradient);
-  return v;
+  try {
+    const ObjectiveValue v = evaluate_all(x, full_gradient, hessian);
+    if (gradient) *gradient = model_.dof_map().restrict_to_free(full_gradient);
+    return v;
+  } catch (const NumericalError& error) {
+    return Unexpected{error.what()};
+  }
 }
 
 ObjectiveValue IncrementEnergy::evaluate_full(const VecX& x, VecX& full_gradient) {

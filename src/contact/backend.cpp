@@ -15,46 +15,11 @@ const char* to_string(ContactStatus s) {
   return "?";
 }
 
-std::string BackendStats::brief() const {
-  std::string s;
-  auto add = [&s](const char* name, double value) {
-    if (value != 0.0) s += fmt::format("{}{} {:.3g}", s.empty() ? "" : ", ", name, value);
-  };
-  add("complementarity", complementarity);
-  add("constraint_violation", constraint_violation);
-  add("fixed_point_iterations", fixed_point_iterations);
-  add("nlp_solves", nlp_solves);
-  add("cold_restarts", cold_restarts);
-  add("nlp_variables", nlp_variables);
-  add("nlp_constraints", nlp_constraints);
-  add("linearisations", linearisations);
-  add("condensed_dofs", condensed_dofs);
-  add("ipopt_time_s", ipopt_time_s);
-  add("acceptable_level", acceptable_level ? 1.0 : 0.0);
-  add("condensed_fallback", condensed_fallback ? 1.0 : 0.0);
-  add("active_set_passes", active_set_passes);
-  add("penalty_stages", penalty_stages);
-  return s;
-}
-
-void BackendStats::add(const BackendStats& later) {
-  const BackendStats work = *this;
-  *this = later;
-  nlp_solves += work.nlp_solves;
-  cold_restarts += work.cold_restarts;
-  linearisations += work.linearisations;
-  ipopt_time_s += work.ipopt_time_s;
-  active_set_passes += work.active_set_passes;
-  penalty_stages += work.penalty_stages;
-  acceptable_level = acceptable_level || work.acceptable_level;
-  condensed_fallback = condensed_fallback || work.condensed_fallback;
-}
-
 std::string BackendResult::brief_report() const {
   std::string s = fmt::format("{} in {} iterations, |r|/F {:.2e}, max penetration {:.2e} mm",
-                              converged() ? "converged" : "FAILED", iterations, residual, max_penetration);
-  const std::string details = stats.brief();
-  if (!details.empty()) s += ", " + details;
+                              converged() ? "converged" : "FAILED", counters.iterations, residual, max_penetration);
+  const std::string brief = details.brief();
+  if (!brief.empty()) s += ", " + brief;
   if (!converged()) s += ": " + message;
   return s;
 }
@@ -75,7 +40,7 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
     finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) && std::isfinite(c.gap) &&
              std::isfinite(c.slip);
   if (!finite && r.converged()) {
-    r.status = ContactTermination::Failed;
+    r.status = Termination::Failed;
     r.message = fmt::format(
         "{} backend returned non-finite values; use smaller steps (a larger steps.count, or steps.max_cuts)", name());
   }

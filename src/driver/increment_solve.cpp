@@ -40,10 +40,10 @@ bool IncrementSolve::solve_contact(const std::optional<RollerPotential>& potenti
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
   // harmonic's crests): retry once from the start-of-step configuration before giving up.
   if (!result.converged() && x_.squaredNorm() > 0.0) {
-    const int spent = result.iterations;
+    const int spent = result.counters.iterations;
     problem.move_roller(0.0);
     result = backend_.solve(problem, VecX::Zero(x_.size()));
-    result.iterations += spent;
+    result.counters.iterations += spent;  // the first attempt's factorisations are not counted
   }
   if (result.converged()) x_ = result.x;
   if (result.converged() && potential) motion.end.centre.y() += result.roller_offset.value_or(0.0);

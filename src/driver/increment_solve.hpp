@@ -58,15 +58,14 @@ class IncrementSolve {
 template <class Result>
 void add_solve(IncrementReport& report, const Result& r) {
   report.converged = r.converged();
-  report.iterations += r.iterations;
-  report.factorizations += r.factorizations;
+  report.counters += r.counters;
   report.residual = r.residual;
   report.message = r.message;
 }
 // A contact solve also adds its backend's work counters (solver.csv).
 inline void add_solve(IncrementReport& report, const BackendResult& r) {
   add_solve<BackendResult>(report, r);
-  report.stats.add(r.stats);
+  report.details.add(r.details);
 }
 
 }  // namespace roller

@@ -22,19 +22,19 @@ Vec2 tractions(const NodeContactRecord& c) {
 }
 
 Row solver_row(const Simulation::StepRecord& r, const MonitorReport& monitor, double wall_s) {
-  const BackendStats& stats = r.stats;
+  const IpoptDetails& stats = r.details.get<IpoptDetails>();
   const StripMonotonicity& mono = monitor.pointwise;
   const Index not_checked = -1;
   return {{"step", "-", Index{r.step}},
           {"pass", "-", Index{r.pass}},
           {"time", "s", r.time},
-          {"iterations", "-", Index{r.iterations}},
+          {"iterations", "-", Index{r.counters.iterations}},
           {"residual", "1", r.last.residual},
           {"max_penetration", "mm", r.max_penetration},
           {"wall_s", "s", wall_s},
           {"cuts", "-", Index{r.cuts}},
           {"yielded_points", "-", r.n_yielded},
-          {"factorizations", "-", Index{r.factorizations}},
+          {"factorizations", "-", Index{r.counters.factorizations}},
           {"complementarity", "1", stats.complementarity},
           {"constraint_violation", "mm", stats.constraint_violation},
           {"fixed_point_iterations", "-", static_cast<Real>(stats.fixed_point_iterations)},

@@ -47,8 +47,8 @@ void print_progress(std::ostream& out, const Scene& scene, const Simulation::Ste
   const std::string pass_text =
       scene.passes.count > 1 ? fmt::format("pass {:>2}/{:<2} ", res.pass, scene.passes.count) : "";
   out << fmt::format("{}step {:>4}/{:<4} t={:<9.4g} its {:>3}  |r|/F {:8.2e}  cuts {}  yielded {:>5}{}  {:7.3f} s\n",
-                     pass_text, res.step, scene.total_steps(), res.time, res.iterations, res.last.residual, res.cuts,
-                     res.n_yielded, contact_text, wall_s)
+                     pass_text, res.step, scene.total_steps(), res.time, res.counters.iterations, res.last.residual,
+                     res.cuts, res.n_yielded, contact_text, wall_s)
       << std::flush;
 }
 
@@ -239,7 +239,7 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     const auto t_step = Clock::now();
     const StepRecord res = advance_step(step);
     const double wall = seconds_since(t_step);
-    state_.totals.iterations += res.iterations;
+    state_.totals.iterations += res.counters.iterations;
     state_.totals.cuts += res.cuts;
     state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
     outputs.write_solver_row(res, monitor.check(step, *model_), wall);

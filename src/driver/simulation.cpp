@@ -255,9 +255,8 @@ Simulation::StepRecord Simulation::advance_step(int step) {
   Real ds = 1.0;
   while (s < step - 1e-12) {
     IncrementReport inc = advance(s, s + ds);
-    res.iterations += inc.iterations;
-    res.factorizations += inc.factorizations;
-    res.stats.add(inc.stats);
+    res.counters += inc.counters;
+    res.details.add(inc.details);
     res.last = inc;
     if (inc.converged) {
       s += ds;

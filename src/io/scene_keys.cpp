@@ -483,7 +483,7 @@ void read_ipopt_options(TomlSection& s, Scene& scene, std::size_t) {
       raw->fail(key,
                 "not passed through: an option naming a file or a library is refused (a scene writes only into its "
                 "output folder); Ipopt's log goes to the terminal with contact.ipopt.print_level");
-    if (key == "linear_solver")  // set per NLP by roller (contact/ipopt_common.cpp, kkt_linear_solver)
+    if (key == "linear_solver")  // set per NLP by roller (contact/ipopt/ipopt_common.cpp, kkt_linear_solver)
       raw->fail(key,
                 "not passed through: roller chooses Ipopt's linear solver per NLP; use contact.ipopt.kkt_solver = "
                 "\"auto\", \"dense\" or \"mumps\"");

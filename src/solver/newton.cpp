@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include "roller/core/error.hpp"
 #include "roller/solver/sparse_solver.hpp"
 
 namespace roller {
@@ -39,19 +38,18 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
   NewtonReport report;
   VecX g, d, x_trial, g_trial;
   SparseMatrix h;
-  ObjectiveValue value;
-  try {
-    value = objective.evaluate(x, &g, &h);
-  } catch (const NumericalError& e) {
-    report.message = fmt::format("cannot evaluate the start of the increment: {}", e.what());
+  Expected<ObjectiveValue> start = objective.evaluate(x, &g, &h);
+  if (!start) {
+    report.message = fmt::format("cannot evaluate the start of the increment: {}", start.error());
     return report;
   }
+  ObjectiveValue value = *start;
   for (int it = 0;; ++it) {
     const Real scale = std::max(value.force_scale, 1e-300);
     const Real gnorm = g.norm();
     report.residual_history.push_back(gnorm);
     report.residual = gnorm / scale;
-    report.iterations = it;
+    report.counters.iterations = it;
     if (!std::isfinite(gnorm)) {
       report.message =
           "the residual is not finite (NaN/Inf): the increment diverged; use smaller steps (a larger steps.count, or "
@@ -59,12 +57,12 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
       return report;
     }
     if (report.residual <= options.residual_tolerance || g.size() == 0) {
-      report.status = NewtonStatus::Converged;
+      report.status = Termination::Converged;
       report.message = fmt::format("converged in {} iterations, |r|/F = {:.2e}", it, report.residual);
       return report;
     }
     if (it >= options.max_iterations) {
-      report.status = NewtonStatus::NotConverged;
+      report.status = Termination::LimitReached;
       report.message = fmt::format(
           "no convergence in {} Newton iterations (|r|/F = {:.2e} > {:.1e}); use smaller steps (a larger steps.count, "
           "or steps.max_cuts) "
@@ -72,7 +70,7 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
           it, report.residual, options.residual_tolerance);
       return report;
     }
-    if (!direction(h, g, options.linear, d, report.factorizations)) {
+    if (!direction(h, g, options.linear, d, report.counters.factorizations)) {
       report.message =
           "the tangent stiffness could not be factorised into a descent direction "
           "(singular or strongly indefinite: a mechanism, missing supports, or loss "
@@ -87,14 +85,15 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
     bool accepted = false;
     for (int ls = 0; ls < 30 && !accepted; ++ls) {
       x_trial = x + alpha * d;
-      try {
-        const Real pi_trial = objective.evaluate(x_trial, &g_trial, nullptr).value;
+      // A point that cannot be evaluated (e.g. an inverted element) shortens the step.
+      if (const Expected<ObjectiveValue> trial = objective.evaluate(x_trial, &g_trial, nullptr)) {
+        const Real pi_trial = trial->value;
         const bool armijo = pi_trial <= value.value + 1e-4 * alpha * slope;
         const bool residual_drop =
             alpha == 1.0 && g_trial.norm() < 0.5 * gnorm && pi_trial <= value.value + 1e-12 * std::abs(value.value);
         accepted = !options.line_search || armijo || residual_drop;
-      } catch (const NumericalError&) {
-        accepted = false;  // e.g. an inverted element: shorten the step
+      } else {
+        accepted = false;
       }
       if (!accepted) {
         alpha *= 0.5;
@@ -108,12 +107,12 @@ NewtonReport NewtonMinimiser::minimise(NewtonObjective& objective, VecX& x, cons
       return report;
     }
     x = x_trial;
-    try {
-      value = objective.evaluate(x, &g, &h);
-    } catch (const NumericalError& e) {
-      report.message = e.what();
+    const Expected<ObjectiveValue> next = objective.evaluate(x, &g, &h);
+    if (!next) {
+      report.message = next.error();
       return report;
     }
+    value = *next;
   }
 }
 

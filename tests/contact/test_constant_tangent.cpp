@@ -25,12 +25,12 @@ TEST_CASE("constant tangent: one factorisation for the run, the answers of the u
   Simulation full(load_scene(scene, {{"contact.ipopt.formulation", "\"full\""}}));
   for (int step = 1; step <= condensed.scene().total_steps(); ++step) {
     const Simulation::StepRecord r = condensed.advance_step(step);
-    INFO("step " << step << ": " << r.stats.brief());
+    INFO("step " << step << ": " << r.details.brief());
     REQUIRE(r.converged);
     REQUIRE(full.advance_step(step).converged);
-    CHECK(r.factorizations == (step == 1 ? 1 : 0));  // reused after the first
+    CHECK(r.counters.factorizations == (step == 1 ? 1 : 0));  // reused after the first
     // Hertz is linear but for the contact: one linearisation solves an increment.
-    CHECK(r.stats.linearisations == 1);
+    CHECK(r.details.get<IpoptDetails>().linearisations == 1);
     CHECK(r.last.residual <= 1e-10);
     const Vec2 force = condensed.roller_force(), reference = full.roller_force();
     CHECK(reference.y() > 0.0);
@@ -80,8 +80,8 @@ TEST_CASE("constant tangent: a resumed run factorises afresh and agrees to round
     const Simulation::StepRecord w = whole.advance_step(step), r = resumed.advance_step(step);
     REQUIRE(w.converged);
     REQUIRE(r.converged);
-    CHECK(w.factorizations == 0);
-    CHECK(r.factorizations == (step == 3 ? 1 : 0));
+    CHECK(w.counters.factorizations == 0);
+    CHECK(r.counters.factorizations == (step == 3 ? 1 : 0));
     CHECK((whole.roller_force() - resumed.roller_force()).norm() <= 1e-10 * whole.roller_force().norm());
     const VecX& uw = whole.model().total_displacement();
     CHECK((uw - resumed.model().total_displacement()).lpNorm<Eigen::Infinity>() <=

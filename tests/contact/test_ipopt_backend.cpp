@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../support/strip_spec.hpp"
+#include "contact/ipopt/ipopt_testing.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/backend_factory.hpp"
@@ -23,16 +24,6 @@
 #include "roller/mesh/strip_mesher.hpp"
 
 using namespace roller;
-
-// Testing hooks defined in src/contact/ipopt_backend.cpp (no public header: the backend's header
-// is the interface and stays free of test plumbing).
-namespace roller::ipopt_testing {
-std::string derivative_checker_output(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                                      double perturbation);
-void evaluate_nlp(IncrementProblem& problem, const ContactOptions& options, const VecX& z, double obj_factor,
-                  const VecX& lambda, long* n_variables, long* n_constraints, double* f, VecX* grad_f, VecX* g,
-                  MatX* jacobian, MatX* hessian);
-}  // namespace roller::ipopt_testing
 
 namespace {
 
@@ -93,7 +84,7 @@ ContactOptions ipopt_options(const std::string& friction = "split", const std::s
 
 // NLP solves of an increment: the full formulation solves one per fixed-point pass, the condensed
 // one per pass and linearisation.
-Real nlp_solves(const BackendResult& r) { return r.stats.nlp_solves; }
+Real nlp_solves(const BackendResult& r) { return r.details.get<IpoptDetails>().nlp_solves; }
 
 // Reactions: internal forces at the constrained dofs at the free-dof increment x.
 Vec2 support_reaction(IncrementEnergy& energy, const VecX& x) {
@@ -160,11 +151,8 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
       o.ipopt.regularization = 1e-2;  // resolvable by the difference step below
       IncrementProblem& p = s.inc.problem;
       if (suspended) p.free_roller(RollerPotential{3e4, -50.0}, 1e-3);
-      long n = 0, m = 0;
-      double f = 0.0;
-      VecX grad, g;
-      MatX jac, hess;
-      ipopt_testing::evaluate_nlp(p, o, VecX(), 1.0, VecX(), &n, &m, &f, &grad, &g, &jac, &hess);
+      const auto sizes = ipopt_testing::evaluate_nlp(p, o);
+      const long n = sizes.n_variables, m = sizes.n_constraints;
       const Index n_friction = friction == "split" ? 3 : 0;  // guesses on the nodes at x = 3, 4, 5
       const Index n_primal = n - 2 * n_friction;             // free dofs, or the condensed contact dofs
       const Index n_rows = m - n_friction;
@@ -188,7 +176,11 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
       VecX lambda(m);
       for (Index k = 0; k < m; ++k) lambda(k) = -1e3 * u(rng);
       const Real sigma = 0.7;
-      ipopt_testing::evaluate_nlp(p, o, z, sigma, lambda, &n, &m, &f, &grad, &g, &jac, &hess);
+      const auto at_z = ipopt_testing::evaluate_nlp(p, o, z, sigma, lambda);
+      const VecX& grad = at_z.grad_f;
+      const VecX& g = at_z.g;
+      const MatX& jac = at_z.jacobian;
+      const MatX& hess = at_z.hessian;
 
       // Constraint values are the problem's own kinematics (increment_problem.hpp).
       if (formulation == "full") {
@@ -203,28 +195,12 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
       }
 
       auto objective = [&](const VecX& zz) {
-        long nn, mm;
-        double ff;
-        VecX gg, cc;
-        MatX jj, hh;
-        ipopt_testing::evaluate_nlp(p, o, zz, sigma, lambda, &nn, &mm, &ff, &gg, &cc, &jj, &hh);
-        return VecX::Constant(1, ff);
+        return VecX::Constant(1, ipopt_testing::evaluate_nlp(p, o, zz, sigma, lambda).f);
       };
-      auto constraints = [&](const VecX& zz) {
-        long nn, mm;
-        double ff;
-        VecX gg, cc;
-        MatX jj, hh;
-        ipopt_testing::evaluate_nlp(p, o, zz, sigma, lambda, &nn, &mm, &ff, &gg, &cc, &jj, &hh);
-        return cc;
-      };
+      auto constraints = [&](const VecX& zz) { return ipopt_testing::evaluate_nlp(p, o, zz, sigma, lambda).g; };
       auto lagrangian_gradient = [&](const VecX& zz) {
-        long nn, mm;
-        double ff;
-        VecX gg, cc;
-        MatX jj, hh;
-        ipopt_testing::evaluate_nlp(p, o, zz, sigma, lambda, &nn, &mm, &ff, &gg, &cc, &jj, &hh);
-        return VecX(sigma * gg + jj.transpose() * lambda);
+        const auto e = ipopt_testing::evaluate_nlp(p, o, zz, sigma, lambda);
+        return VecX(sigma * e.grad_f + e.jacobian.transpose() * lambda);
       };
       const Real h = 1e-6;  // mm; the displacements are ~1e-3 mm
       const MatX grad_fd = central_difference(objective, z, h).transpose();
@@ -238,8 +214,7 @@ TEST_CASE("ipopt NLP: gradient, Jacobian and Lagrangian Hessian equal their fini
 
       // The check is sharp enough to see the gap curvature: dropping lambda changes the
       // Hessian by far more than the tolerance above.
-      MatX hess0;
-      ipopt_testing::evaluate_nlp(p, o, z, sigma, VecX::Zero(m), &n, &m, &f, &grad, &g, &jac, &hess0);
+      const MatX hess0 = ipopt_testing::evaluate_nlp(p, o, z, sigma, VecX::Zero(m)).hessian;
       CHECK((hess - hess0).cwiseAbs().maxCoeff() > 100 * 1e-7 * hess.cwiseAbs().maxCoeff());
     }
   }
@@ -288,18 +263,18 @@ TEST_CASE("ipopt frictionless press: feasible, complementary, in equilibrium, F_
   INFO(r.brief_report());
   REQUIRE(r.converged());
   REQUIRE(r.contact.size() == inc.problem.candidates().size());
-  CHECK(r.stats.fixed_point_iterations == 1);
-  CHECK(r.stats.nlp_variables > 0);
+  CHECK(r.details.get<IpoptDetails>().fixed_point_iterations == 1);
+  CHECK(r.details.get<IpoptDetails>().nlp_variables > 0);
   if (formulation == "full") {
-    CHECK(r.stats.nlp_variables == inc.problem.n_free());  // mu = 0: no friction variables
+    CHECK(r.details.get<IpoptDetails>().nlp_variables == inc.problem.n_free());  // mu = 0: no friction variables
   } else {
-    CHECK(r.stats.nlp_variables == r.stats.condensed_dofs);
-    CHECK(r.stats.nlp_variables < 0.2 * inc.problem.n_free());  // the contact dofs only
-    CHECK(r.factorizations == r.stats.linearisations);
+    CHECK(r.details.get<IpoptDetails>().nlp_variables == r.details.get<IpoptDetails>().condensed_dofs);
+    CHECK(r.details.get<IpoptDetails>().nlp_variables < 0.2 * inc.problem.n_free());  // the contact dofs only
+    CHECK(r.counters.factorizations == r.details.get<IpoptDetails>().linearisations);
   }
-  CHECK(r.stats.constraint_violation < 1e-8 * kRadius);
+  CHECK(r.details.get<IpoptDetails>().constraint_violation < 1e-8 * kRadius);
   CHECK(r.max_penetration < 1e-8 * kRadius);
-  CHECK(r.stats.complementarity < ContactOptions().ipopt.tol);
+  CHECK(r.details.get<IpoptDetails>().complementarity < ContactOptions().ipopt.tol);
   CHECK(r.residual < 1e-8);
 
   // Sign of the multipliers: the roller pushes the nodes under it down (F_N > 0, n_y < 0).
@@ -364,9 +339,9 @@ TEST_CASE(
   const BackendResult r = condensed.solve(inc.problem, x0);
   INFO(r.brief_report());
   REQUIRE(r.converged());
-  CHECK(!r.stats.condensed_fallback);
-  CHECK(r.stats.linearisations >= 3);  // none in contact, then the set grows, then the answer
-  CHECK(r.stats.condensed_dofs >= 10);
+  CHECK(!r.details.get<IpoptDetails>().condensed_fallback);
+  CHECK(r.details.get<IpoptDetails>().linearisations >= 3);  // none in contact, then the set grows, then the answer
+  CHECK(r.details.get<IpoptDetails>().condensed_dofs >= 10);
   const BackendResult f = full.solve(inc.problem, x0);
   REQUIRE(f.converged());
   const Real fmax = max_normal_force(f);
@@ -397,9 +372,9 @@ TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gi
     // Full: every candidate; condensed: the working set (gap within 0.05 l_step = 0.005 mm of the
     // roller), empty here: the roller ends 0.1 mm above the strip.
     if (formulation == "full")
-      CHECK(r.stats.nlp_constraints == 41);
+      CHECK(r.details.get<IpoptDetails>().nlp_constraints == 41);
     else
-      CHECK(r.stats.nlp_constraints == 0);
+      CHECK(r.details.get<IpoptDetails>().nlp_constraints == 0);
     // Interior-point multipliers of inactive constraints are ~ barrier / gap, not exactly 0:
     // their complementarity F_N g is at Ipopt's tolerance (scaled by F_ref = E* |dc|), which
     // makes them ~1e-9 of the forces a 0.1 mm step could produce.
@@ -423,8 +398,8 @@ TEST_CASE("ipopt: a lifted roller gives zero contact forces and a small reach gi
     INFO(r.brief_report());
     REQUIRE(r.converged());
     CHECK(r.contact.empty());
-    CHECK(r.stats.nlp_constraints == 0);
-    CHECK(r.stats.nlp_variables == (formulation == "full" ? inc.problem.n_free() : 0));
+    CHECK(r.details.get<IpoptDetails>().nlp_constraints == 0);
+    CHECK(r.details.get<IpoptDetails>().nlp_variables == (formulation == "full" ? inc.problem.n_free() : 0));
     CHECK(r.x.lpNorm<Eigen::Infinity>() == 0.0);
   }
 }
@@ -501,8 +476,8 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     INFO(r.brief_report());
     REQUIRE(r.converged());
     CHECK(nlp_solves(r) >= 2);
-    CHECK(r.stats.fixed_point_iterations <= o.ipopt.fixed_point_max);
-    CHECK(r.stats.constraint_violation < 1e-8 * kRadius);
+    CHECK(r.details.get<IpoptDetails>().fixed_point_iterations <= o.ipopt.fixed_point_max);
+    CHECK(r.details.get<IpoptDetails>().constraint_violation < 1e-8 * kRadius);
     CHECK(r.residual < 1e-8);
     int n_slip = 0;
     check_coulomb(inc->problem, r, mu, o.ipopt.fixed_point_tol, dx, &n_slip);
@@ -523,7 +498,7 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     // The default warm start (each linearisation's first pass from the last forces, the first
     // from the press's) reaches the solution of cold starts.
     REQUIRE(o.ipopt.warm_start);
-    CHECK(r.stats.cold_restarts == 0);
+    CHECK(r.details.get<IpoptDetails>().cold_restarts == 0);
     ContactOptions cold = o;
     cold.ipopt.warm_start = false;
     auto inc2 = s.slide(dx);
@@ -543,12 +518,12 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     const BackendResult r = IpoptBackend(o).solve(inc->problem, VecX::Zero(inc->problem.n_free()));
     INFO(r.brief_report());
     REQUIRE(r.converged());
-    CHECK(r.stats.cold_restarts == 1);
-    CHECK(r.stats.nlp_solves == r.stats.fixed_point_iterations + 1);
+    CHECK(r.details.get<IpoptDetails>().cold_restarts == 1);
+    CHECK(r.details.get<IpoptDetails>().nlp_solves == r.details.get<IpoptDetails>().fixed_point_iterations + 1);
     auto clean = s.slide(dx);
     const BackendResult reference = IpoptBackend(o).solve(clean->problem, VecX::Zero(clean->problem.n_free()));
     REQUIRE(reference.converged());
-    CHECK(reference.stats.cold_restarts == 0);
+    CHECK(reference.details.get<IpoptDetails>().cold_restarts == 0);
     CHECK((r.x - reference.x).lpNorm<Eigen::Infinity>() <= 1e-6 * reference.x.lpNorm<Eigen::Infinity>());
   }
   SECTION("a later pass of the same increment starts from the last pass's normal forces") {
@@ -566,13 +541,13 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     const BackendResult again = IpoptBackend(o).solve(seeded->problem, r.x);
     INFO(again.brief_report());
     REQUIRE(again.converged());
-    CHECK(again.stats.linearisations == 1);
-    CHECK(again.stats.nlp_solves == 1);
+    CHECK(again.details.get<IpoptDetails>().linearisations == 1);
+    CHECK(again.details.get<IpoptDetails>().nlp_solves == 1);
     CHECK((again.x - r.x).lpNorm<Eigen::Infinity>() <= 1e-6 * r.x.lpNorm<Eigen::Infinity>());
     auto unseeded = s.slide(dx);
     const BackendResult redo = IpoptBackend(o).solve(unseeded->problem, r.x);
     REQUIRE(redo.converged());
-    CHECK(redo.stats.nlp_solves > again.stats.nlp_solves);
+    CHECK(redo.details.get<IpoptDetails>().nlp_solves > again.details.get<IpoptDetails>().nlp_solves);
   }
   SECTION("single pass (the thesis's explicit variant)") {
     auto inc = s.slide(dx);
@@ -581,7 +556,7 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     const BackendResult r = IpoptBackend(o).solve(inc->problem, VecX::Zero(inc->problem.n_free()));
     INFO(r.brief_report());
     REQUIRE(r.converged());
-    CHECK(r.stats.fixed_point_iterations == 1);
+    CHECK(r.details.get<IpoptDetails>().fixed_point_iterations == 1);
     // The friction bound comes from the guesses (the press's F_N), not from this step's F_N.
     for (std::size_t i = 0; i < r.contact.size(); ++i)
       CHECK(std::abs(r.contact[i].tangential_force) <=
@@ -598,7 +573,7 @@ TEST_CASE("ipopt with Coulomb friction: a sliding roller drags the surface at th
     INFO("dense: " << dense.brief_report() << "\nmumps: " << mumps.brief_report());
     REQUIRE(dense.converged());
     REQUIRE(mumps.converged());
-    CHECK(dense.stats.nlp_solves == mumps.stats.nlp_solves);
+    CHECK(dense.details.get<IpoptDetails>().nlp_solves == mumps.details.get<IpoptDetails>().nlp_solves);
     CHECK((dense.x - mumps.x).lpNorm<Eigen::Infinity>() <= 1e-8 * mumps.x.lpNorm<Eigen::Infinity>());
   }
   SECTION("regularized friction") {
@@ -622,8 +597,8 @@ TEST_CASE("ipopt: max_iter reached is NotConverged with a message naming the opt
   o.ipopt.max_iter = 1;
   IpoptBackend backend(o);
   const BackendResult r = backend.solve(inc.problem, VecX::Zero(inc.problem.n_free()));
-  CHECK(r.status == ContactTermination::LimitReached);
-  CHECK(r.iterations == 1);
+  CHECK(r.status == Termination::LimitReached);
+  CHECK(r.counters.iterations == 1);
   CHECK_THAT(r.message, Catch::Contains("contact.ipopt.max_iter = 1") && Catch::Contains("smaller steps"));
   CHECK_THAT(r.brief_report(), Catch::Contains("FAILED"));
 }

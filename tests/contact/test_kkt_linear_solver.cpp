@@ -1,8 +1,8 @@
-// The rule that picks Ipopt's linear solver per NLP (contact/ipopt_common.hpp): the dense KKT
+// The rule that picks Ipopt's linear solver per NLP (contact/ipopt/ipopt_common.hpp): the dense KKT
 // solver (solver/dense_kkt_solver.hpp) for small NLPs under auto, as chosen otherwise.
 #include <catch2/catch.hpp>
 
-#include "contact/ipopt_common.hpp"
+#include "contact/ipopt/ipopt_common.hpp"
 
 using namespace roller;
 

@@ -21,38 +21,51 @@ TEST_CASE("step counters: a suspended roller's linearisations and NLP solves sum
   int steps_with_several_passes = 0;
   for (int step = 1; step <= 6; ++step) {
     const Simulation::StepRecord r = sim.advance_step(step);
-    INFO("step " << step << ": " << r.stats.brief());
+    INFO("step " << step << ": " << r.details.brief());
     REQUIRE(r.converged);
-    CHECK(r.stats.linearisations == r.factorizations);
-    CHECK(r.stats.nlp_solves >= r.stats.linearisations);
-    CHECK(r.stats.ipopt_time_s > 0.0);
+    CHECK(r.details.get<IpoptDetails>().linearisations == r.counters.factorizations);
+    CHECK(r.details.get<IpoptDetails>().nlp_solves >= r.details.get<IpoptDetails>().linearisations);
+    CHECK(r.details.get<IpoptDetails>().ipopt_time_s > 0.0);
     if (r.last.suspension_passes > 1) ++steps_with_several_passes;
-    CHECK(r.stats.linearisations == r.last.stats.linearisations);  // no cuts: one sub-increment
+    CHECK(r.details.get<IpoptDetails>().linearisations ==
+          r.last.details.get<IpoptDetails>().linearisations);  // no cuts: one sub-increment
   }
   CHECK(steps_with_several_passes >= 3);
 }
 
-TEST_CASE("BackendStats::add sums the work and keeps the last solve's state", "[contact][counters]") {
-  BackendStats first, second;
-  first.nlp_solves = 3;
-  first.linearisations = 2;
-  first.cold_restarts = 1;
-  first.ipopt_time_s = 0.5;
-  first.condensed_dofs = 10;
-  first.complementarity = 1e-3;
-  first.acceptable_level = true;
-  second.nlp_solves = 4;
-  second.linearisations = 5;
-  second.ipopt_time_s = 0.25;
-  second.condensed_dofs = 12;
-  second.complementarity = 1e-9;
-  BackendStats sum = first;
+TEST_CASE("BackendDetails::add sums the work and keeps the last solve's state", "[contact][counters]") {
+  BackendDetails first, second;
+  IpoptDetails& f = first.fill<IpoptDetails>();
+  f.nlp_solves = 3;
+  f.linearisations = 2;
+  f.cold_restarts = 1;
+  f.ipopt_time_s = 0.5;
+  f.condensed_dofs = 10;
+  f.complementarity = 1e-3;
+  f.acceptable_level = true;
+  IpoptDetails& s = second.fill<IpoptDetails>();
+  s.nlp_solves = 4;
+  s.linearisations = 5;
+  s.ipopt_time_s = 0.25;
+  s.condensed_dofs = 12;
+  s.complementarity = 1e-9;
+  BackendDetails sum = first;
   sum.add(second);
-  CHECK(sum.nlp_solves == 7);
-  CHECK(sum.linearisations == 7);
-  CHECK(sum.cold_restarts == 1);
-  CHECK(sum.ipopt_time_s == 0.75);
-  CHECK(sum.condensed_dofs == 12);
-  CHECK(sum.complementarity == 1e-9);
-  CHECK(sum.acceptable_level);
+  const IpoptDetails& total = sum.get<IpoptDetails>();
+  CHECK(total.nlp_solves == 7);
+  CHECK(total.linearisations == 7);
+  CHECK(total.cold_restarts == 1);
+  CHECK(total.ipopt_time_s == 0.75);
+  CHECK(total.condensed_dofs == 12);
+  CHECK(total.complementarity == 1e-9);
+  CHECK(total.acceptable_level);
+  // A solve that measured nothing keeps the work and zeroes the state; another backend's
+  // details read as zeros.
+  sum.add(BackendDetails{});
+  CHECK(sum.get<IpoptDetails>().nlp_solves == 7);
+  CHECK(sum.get<IpoptDetails>().condensed_dofs == 0);
+  CHECK(sum.get<PenaltyDetails>().penalty_stages == 0);
+  BackendDetails empty;
+  empty.add(second);
+  CHECK(empty.get<IpoptDetails>().nlp_solves == 4);
 }

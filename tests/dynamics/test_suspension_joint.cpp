@@ -1,5 +1,5 @@
 // A roller whose height is not prescribed, solved with the strip (contact.roller_coupling =
-// "joint": its height an unknown of the condensed NLP, contact/ipopt_condensed.cpp), against the
+// "joint": its height an unknown of the condensed NLP, contact/ipopt/ipopt_condensed.cpp), against the
 // driver's coupling passes (dynamics/suspension.hpp, driver/force_control.hpp): the thesis's Z4
 // impact (suspended) and burnishing (force-loaded) at refine 1 give the same answers step by step
 // with one contact solve per step instead of two to four, and fewer linearisations.
@@ -32,8 +32,8 @@ struct JointAndPasses {
     auto b = passes.advance_step(step);
     REQUIRE(a.converged);
     REQUIRE(b.converged);
-    joint_linearisations += a.stats.linearisations;
-    passes_linearisations += b.stats.linearisations;
+    joint_linearisations += a.details.get<IpoptDetails>().linearisations;
+    passes_linearisations += b.details.get<IpoptDetails>().linearisations;
     return {a, b};
   }
   Simulation joint, passes;

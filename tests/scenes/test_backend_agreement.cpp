@@ -92,8 +92,8 @@ void check_lockstep_agreement(const std::string& name, const std::vector<SceneOv
     const Real scale = pe.roller_force().norm();
     CHECK(std::abs(ip.roller_force().y() - pe.roller_force().y()) <= 0.005 * scale);
     CHECK(std::abs(ip.roller_force().x() - pe.roller_force().x()) <= 0.005 * scale);
-    CHECK(a.last.stats.constraint_violation <= 1e-8 * radius);
-    CHECK(a.last.stats.complementarity <= tol);
+    CHECK(a.last.details.get<IpoptDetails>().constraint_violation <= 1e-8 * radius);
+    CHECK(a.last.details.get<IpoptDetails>().complementarity <= tol);
     for (const auto& c : ip.state().contact) CHECK(c.contact.gap >= -1e-8 * radius);
   }
   CHECK(pressure_difference(ip, pe) < 0.02);

@@ -30,8 +30,8 @@ class IncrementEnergy : public NewtonObjective {
                   std::optional<InertiaTerm> inertia = std::nullopt);
 
   // Pi(x), and as force scale max(|f_ext|, |reactions at x|, |internal force at the start of
-  // the increment|, |b|).
-  ObjectiveValue evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) override;
+  // the increment|, |b|); the strip's NumericalError (an inverted element) as the failure.
+  Expected<ObjectiveValue> evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) override;
 
   Index n_free() const { return model_.dof_map().n_free(); }
   const StripModel& model() const { return model_; }

@@ -12,7 +12,7 @@ namespace roller {
 
 enum class ContactBackendKind { Ipopt, Penalty };
 // Condensed: per linearisation of the strip, one MUMPS factorisation of K_eff condensed onto the
-// contact dofs, Ipopt on the small dense NLP (contact/ipopt_condensed.cpp; the default).
+// contact dofs, Ipopt on the small dense NLP (contact/ipopt/ipopt_condensed.cpp; the default).
 // Full: Ipopt on the whole strip's nonlinear energy, every free dof an NLP variable.
 enum class IpoptFormulation { Condensed, Full };
 enum class MuStrategy { Adaptive, Monotone };  // Ipopt's barrier update
@@ -24,7 +24,7 @@ enum class FixedPointRule { Converge, Single };
 // Ipopt's linear solver for the KKT systems of its interior-point iterations. Dense: LAPACK's
 // Bunch-Kaufman LDL^T (contact/dense_kkt_solver.hpp), no fixed cost per call, O(n^3); Mumps: the
 // sparse multifrontal solver, about 0.1 ms a call whatever the size; Auto: dense for small NLPs
-// (contact/ipopt_common.cpp, kDenseKktMax).
+// (contact/ipopt/ipopt_common.cpp, kDenseKktMax).
 enum class KktSolver { Auto, Dense, Mumps };
 // Start of each increment: the previous increment scaled, or then the thesis's arc rule (4.25)
 // (docs/model.md, Arc predictor), or the previous increment carried along with the roller
@@ -103,7 +103,7 @@ struct IpoptOptions {
   int print_level = 0;
   // Warm-start the first Ipopt pass of each linearisation from the last forces (the increment's
   // first from the previous increment's); later friction passes always do.
-  // A warm-started pass that fails is repeated cold (src/contact/friction_passes.cpp).
+  // A warm-started pass that fails is repeated cold (src/contact/ipopt/friction_passes.cpp).
   bool warm_start = true;
   IpoptFriction friction = IpoptFriction::Split;
   Real regularization = 1e-8;  // epsilon of sqrt(v_T^2 + eps^2) [mm], "regularized" only

@@ -66,9 +66,9 @@ class IncrementProblem {
                    Real youngs_modulus, Real poisson_ratio);
 
   // Strip part: Pi(x) over the free dofs and the force scale at x, its gradient and Hessian
-  // (full symmetric storage).
+  // (full symmetric storage), or why the strip cannot take x.
   Index n_free() const { return n_free_; }
-  ObjectiveValue strip_energy(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
+  Expected<ObjectiveValue> strip_energy(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
     return strip_.evaluate(x, gradient, hessian);
   }
   VecX full_increment(const VecX& x) const { return strip_.full_increment(x); }

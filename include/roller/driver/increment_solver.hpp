@@ -21,12 +21,11 @@ namespace roller {
 // roller solves the contact several times).
 struct IncrementReport {
   bool converged = false;
-  int iterations = 0;
-  int factorizations = 0;
+  SolveCounters counters;
   Real residual = 0.0;
   Real max_penetration = 0.0;
   Index n_yielded = 0;        // integration points that yielded in the committed increment
-  BackendStats stats;         // the contact solves' work summed, the rest of the last one
+  BackendDetails details;     // the contact solves' work summed, the rest of the last one
   int suspension_passes = 0;  // passes coupling the suspension with the contact
   int load_passes = 0;        // contact solves finding the height that carries the prescribed force
   std::string message;

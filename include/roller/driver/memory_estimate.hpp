@@ -19,7 +19,7 @@ struct MemoryEstimate {
 };
 
 // Whether the contact solve keeps the strip tangent's factors for the whole run (the ipopt
-// backend's condensed formulation on a constant tangent: contact/ipopt_condensed.cpp): they are
+// backend's condensed formulation on a constant tangent: contact/ipopt/ipopt_condensed.cpp): they are
 // then resident beside the output and state files being written.
 enum class HeldFactors { PerIncrement, WholeRun };
 

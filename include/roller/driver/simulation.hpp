@@ -131,9 +131,8 @@ class Simulation {
     Real time = 0.0;
     bool converged = false;
     int cuts = 0;
-    int iterations = 0;
-    int factorizations = 0;
-    BackendStats stats;  // of the step's sub-increments: their work summed, the rest of the last one
+    SolveCounters counters;  // of the step's sub-increments
+    BackendDetails details;  // of the step's sub-increments: their work summed, the rest of the last one
     Real max_penetration = 0.0;
     Index n_yielded = 0;   // integration points that yielded in the step's last converged increment
     IncrementReport last;  // the last increment tried

@@ -32,7 +32,7 @@ class MumpsSolver {
   VecX solve(const VecX& b);
   // Partial factorisation that eliminates every variable except `schur` (0-based, distinct) and
   // returns their dense Schur complement S = A_ss - A_si A_ii^-1 A_is (both triangles filled):
-  // the condensation of the strip onto its contact dofs (contact/ipopt_condensed.cpp). The
+  // the condensation of the strip onto its contact dofs (contact/ipopt/ipopt_condensed.cpp). The
   // analysis is kept while the pattern and the Schur list stay the same.
   bool factorize_with_schur(const SparseMatrix& a, const std::vector<Index>& schur, MatX* s);
   // After factorize_with_schur: x_i = A_ii^-1 b_i on the eliminated variables, x_s = 0.

@@ -1,14 +1,17 @@
 #pragma once
 // Newton's method for the minimisation of a smooth objective Pi(x) over the free dofs, with a
 // backtracking line search on Pi and a clear report. Used for increments without contact (the
-// penalty contact backend runs a Newton loop of its own, contact/penalty_backend.cpp).
+// penalty contact backend runs a Newton loop of its own, contact/penalty/penalty_backend.cpp).
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "roller/core/expected.hpp"
 #include "roller/core/types.hpp"
 #include "roller/solver/newton_options.hpp"
+#include "roller/solver/solve_counters.hpp"
 #include "roller/solver/sparse_solver.hpp"
+#include "roller/solver/termination.hpp"
 
 namespace roller {
 
@@ -18,25 +21,22 @@ struct ObjectiveValue {
   Real force_scale = 0.0;  // at x, for the relative residual test (e.g. max of external load and reactions)
 };
 
-// Pi(x), its gradient and Hessian (full symmetric storage). Throws NumericalError when it
-// cannot be evaluated at x (inverted element, ...); Newton then backtracks or gives up.
+// Pi(x), its gradient and Hessian (full symmetric storage), or why it cannot be evaluated at x
+// (an inverted element, ...): Newton then backtracks or gives up.
 class NewtonObjective {
  public:
   virtual ~NewtonObjective() = default;
-  virtual ObjectiveValue evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) = 0;
+  virtual Expected<ObjectiveValue> evaluate(const VecX& x, VecX* gradient, SparseMatrix* hessian) = 0;
 };
 
-enum class NewtonStatus { Converged, NotConverged, Failure };
-
 struct NewtonReport {
-  NewtonStatus status = NewtonStatus::Failure;
-  int iterations = 0;
+  Termination status = Termination::Failed;
+  SolveCounters counters;              // iterations and factorisations
   Real residual = 0.0;                 // final ||gradient|| / force scale
   std::vector<Real> residual_history;  // ||gradient|| at each iterate (absolute)
   int line_search_cuts = 0;
-  int factorizations = 0;
   std::string message;
-  bool converged() const { return status == NewtonStatus::Converged; }
+  bool converged() const { return status == Termination::Converged; }
 };
 
 // Newton's method with its linear solver: one object per sequence of similar problems (a run's

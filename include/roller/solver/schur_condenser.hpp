@@ -1,6 +1,6 @@
 #pragma once
 // Condensation of a symmetric sparse matrix A onto a set W of its variables (the contact dofs of
-// the condensed interior-point formulation, contact/ipopt_condensed.cpp), with the factors kept
+// the condensed interior-point formulation, contact/ipopt/ipopt_condensed.cpp), with the factors kept
 // for later sets while A does not change.
 //
 // Why. A linear elastic strip with small kinematics (Hertz, Cattaneo) has one tangent for the

@@ -38,7 +38,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_application(const IpoptOptions& o,
 std::string kkt_linear_solver(KktSolver choice, int n, int m);
 
 struct StatusText {
-  ContactTermination status;
+  Termination status;
   std::string message;
 };
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,

@@ -56,7 +56,7 @@ class NormalForceFixedPoint {
 
 // What the passes of one fixed point produced.
 struct FrictionPasses {
-  ContactTermination status = ContactTermination::Converged;  // not Converged: a pass's NLP failed (message)
+  Termination status = Termination::Converged;  // not Converged: a pass's NLP failed (message)
   std::string message;
   int passes = 0;         // passes run, the failed one included
   int nlp_solves = 0;     // NLPs solved: the passes and their cold restarts

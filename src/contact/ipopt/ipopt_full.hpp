@@ -12,11 +12,11 @@ namespace roller::ipopt_detail {
 
 // The strip's incremental potential Pi over the free dofs as the NLP's objective. Energy and
 // gradient are cached (Ipopt asks for f and grad f separately); the Hessian's pattern is fixed at
-// construction (from x0) and checked at every evaluation; the contact curvature is appended to
+// construction (the Hessian at the start vector) and checked at every evaluation; the contact curvature is appended to
 // it as entries of their own (Ipopt sums duplicates).
 class StripObjective : public NlpObjective {
  public:
-  StripObjective(IncrementProblem& problem, const VecX& x0);  // throws NumericalError
+  StripObjective(IncrementProblem& problem, SparseMatrix start_hessian);
   int n() const override { return static_cast<int>(problem_.n_free()); }
   bool value(const Real* d, Real& f) override;
   bool gradient(const Real* d, Real* g) override;
@@ -25,7 +25,6 @@ class StripObjective : public NlpObjective {
   bool hessian_values(const Real* d, Real obj_factor, Real* values) override;
   int hessian_position(int /*r*/, int /*c*/) const override { return -1; }
   std::string evaluation_error() const override { return evaluation_error_; }
-  Real start_force_scale() const { return start_force_scale_; }  // the strip's at x0
 
  private:
   bool update(const Real* d);
@@ -39,7 +38,6 @@ class StripObjective : public NlpObjective {
   VecX gradient_;
   SparseMatrix hessian_;
   std::string evaluation_error_;
-  Real start_force_scale_ = 0.0;
 };
 
 // Every candidate with a free dof is a row; the primal variables are the free dofs.

@@ -52,17 +52,10 @@ class QuadraticModel : public NlpObjective {
   Real roller_gradient_ = 0.0;  // P'(w) at the linearisation
 };
 
-// The working set at the start of an increment (ipopt_condensed.cpp, header comment).
+// The working set at the start of an increment, and `old` grown by the candidates near the roller
+// at x (ipopt_condensed.cpp, header comment); length_scale is the increment's l_step.
 std::vector<int> initial_working_set(const IncrementProblem& problem, const VecX& x0, Real length_scale);
-
-struct CondensedOutcome {
-  BackendResult result;
-  // The formulation itself failed (singular strip tangent, no descent, linearisations ran out):
-  // the caller may solve the increment with the full formulation instead.
-  bool formulation_failed = false;
-};
-
-CondensedOutcome solve_condensed(IncrementProblem& problem, const VecX& x0, const ContactOptions& options,
-                                 SchurCondenser& condenser);
+std::vector<int> grown_working_set(const IncrementProblem& problem, const VecX& x, Real length_scale,
+                                   const std::vector<int>& old);
 
 }  // namespace roller::ipopt_detail

@@ -81,7 +81,7 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     const bool warm = pass > 1 || warm_first;
     Ipopt::SmartPtr<ContactTnlp> nlp;
     Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
-    StatusText st{ContactTermination::Failed, ""};
+    StatusText st{Termination::Failed, ""};
     set(app, "linear_solver", kkt_linear_solver(o.kkt_solver, contact.n_variables(), contact.n_constraints()));
     for (const bool warm_here : {warm, false}) {
       set_warm_start(app, warm_here);
@@ -93,7 +93,7 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
       const int iterations = IsValid(app.Statistics()) ? app.Statistics()->IterationCount() : 0;
       out.iterations += iterations;
       st = map_status(status, iterations, o, objective.evaluation_error());
-      const bool solved = st.status == ContactTermination::Converged && nlp->solution().finalized;
+      const bool solved = st.status == Termination::Converged && nlp->solution().finalized;
       // The iteration limit is the user's (contact.ipopt.max_iter): reported, not retried.
       if (solved || !warm_here || status == Ipopt::Maximum_Iterations_Exceeded) break;
       ++out.cold_restarts;
@@ -103,9 +103,9 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
     out.nlp_constraints = contact.n_constraints();
     if (nlp->solution().finalized) out.last = nlp->solution();
     if (status == Ipopt::Solved_To_Acceptable_Level) out.acceptable_level = true;
-    if (st.status != ContactTermination::Converged || !nlp->solution().finalized) {
-      out.status = st.status == ContactTermination::Converged ? ContactTermination::Failed : st.status;
-      out.message = st.status == ContactTermination::Converged ? "Ipopt returned no solution" : st.message;
+    if (st.status != Termination::Converged || !nlp->solution().finalized) {
+      out.status = st.status == Termination::Converged ? Termination::Failed : st.status;
+      out.message = st.status == Termination::Converged ? "Ipopt returned no solution" : st.message;
       return out;
     }
     out.normal.assign(n_c, 0.0);

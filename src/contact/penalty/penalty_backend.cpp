@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -81,10 +82,16 @@ struct Evaluation {
   bool symmetric = true;
 };
 
-// Residual r = dPi/dx - (contact forces) on the free dofs, and its Jacobian when asked.
-void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian, Evaluation& e,
-              const std::vector<NodeContact>* frozen = nullptr) {
-  const Real strip_scale = p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr).force_scale;
+// Residual r = dPi/dx - (contact forces) on the free dofs, and its Jacobian when asked, into `e`;
+// false, with the strip's reason in `why`, when the strip cannot take x.
+bool evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian, Evaluation& e,
+              const std::vector<NodeContact>* frozen = nullptr, std::string* why = nullptr) {
+  const Expected<ObjectiveValue> strip = p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr);
+  if (!strip) {
+    if (why) *why = strip.error();
+    return false;
+  }
+  const Real strip_scale = strip->force_scale;
   e.contact.assign(p.candidates().size(), NodeContact{});
   e.symmetric = true;
   Real contact_norm2 = 0.0, floor2 = 0.0;
@@ -110,6 +117,14 @@ void evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
   }
   e.scale = std::max(strip_scale, std::sqrt(contact_norm2));
   e.roundoff_floor = std::sqrt(floor2);
+  return true;
+}
+
+// evaluate() where no step can be shortened (the start, a Newton solve's solution): a strip that
+// cannot take x ends the solve with its NumericalError (the driver cuts the step).
+void evaluate_or_throw(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, Evaluation& e) {
+  std::string why;
+  if (!evaluate(p, k, x, false, e, nullptr, &why)) throw NumericalError(why);
 }
 
 // The documented penalty rule: kN = factor E* l_i / h_i per candidate, kT = tangential_factor kN.
@@ -149,7 +164,8 @@ PenaltyBackend::PenaltyBackend(ContactOptions options, NewtonOptions newton)
 void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r, SparseMatrix* jacobian) const {
   const auto k = penalty_stiffnesses(problem, options_.penalty.factor, options_.penalty.tangential_factor);
   Evaluation e;
-  evaluate(problem, k, x, jacobian != nullptr, e);
+  std::string why;
+  if (!evaluate(problem, k, x, jacobian != nullptr, e, nullptr, &why)) throw NumericalError(why);
   r = e.residual;
   if (jacobian) *jacobian = e.jacobian;
 }
@@ -162,15 +178,14 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
   Evaluation e, trial;
   int full_steps = 0;  // consecutive full steps taken without a residual decrease
   constexpr int kMaxFullSteps = 5;
-  try {
-    evaluate(problem, k, x, true, e, frozen);
-  } catch (const NumericalError& err) {
-    result.message = fmt::format("cannot evaluate the start of the increment: {}", err.what());
+  std::string why;
+  if (!evaluate(problem, k, x, true, e, frozen, &why)) {
+    result.message = fmt::format("cannot evaluate the start of the increment: {}", why);
     return result;
   }
   for (int it = 0;; ++it) {
     const Real rnorm = e.residual.norm();
-    result.iterations = it;
+    result.counters.iterations = it;
     result.residual = rnorm / std::max(e.scale, 1e-300);
     if (!std::isfinite(rnorm)) {
       result.message =
@@ -185,7 +200,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       // noise (measured, docs/stability.md: Z1 at factor 1e12 was accepted at |r|/F ~ 1.8 with
       // the roller force 28 % off): stop with the cause instead of accepting the increment.
       if (result.residual > tolerance && result.residual > kMaxRoundoffResidual) {
-        result.status = ContactTermination::LimitReached;
+        result.status = Termination::LimitReached;
         result.message = fmt::format(
             "penalty Newton: the penalty is too stiff for double precision: round-off in the gaps "
             "alone leaves |r|/F = {:.2e} (> {:.0e}), the contact forces are not resolved; use a "
@@ -193,11 +208,11 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
             result.residual, kMaxRoundoffResidual, options_.penalty.factor);
         break;
       }
-      result.status = ContactTermination::Converged;
+      result.status = Termination::Converged;
       break;
     }
     if (it >= newton_.max_iterations) {
-      result.status = ContactTermination::LimitReached;
+      result.status = Termination::LimitReached;
       result.message = fmt::format(
           "penalty Newton: no convergence in {} iterations (|r|/F = {:.2e}); use smaller steps (a larger steps.count, "
           "or steps.max_cuts), "
@@ -205,7 +220,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
           it, result.residual);
       break;
     }
-    ++result.factorizations;
+    ++result.counters.factorizations;
     if (!solve_linear(e, newton_.linear, ldlt_, lu_, d)) {
       result.message =
           "penalty Newton: the tangent matrix is singular (missing supports, or a "
@@ -217,11 +232,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
     bool accepted = false;
     for (int ls = 0; ls < 20 && !accepted; ++ls, alpha *= 0.5) {
       x_trial = x + alpha * d;
-      try {
-        evaluate(problem, k, x_trial, false, trial, frozen);
-      } catch (const NumericalError&) {
-        continue;
-      }
+      if (!evaluate(problem, k, x_trial, false, trial, frozen)) continue;
       accepted = !newton_.line_search || trial.residual.norm() <= (1.0 - 1e-4 * alpha) * rnorm;
     }
     if (!accepted) {
@@ -229,7 +240,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       // ||r|| is not a reliable merit there. Take the full Newton step (a semismooth Newton
       // step), at most a few times in a row; the iteration limit bounds the rest.
       if (++full_steps > kMaxFullSteps) {
-        result.status = ContactTermination::LimitReached;
+        result.status = Termination::LimitReached;
         result.message = fmt::format(
             "penalty Newton: the line search found no decrease of the residual (|r|/F = {:.2e}); "
             "use smaller steps (a larger steps.count, or steps.max_cuts), a smaller contact.penalty.factor, or the "
@@ -242,10 +253,8 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
       full_steps = 0;
     }
     x = x_trial;
-    try {
-      evaluate(problem, k, x, true, e, frozen);
-    } catch (const NumericalError& err) {
-      result.message = err.what();
+    if (!evaluate(problem, k, x, true, e, frozen, &why)) {
+      result.message = why;
       return result;
     }
   }
@@ -263,32 +272,30 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   // Intermediate stages stop at a looser tolerance.
   const Real target = options_.penalty.factor;
   const auto k_target = penalty_stiffnesses(problem, target, options_.penalty.tangential_factor);
-  int spent = 0, spent_factorizations = 0;
+  SolveCounters spent;
   {
     // Active-set passes: Newton on the smooth system with every node's status (open, stick,
     // slip and its direction) frozen, then the statuses are updated from the converged state;
     // done when no status changes (then the frozen and the true Coulomb residuals coincide).
     VecX x = x0;
     Evaluation natural;
-    evaluate(problem, k_target, x, false, natural);
+    evaluate_or_throw(problem, k_target, x, natural);
     std::vector<NodeContact> status = natural.contact;
     for (int pass = 1; pass <= kMaxActiveSetPasses; ++pass) {
       BackendResult r = newton_stage(problem, k_target, x, newton_.residual_tolerance, &status);
-      spent += r.iterations;
-      spent_factorizations += r.factorizations;
+      spent += r.counters;
       if (!r.converged()) break;
-      evaluate(problem, k_target, x, false, natural);
+      evaluate_or_throw(problem, k_target, x, natural);
       bool same = true;
       for (std::size_t i = 0; i < status.size() && same; ++i)
         same = natural.contact[i].status == status[i].status &&
                (natural.contact[i].status != ContactStatus::Slip ||
                 (natural.contact[i].tangential_force >= 0.0) == (status[i].tangential_force >= 0.0));
       if (same) {
-        r.iterations = spent;
-        r.factorizations = spent_factorizations;
+        r.counters = spent;
         r.contact = natural.contact;
         r.residual = natural.residual.norm() / std::max(natural.scale, 1e-300);
-        r.stats.active_set_passes = pass;
+        r.details.fill<PenaltyDetails>().active_set_passes = pass;
         return r;
       }
       // Update; a slip that reverses its direction goes through stick first (otherwise two
@@ -305,12 +312,10 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
   {
     VecX x = x0;
     BackendResult direct = newton_stage(problem, k_target, x, newton_.residual_tolerance);
-    direct.iterations += spent;
-    direct.factorizations += spent_factorizations;
-    direct.stats.penalty_stages = 1;
+    direct.counters += spent;
+    direct.details.fill<PenaltyDetails>().penalty_stages = 1;
     if (direct.converged() || target <= 10.0 * kFirstStageFactor) return direct;
-    spent = direct.iterations;
-    spent_factorizations = direct.factorizations;
+    spent = direct.counters;
   }
   std::vector<Real> factors{target};
   while (factors.back() > 10.0 * kFirstStageFactor) factors.push_back(factors.back() / 100.0);
@@ -318,16 +323,14 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
 
   VecX x = x0;
   BackendResult total;
-  total.iterations = spent;
-  total.factorizations = spent_factorizations;
+  total.counters = spent;
   for (std::size_t stage = 0; stage < factors.size(); ++stage) {
     const auto k = penalty_stiffnesses(problem, factors[stage], options_.penalty.tangential_factor);
     const bool last = stage + 1 == factors.size();
     BackendResult r =
         newton_stage(problem, k, x, last ? newton_.residual_tolerance : std::max(1e-6, newton_.residual_tolerance));
-    r.iterations += total.iterations;
-    r.factorizations += total.factorizations;
-    r.stats.penalty_stages = stage + 1;
+    r.counters += total.counters;
+    r.details.fill<PenaltyDetails>().penalty_stages = stage + 1;
     total = std::move(r);
     if (!total.converged()) {
       total.message = fmt::format("stage {} of {} (penalty factor {:.3g}): {}", stage + 1, factors.size(),

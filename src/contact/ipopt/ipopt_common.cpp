@@ -106,7 +106,7 @@ std::string kkt_linear_solver(KktSolver choice, int n, int m) {
 
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,
                       const std::string& evaluation_error) {
-  using S = ContactTermination;
+  using S = Termination;
   const std::string cause =
       evaluation_error.empty() ? "" : fmt::format(" (last evaluation error: {})", evaluation_error);
   switch (s) {
@@ -179,15 +179,14 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
   const std::size_t n_c = cands.size();
   const Real mu = problem.roller().friction;
   VecX gradient;
-  Real force_scale = scales.force;
-  try {
-    force_scale = std::max(problem.strip_energy(x, &gradient, nullptr).force_scale, scales.force);
-  } catch (const NumericalError& error) {
-    result->status = ContactTermination::Failed;
+  const Expected<ObjectiveValue> strip = problem.strip_energy(x, &gradient, nullptr);
+  if (!strip) {
+    result->status = Termination::Failed;
     result->message =
-        fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", error.what());
+        fmt::format("ipopt backend: the strip cannot be evaluated at Ipopt's solution ({})", strip.error());
     return false;
   }
+  const Real force_scale = std::max(strip->force_scale, scales.force);
   Real fn_max = 0.0;
   for (std::size_t i = 0; i < n_c; ++i) fn_max = std::max(fn_max, normal[i]);
   const Real force_tol = 1e-6 * std::max(scales.force, fn_max);
@@ -221,8 +220,9 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
     }
   }
   result->residual = r.norm() / force_scale;
-  result->stats.complementarity = complementarity / force_scale;
-  result->stats.constraint_violation = violation;
+  IpoptDetails& details = result->details.fill<IpoptDetails>();
+  details.complementarity = complementarity / force_scale;
+  details.constraint_violation = violation;
   return true;
 }
 

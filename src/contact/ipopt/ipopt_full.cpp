@@ -13,11 +13,9 @@
 
 namespace roller::ipopt_detail {
 
-StripObjective::StripObjective(IncrementProblem& problem, const VecX& x0)
+StripObjective::StripObjective(IncrementProblem& problem, SparseMatrix start_hessian)
     : problem_(problem), x_(VecX::Zero(problem.n_free())) {
-  VecX g;
-  SparseMatrix h;
-  start_force_scale_ = problem.strip_energy(x0, &g, &h).force_scale;
+  SparseMatrix& h = start_hessian;
   h.makeCompressed();
   const int* outer = h.outerIndexPtr();
   const int* inner = h.innerIndexPtr();
@@ -36,14 +34,15 @@ bool StripObjective::update(const Real* d) {
   if (cache_valid_ && std::equal(d, d + n(), x_.data())) return cache_ok_;
   x_ = Eigen::Map<const VecX>(d, n());
   cache_valid_ = true;
-  try {
-    energy_ = problem_.strip_energy(x_, &gradient_, nullptr).value;
-    cache_ok_ = std::isfinite(energy_) && gradient_.allFinite();
-    if (!cache_ok_) evaluation_error_ = "the strip energy or its gradient is not finite";
-  } catch (const NumericalError& error) {
-    evaluation_error_ = error.what();
+  const Expected<ObjectiveValue> value = problem_.strip_energy(x_, &gradient_, nullptr);
+  if (!value) {
+    evaluation_error_ = value.error();
     cache_ok_ = false;
+    return cache_ok_;
   }
+  energy_ = value->value;
+  cache_ok_ = std::isfinite(energy_) && gradient_.allFinite();
+  if (!cache_ok_) evaluation_error_ = "the strip energy or its gradient is not finite";
   return cache_ok_;
 }
 
@@ -69,10 +68,9 @@ bool StripObjective::hessian_values(const Real* d, Real obj_factor, Real* values
     std::fill_n(values, slot_.size(), 0.0);
     return true;
   }
-  try {
-    problem_.strip_energy(Eigen::Map<const VecX>(d, n()), nullptr, &hessian_);
-  } catch (const NumericalError& error) {
-    evaluation_error_ = error.what();
+  const Expected<ObjectiveValue> value = problem_.strip_energy(Eigen::Map<const VecX>(d, n()), nullptr, &hessian_);
+  if (!value) {
+    evaluation_error_ = value.error();
     return false;
   }
   const bool same_pattern = hessian_.isCompressed() && static_cast<std::size_t>(hessian_.nonZeros()) == inner_.size() &&
@@ -119,23 +117,23 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   result.x = x0;
   result.contact.assign(problem.candidates().size(), NodeContact{});
 
-  Scales scales;
-  std::unique_ptr<StripObjective> objective;
-  try {
-    objective = std::make_unique<StripObjective>(problem, x0);
-    scales = increment_scales(problem, x0, objective->start_force_scale());
-  } catch (const NumericalError& error) {
-    result.status = ContactTermination::Failed;
+  VecX g;
+  SparseMatrix h;
+  const Expected<ObjectiveValue> start = problem.strip_energy(x0, &g, &h);
+  if (!start) {
+    result.status = Termination::Failed;
     result.message = fmt::format(
         "ipopt backend: the strip cannot be evaluated at the start vector ({}); "
         "use smaller steps (a larger steps.count, or steps.max_cuts)",
-        error.what());
+        start.error());
     return result;
   }
+  const Scales scales = increment_scales(problem, x0, start->force_scale);
+  StripObjective objective(problem, std::move(h));
 
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
   if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": never read ./ipopt.opt
-    result.status = ContactTermination::Failed;
+    result.status = Termination::Failed;
     result.message = "ipopt backend: Ipopt failed to initialise";
     return result;
   }
@@ -143,35 +141,36 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   NormalForceFixedPoint fixed_point(problem, o, scales.force);
   const std::vector<RowMap> rows = full_rows(problem);
   const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
-  const FrictionPasses passes = solve_friction_passes(*app, *objective, problem, rows, fixed_point,
+  const FrictionPasses passes = solve_friction_passes(*app, objective, problem, rows, fixed_point,
                                                       full_start(problem, rows, x0), max_passes, o.warm_start, o);
-  result.iterations = passes.iterations;
-  result.stats.fixed_point_iterations = passes.passes;
-  result.stats.nlp_solves = passes.nlp_solves;
-  result.stats.cold_restarts = passes.cold_restarts;
-  result.stats.nlp_variables = passes.nlp_variables;
-  result.stats.nlp_constraints = passes.nlp_constraints;
-  result.stats.ipopt_time_s = passes.ipopt_time_s;
-  result.stats.acceptable_level = passes.acceptable_level;
+  result.counters.iterations = passes.iterations;
+  IpoptDetails& details = result.details.fill<IpoptDetails>();
+  details.fixed_point_iterations = passes.passes;
+  details.nlp_solves = passes.nlp_solves;
+  details.cold_restarts = passes.cold_restarts;
+  details.nlp_variables = passes.nlp_variables;
+  details.nlp_constraints = passes.nlp_constraints;
+  details.ipopt_time_s = passes.ipopt_time_s;
+  details.acceptable_level = passes.acceptable_level;
   if (passes.last.finalized) result.x = passes.last.z.head(problem.n_free());
-  if (passes.status != ContactTermination::Converged) {
+  if (passes.status != Termination::Converged) {
     result.status = passes.status;
     result.message = passes.message;
     if (problem.roller().friction > 0.0)
       result.message += fmt::format(" (friction fixed-point pass {})", passes.passes);
     return result;
   }
-  result.factorizations = result.iterations;  // one KKT factorisation per interior-point iteration
+  result.counters.factorizations = result.counters.iterations;  // one KKT factorisation per interior-point iteration
   if (!report_increment(problem, result.x, passes.normal, passes.tangential, passes.fbar, passes.has_friction, scales,
                         &result))
     return result;
   if (!passes.fixed_point_converged) {
-    result.status = ContactTermination::LimitReached;
+    result.status = Termination::LimitReached;
     result.message = fixed_point.failure_message(passes.passes);
     return result;
   }
-  result.status = ContactTermination::Converged;
-  result.message = fmt::format("Ipopt converged in {} iterations ({} fixed-point pass{})", result.iterations,
+  result.status = Termination::Converged;
+  result.message = fmt::format("Ipopt converged in {} iterations ({} fixed-point pass{})", result.counters.iterations,
                                passes.passes, passes.passes == 1 ? "" : "es");
   return result;
 }
