@@ -123,20 +123,17 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
     f.point_data.push_back(nodal_vector("acceleration", dynamics_.acceleration()));
   }
   const Real time = step * scene_.steps.dt;
-  // The mesh and its reference coordinates never change; the fields are this step's copies. A
-  // series lists a file once it is complete.
-  writer_.submit([this, path = vtu_path(step), time, &mesh = model_.mesh(), f = std::move(f),
+  // The mesh and its reference coordinates never change; the fields are this step's copies. One
+  // job writes the step's files (the strip's and the roller's: the writer keeps few jobs queued),
+  // and a series lists a file once it is complete.
+  std::optional<RollerPose> pose = roller;
+  writer_.submit([this, step, time, pose, &mesh = model_.mesh(), f = std::move(f),
                   info = step_field_data(step, pass, time)] {
-    write_vtu(path, mesh, mesh.nodes, f.point_data, f.cell_data, VtuCompression::ZLib, info);
+    write_vtu(vtu_path(step), mesh, mesh.nodes, f.point_data, f.cell_data, VtuCompression::ZLib, info);
+    if (pose) write_roller_vtp(vtp_path(step), pose->centre, scene_.roller->radius, pose->angle, info);
     const std::lock_guard<std::mutex> lock(series_mutex_);
-    series_.add(time, path);
-  });
-  if (!roller) return;
-  writer_.submit([this, path = vtp_path(step), time, pose = *roller, radius = scene_.roller->radius,
-                  info = step_field_data(step, pass, time)] {
-    write_roller_vtp(path, pose.centre, radius, pose.angle, info);
-    const std::lock_guard<std::mutex> lock(series_mutex_);
-    roller_series_.add(time, path);
+    series_.add(time, vtu_path(step));
+    if (pose) roller_series_.add(time, vtp_path(step));
   });
 }
 
