@@ -127,14 +127,14 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
   // job writes the step's files (the strip's and the roller's: the writer keeps few jobs queued),
   // and a series lists a file once it is complete.
   std::optional<RollerPose> pose = roller;
-  writer_.submit([this, step, time, pose, &mesh = model_.mesh(), f = std::move(f),
-                  info = step_field_data(step, pass, time)] {
-    write_vtu(vtu_path(step), mesh, mesh.nodes, f.point_data, f.cell_data, VtuCompression::ZLib, info);
-    if (pose) write_roller_vtp(vtp_path(step), pose->centre, scene_.roller->radius, pose->angle, info);
-    const std::lock_guard<std::mutex> lock(series_mutex_);
-    series_.add(time, vtu_path(step));
-    if (pose) roller_series_.add(time, vtp_path(step));
-  });
+  writer_.submit(
+      [this, step, time, pose, &mesh = model_.mesh(), f = std::move(f), info = step_field_data(step, pass, time)] {
+        write_vtu(vtu_path(step), mesh, mesh.nodes, f.point_data, f.cell_data, VtuCompression::ZLib, info);
+        if (pose) write_roller_vtp(vtp_path(step), pose->centre, scene_.roller->radius, pose->angle, info);
+        const std::lock_guard<std::mutex> lock(series_mutex_);
+        series_.add(time, vtu_path(step));
+        if (pose) roller_series_.add(time, vtp_path(step));
+      });
 }
 
 void RunOutputs::write_solver_row(const Simulation::StepRecord& step, const MonitorReport& monitor, double wall_s) {
