@@ -110,6 +110,18 @@ Mat4 thesis_plastic_pattern() {
   return w * w.transpose();
 }
 
+namespace {
+
+Mat4 operator_a_of_tangent(const MaterialParams& material, const Mat4& tangent, const Vec4& stress,
+                           const OperatorOptions& options) {
+  Mat4 a = gradient_tangent(tangent, material.shear_modulus(), options.layout);
+  if (options.initial_stress) a += initial_stress_matrix(stress);
+  a.diagonal().array() += options.mass_scale;
+  return a;
+}
+
+}  // namespace
+
 Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress, const OperatorOptions& options) {
   Mat4 tangent;
   switch (options.tangent) {
@@ -117,19 +129,18 @@ Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_s
     case TangentKind::Continuum: tangent = continuum_tangent(material, stress, yield_stress); break;
     case TangentKind::PlasticBranch: tangent = plastic_tangent(material, stress, yield_stress); break;
   }
-  Mat4 a = gradient_tangent(tangent, material.shear_modulus(), options.layout);
-  if (options.initial_stress) a += initial_stress_matrix(stress);
-  a.diagonal().array() += options.mass_scale;
-  return a;
+  return operator_a_of_tangent(material, tangent, stress, options);
+}
+
+Mat4 operator_a(const MaterialParams& material, const MaterialState& state, const OperatorOptions& options) {
+  if (options.tangent != TangentKind::Continuum) return operator_a(material, state.stress, state.yield_stress, options);
+  return operator_a_of_tangent(material, continuum_tangent(material, state), state.stress, options);
 }
 
 Mat4 operator_a_algorithmic(const MaterialParams& material, const MaterialState& committed,
                             const Vec4& strain_increment, const OperatorOptions& options) {
   const MaterialUpdate u = update_material(material, strain_increment, committed);
-  Mat4 a = gradient_tangent(u.tangent, material.shear_modulus(), options.layout);
-  if (options.initial_stress) a += initial_stress_matrix(u.stress);
-  a.diagonal().array() += options.mass_scale;
-  return a;
+  return operator_a_of_tangent(material, u.tangent, u.stress, options);
 }
 
 // ---- Definiteness ----------------------------------------------------------------------------
@@ -252,7 +263,7 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
       auto eigenvalue = [&](const Mat4& a) {
         return Eigen::SelfAdjointEigenSolver<Mat4>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
       };
-      if (uniform && !uniform_lambda) uniform_lambda = eigenvalue(operator_a(material, s.stress, s.yield_stress, op));
+      if (uniform && !uniform_lambda) uniform_lambda = eigenvalue(operator_a(material, s, op));
       Real lambda_static = 0.0;
       if (uniform) {
         lambda_static = *uniform_lambda;
@@ -262,7 +273,7 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
         // kappa >= 0) and changes nothing below: a 4x4 Cholesky instead of the eigenvalues (a
         // quarter of the monitor's time on Z3).
         // Where the mass term is large (impact), the screen is tried again with this element's kappa.
-        const Mat4 a = operator_a(material, s.stress, s.yield_stress, op);
+        const Mat4 a = operator_a(material, s, op);
         const auto screened = [&](Real kappa) {
           return std::isfinite(out.lambda_min) &&
                  Eigen::LLT<Mat4>(a - (std::max(out.lambda_min, 0.0) - kappa) * Mat4::Identity()).info() ==

@@ -176,8 +176,13 @@ std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_heigh
     if (x < lo || x >= hi) continue;
     DepthSample s;
     s.depth = strip_height - centroid(mesh, e).y();
-    for (int q = 0; q < strip.points_per_element(); ++q) s.stress += strip.state(e, q).stress;
+    for (int q = 0; q < strip.points_per_element(); ++q) {
+      const MaterialState& state = strip.state(e, q);
+      s.stress += state.stress;
+      for (const Vec4& alpha : state.back_stress) s.back_stress += alpha;
+    }
     s.stress /= strip.points_per_element();
+    s.back_stress /= strip.points_per_element();
     s.plastic_strain = mean_plastic_strain(strip, e);
     out.push_back(s);
   }

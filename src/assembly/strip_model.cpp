@@ -178,6 +178,7 @@ StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, Spars
     point_geometry(e, reference_, xe, geometry);
     in.geometry = &geometry;
     in.committed = &committed_[e * n_points_];
+    in.frozen_recovery = frozen_recovery_.empty() ? nullptr : &frozen_recovery_[e * n_points_];
     in.displacement = element_values(e, u);
     evaluate_element(options_, material_, in, gradient != nullptr, hessian_free != nullptr, out);
     energy += out.energy;
@@ -214,7 +215,22 @@ StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, Spars
   return {energy, n_yielded};
 }
 
+void StripModel::freeze_recovery(std::vector<Real> multipliers) {
+  ROLLER_ASSERT(multipliers.empty() || multipliers.size() == committed_.size(),
+                "one frozen multiplier per integration point");
+  frozen_recovery_ = std::move(multipliers);
+}
+
+std::vector<Real> StripModel::plastic_multipliers(const VecX& u) {
+  std::vector<MaterialState> trial;
+  evaluate_states(u, nullptr, nullptr, &trial);
+  std::vector<Real> d(trial.size());
+  for (std::size_t k = 0; k < trial.size(); ++k) d[k] = trial[k].eq_plastic_strain - committed_[k].eq_plastic_strain;
+  return d;
+}
+
 Index StripModel::commit(const VecX& u) {
+  ROLLER_ASSERT(frozen_recovery_.empty(), "a commit takes the exact update, with no recovery frozen");
   std::vector<MaterialState> trial;
   const Index n_yielded = evaluate_states(u, nullptr, nullptr, &trial).n_yielded;  // trial states at exactly this u
   const bool finite = options_.kinematics == Kinematics::Finite;
@@ -229,6 +245,12 @@ Index StripModel::commit(const VecX& u) {
       for (int q = 0; q < n_points_; ++q) {
         MaterialState& s = trial[e * n_points_ + q];
         s.stress = push_forward(f[q], s.stress);
+        // Back-stresses rotate as the stress does; the deviator is taken again so that the flow
+        // stays volume-preserving (docs/model.md, Hardening laws).
+        for (Vec4& alpha : s.back_stress) {
+          alpha = push_forward(f[q], alpha);
+          alpha.head<3>().array() -= alpha.head<3>().sum() / 3.0;
+        }
       }
     }
   }

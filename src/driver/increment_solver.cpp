@@ -1,6 +1,7 @@
 #include "roller/driver/increment_solver.hpp"
 
 #include "increment_solve.hpp"
+#include "roller/assembly/recovery_iteration.hpp"
 #include "roller_couplings.hpp"
 
 namespace roller {
@@ -16,7 +17,20 @@ IncrementSolution IncrementSolver::solve(IncrementEnergy& energy, const VecX& pr
     IncrementSolution solution;
     solution.load_offset = start.load_offset;
     solution.load_stiffness = start.load_stiffness;
-    add_solve(report, newton_.minimise(energy, x, scene_.newton));
+    // Armstrong-Frederick's recovery has no potential: Newton minimises with it frozen, until the
+    // frozen multipliers are the solution's (docs/model.md, Hardening laws).
+    RecoveryIteration recovery(energy.model(), scene_.newton.residual_tolerance);
+    NewtonReport newton = newton_.minimise(energy, x, scene_.newton);
+    add_solve(report, newton);
+    while (newton.converged() && !recovery.settled(energy.full_increment(x))) {
+      if (recovery.passes() >= RecoveryIteration::max_passes()) {
+        report.converged = false;
+        report.message = recovery.failure();
+        break;
+      }
+      newton = newton_.minimise(energy, x, scene_.newton);
+      add_solve(report, newton);
+    }
     solution.u = energy.full_increment(x);
     return solution;
   }

@@ -120,9 +120,19 @@ Row pass_row(int step, const PassRecord& r) {
 }
 
 Row depth_row(int step, int pass, Real x, const DepthSample& d) {
-  return {{"step", "-", Index{step}},  {"pass", "-", Index{pass}},  {"x", "mm", x},
-          {"depth", "mm", d.depth},    {"sxx", "MPa", d.stress(0)}, {"syy", "MPa", d.stress(1)},
-          {"szz", "MPa", d.stress(2)}, {"sxy", "MPa", d.stress(3)}, {"eq_plastic_strain", "1", d.plastic_strain}};
+  return {{"step", "-", Index{step}},
+          {"pass", "-", Index{pass}},
+          {"x", "mm", x},
+          {"depth", "mm", d.depth},
+          {"sxx", "MPa", d.stress(0)},
+          {"syy", "MPa", d.stress(1)},
+          {"szz", "MPa", d.stress(2)},
+          {"sxy", "MPa", d.stress(3)},
+          {"eq_plastic_strain", "1", d.plastic_strain},
+          {"back_xx", "MPa", d.back_stress(0)},
+          {"back_yy", "MPa", d.back_stress(1)},
+          {"back_zz", "MPa", d.back_stress(2)},
+          {"back_xy", "MPa", d.back_stress(3)}};
 }
 
 std::vector<TableColumns> output_tables() {

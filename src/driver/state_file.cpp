@@ -100,6 +100,33 @@ void load_run_state(const nlohmann::json& j, bool multi_pass, RunState& s) {
   s.friction.load(j.at("friction_history"));
 }
 
+// The back-stresses of a kinematic law. A restart of the same run needs them; an initial state
+// from a run of a law without back-stresses starts them at zero (no plastic flow has moved
+// the yield surface's centre yet in this law's terms).
+void read_back_stresses(const nlohmann::json& j, int n_back, bool strip_only, const std::filesystem::path& file,
+                        std::vector<MaterialState>& states) {
+  if (n_back == 0) return;
+  if (!j.contains("back_stresses")) {
+    if (strip_only) return;
+    throw InputError(
+        fmt::format("{}: the state file has no back-stresses, but the scene's hardening law has {}; "
+                    "resume with the scene that wrote it",
+                    file.string(), n_back));
+  }
+  const auto back = to_reals(j.at("back_stresses"));
+  const std::size_t per_state = 4 * static_cast<std::size_t>(n_back);
+  if (back.size() != per_state * states.size())
+    throw InputError(
+        fmt::format("{}: the state file holds {} back-stress values, the scene needs {} "
+                    "({} per integration point); use a state file of this scene",
+                    file.string(), back.size(), per_state * states.size(), per_state));
+  for (std::size_t k = 0; k < states.size(); ++k)
+    for (int i = 0; i < n_back; ++i) {
+      const Real* p = back.data() + per_state * k + 4 * static_cast<std::size_t>(i);
+      states[k].back_stress[static_cast<std::size_t>(i)] = Vec4(p[0], p[1], p[2], p[3]);
+    }
+}
+
 }  // namespace
 
 void Simulation::save_state(const std::filesystem::path& file) const { state_writer(file)(); }
@@ -121,6 +148,17 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
     states.insert(states.end(), {s.eq_plastic_strain, s.plastic_work, s.yield_stress});
   }
   j["material_states"] = to_list(states);
+  // Back-stresses only for the kinematic laws: the files of the other laws keep their layout.
+  const int n_back = model_->material().n_back_stresses();
+  if (n_back > 0) {
+    std::vector<Real> back;
+    for (const MaterialState& s : model_->states())
+      for (int i = 0; i < n_back; ++i) {
+        const Vec4& alpha = s.back_stress[static_cast<std::size_t>(i)];
+        back.insert(back.end(), alpha.data(), alpha.data() + 4);
+      }
+    j["back_stresses"] = to_list(back);
+  }
   save_run_state(state_, scene_.passes.count > 1, j);
   dynamics_.save(j);
   j["scene_fingerprint"] = scene_fingerprint(scene_);
@@ -182,6 +220,7 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
       states[k].plastic_work = p[5];
       states[k].yield_stress = p[6];
     }
+    read_back_stresses(j, model_->material().n_back_stresses(), strip_only, file, states);
     try {
       model_->restore(std::move(reference), to_vec(j.at("total_displacement")), std::move(states));
     } catch (const InputError& e) {

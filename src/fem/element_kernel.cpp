@@ -129,7 +129,9 @@ void evaluate(const ElementOptions& options, const MaterialParams& material, con
   Real weighted_pressure_sum = 0.0;  // sum_q w_q tr(S_q)/3, for the B-bar geometric term
   for (std::size_t q = 0; q < n_points; ++q) {
     MaterialUpdate& mu = out.points[q];
-    mu = update_material(material, strain[q], in.committed[q]);
+    mu = in.frozen_recovery
+             ? update_material(material, strain[q], in.committed[q], FrozenRecovery{in.frozen_recovery[q]})
+             : update_material(material, strain[q], in.committed[q]);
     const Real w = geometry[q].weight;
     out.energy += w * mu.energy;
     out.any_yielded = out.any_yielded || mu.yielded;

@@ -1,5 +1,7 @@
 #include "roller/io/field_output.hpp"
 
+#include <string>
+
 #include "roller/material/j2_plasticity.hpp"
 
 namespace roller {
@@ -18,6 +20,27 @@ VtuField field(std::string name, int n_components, Index n_items, std::vector<st
   f.values.assign(n_items * n_components, 0.0);
   f.component_names = std::move(component_names);
   return f;
+}
+
+// The kinematic laws' back-stresses as element averages: their sum "back_stress" (the centre of
+// the yield surface), and each one as "back_stress_<i>" when the law has several.
+std::vector<VtuField> back_stress_fields(const StripModel& model) {
+  const int n_back = model.material().n_back_stresses();
+  if (n_back == 0) return {};
+  const Index n_el = model.mesh().n_elements();
+  const int n_q = model.points_per_element();
+  std::vector<VtuField> out{field("back_stress", kTensor, n_el, kTensorComponents)};
+  for (int i = 0; n_back > 1 && i < n_back; ++i)
+    out.push_back(field("back_stress_" + std::to_string(i + 1), kTensor, n_el, kTensorComponents));
+  for (Index e = 0; e < n_el; ++e)
+    for (int q = 0; q < n_q; ++q)
+      for (int i = 0; i < n_back; ++i)
+        for (int c = 0; c < 4; ++c) {
+          const Real value = model.state(e, q).back_stress[static_cast<std::size_t>(i)](c) / n_q;
+          out[0].values[kTensor * e + c] += value;
+          if (n_back > 1) out[static_cast<std::size_t>(i) + 1].values[kTensor * e + c] += value;
+        }
+  return out;
 }
 
 }  // namespace
@@ -92,6 +115,7 @@ StripFields strip_fields(const StripModel& model, const VecX& step_increment) {
 
   out.point_data = {displacement, stress_n, sqrt_i2_n, mises_n, eps_p_n, strain_n, strain_inc_n};
   out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl};
+  for (VtuField& f : back_stress_fields(model)) out.cell_data.push_back(std::move(f));
   return out;
 }
 

@@ -204,6 +204,35 @@ std::optional<T> read_value(TomlSection& s, const std::string& name, const Rule&
   }
 }
 
+// material.chaboche_C and chaboche_gamma: two arrays of one length, read together.
+void read_chaboche(TomlSection& s, Scene& scene) {
+  const auto c = s.real_array("chaboche_C");
+  const auto gamma = s.real_array("chaboche_gamma");
+  if (!c) return;
+  if (!scene.material.plastic) s.fail("chaboche_C", "back-stresses need yield_stress (set it, or remove this key)");
+  if (scene.material.hardening != Hardening::Chaboche)
+    s.fail("chaboche_C", "back-stresses need hardening = \"chaboche\"");
+  if (c->empty() || c->size() > static_cast<std::size_t>(kMaxBackStresses))
+    s.fail("chaboche_C", fmt::format("must hold 1 to {} moduli (one per back-stress)", kMaxBackStresses));
+  if (!gamma || gamma->size() != c->size())
+    s.fail(gamma ? "chaboche_gamma" : "chaboche_C",
+           fmt::format("chaboche_gamma must hold one recovery per modulus ({} values, like chaboche_C)", c->size()));
+  scene.material.n_chaboche = static_cast<int>(c->size());
+  for (std::size_t i = 0; i < c->size(); ++i) scene.material.chaboche[i] = {(*c)[i], (*gamma)[i]};
+}
+
+void write_chaboche(toml::table& t, const Scene& scene) {
+  const MaterialParams& m = scene.material;
+  if (!m.plastic || m.hardening != Hardening::Chaboche) return;
+  toml::array c, gamma;
+  for (int i = 0; i < m.n_chaboche; ++i) {
+    c.push_back(m.chaboche[static_cast<std::size_t>(i)].modulus);
+    gamma.push_back(m.chaboche[static_cast<std::size_t>(i)].recovery);
+  }
+  t.insert("chaboche_C", c);
+  t.insert("chaboche_gamma", gamma);
+}
+
 // ---- declarations ----------------------------------------------------------------------------
 
 // roller.path.p0 / p0_over_k: the segment's vertical force in the users' terms, converted to fy
@@ -374,6 +403,29 @@ void write_grading(toml::table& t, const std::string& key, const Grading& g) {
   if (g.kind == Grading::Kind::Geometric) t.insert(key, toml::table{{"ratio", g.ratio}, {"focus", g.focus}});
 }
 
+// { history = [[step, value], ...] }: steps whole, >= 1 and increasing; values within the bound.
+void read_history(TomlSection& t, Real bound, Ramp& r) {
+  if (t.has("value") || t.has("ramp")) t.fail("history", "give either history or value/ramp, not both");
+  const toml::node* n = t.node("history");
+  const toml::array* rows = n ? n->as_array() : nullptr;
+  const std::string expected =
+      fmt::format("expected [[step, value], ...]: whole steps >= 1, increasing, |value| <= {:g}", bound);
+  if (!rows || rows->empty()) t.fail("history", expected);
+  Real last_step = 0.0;
+  for (const toml::node& row : *rows) {
+    const toml::array* pair = row.as_array();
+    if (!pair || pair->size() != 2) t.fail("history", expected);
+    const auto step = (*pair)[0].value<double>();
+    const auto value = (*pair)[1].value<double>();
+    if (!step || !value || !is_step(*step) || *step <= last_step || !(std::abs(*value) <= bound))
+      t.fail("history", expected);
+    r.history.push_back({*step, *value});
+    last_step = *step;
+  }
+  r.value = r.history.back()[1];
+  r.ramp_last = static_cast<int>(last_step);
+}
+
 // `bound`: the plausibility bound of |value| (a displacement or a force).
 Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps, Real bound) {
   const toml::node* n = s.node(key);
@@ -387,9 +439,15 @@ Ramp read_ramp(TomlSection& s, const std::string& key, int n_steps, Real bound) 
     return r;
   }
   auto t = s.table(key);
-  if (!t) s.fail(key, "expected a number or { value = .., ramp = [first_step, last_step] }");
-  t->allow({"value", "ramp"});
+  if (!t)
+    s.fail(key,
+           "expected a number, { value = .., ramp = [first_step, last_step] } or { history = [[step, value], ...] }");
+  t->allow({"value", "ramp", "history"});
   t->finish();
+  if (t->has("history")) {
+    read_history(*t, bound, r);
+    return r;
+  }
   const auto v = t->real("value");
   if (!v) t->fail("value", "the value reached at the end of the ramp is required");
   if (!(std::abs(*v) <= bound)) t->fail("value", expected);
@@ -416,7 +474,11 @@ Decl ramp_key(const std::string& dotted, std::vector<Block> Scene::*blocks, std:
         if (s.has(name)) ((scene.*blocks)[i].*ramp) = read_ramp(s, name, scene.total_steps(), bound);
       },
       [=](toml::table& t, const Scene& scene, std::size_t i) {
-        if (const auto& r = (scene.*blocks)[i].*ramp)
+        if (const auto& r = (scene.*blocks)[i].*ramp; r && !r->history.empty()) {
+          toml::array rows;
+          for (const auto& [step, value] : r->history) rows.push_back(toml::array{static_cast<int64_t>(step), value});
+          t.insert(name, toml::table{{"history", rows}});
+        } else if (r)
           t.insert(name, toml::table{{"value", r->value},
                                      {"ramp", toml::array{static_cast<int64_t>(r->ramp_first),
                                                           static_cast<int64_t>(r->ramp_last)}}});
@@ -593,6 +655,35 @@ std::vector<SceneKey> make_keys() {
           "material.substeps", [](auto& s) -> auto& { return s.material.n_substeps; },
           "sub-steps of the substep integration", closed(1, kMaxSubsteps))
           .written_if(plastic),
+      key(
+          "material.hardening", [](auto& s) -> auto& { return s.material.hardening; },
+          "isotropic: yield surface grows (H' from tangent_modulus); kinematic: it moves (Prager, C = H'); "
+          "mixed: a kinematic_fraction of H' moves it; chaboche: back-stresses chaboche_C/chaboche_gamma")
+          .written_if(plastic),
+      key(
+          "material.kinematic_fraction", [](auto& s) -> auto& { return s.material.kinematic_fraction; },
+          "mixed hardening: the share m of H' that is kinematic (the rest isotropic)", closed(0.0, 1.0))
+          .written_if([](const Scene& s) { return s.material.plastic && s.material.hardening == Hardening::Mixed; }),
+      custom(
+          "material.chaboche_C", "array of numbers", "absent", "1 to 4 values >= 0",
+          "moduli C_i [MPa] of the Chaboche back-stresses (hardening = \"chaboche\")",
+          [](TomlSection& s, Scene& scene, Ref) { read_chaboche(s, scene); },
+          [](toml::table& t, const Scene& scene, Ref) { write_chaboche(t, scene); }),
+      custom(
+          "material.chaboche_gamma", "array of numbers", "absent", "one value >= 0 per chaboche_C",
+          "recovery gamma_i [-] of each back-stress (0: linear; > 0: Armstrong-Frederick, saturating at C_i/gamma_i)",
+          [](TomlSection& s, Scene&, Ref) {
+            if (s.has("chaboche_gamma") && !s.has("chaboche_C"))
+              s.fail("chaboche_gamma", "needs chaboche_C (one modulus per recovery)");
+          },
+          write_nothing),
+      key(
+          "material.voce_Q", [](auto& s) -> auto& { return s.material.voce_saturation; },
+          "Voce isotropic hardening Q (1 - exp(-b eps_p)): saturation Q [MPa]", closed(0.0, kMaxModulus))
+          .written_if([](const Scene& s) { return s.material.plastic && s.material.voce_saturation != 0.0; }),
+      key(
+          "material.voce_b", [](auto& s) -> auto& { return s.material.voce_rate; }, "Voce rate b [-]", closed(0.0, 1e6))
+          .written_if([](const Scene& s) { return s.material.plastic && s.material.voce_saturation != 0.0; }),
 
       // [mesh]
       key(

@@ -264,6 +264,15 @@ std::string NodeSelector::describe() const {
 }
 
 Real Ramp::at_step(int step) const {
+  if (!history.empty()) {
+    Real s0 = 0.0, v0 = 0.0;
+    for (const auto& [s1, v1] : history) {
+      if (step <= s1) return v0 + (v1 - v0) * (step - s0) / (s1 - s0);
+      s0 = s1;
+      v0 = v1;
+    }
+    return v0;
+  }
   if (step >= ramp_last) return value;
   if (step < ramp_first) return 0.0;
   return value * static_cast<Real>(step - ramp_first + 1) / static_cast<Real>(ramp_last - ramp_first + 1);

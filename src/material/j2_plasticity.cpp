@@ -1,7 +1,11 @@
 #include "roller/material/j2_plasticity.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -35,14 +39,31 @@ Vec4 as_strain_vector(const Vec4& tensor) {
   return v;
 }
 
-Real yield_stress_at(const MaterialParams& p, Real eq_plastic_strain) {
-  return p.yield_stress + p.plastic_modulus() * eq_plastic_strain;
+// Voce's isotropic term Q (1 - exp(-b p)) and its slope; zero without one.
+Real voce_term(const MaterialParams& p, Real eq_plastic_strain) {
+  return p.voce_saturation * -std::expm1(-p.voce_rate * eq_plastic_strain);
+}
+Real voce_slope(const MaterialParams& p, Real eq_plastic_strain) {
+  return p.voce_saturation * p.voce_rate * std::exp(-p.voce_rate * eq_plastic_strain);
 }
 
-// int_{eps_p}^{eps_p + d} sigma_pl(a) da, exact for linear hardening (thesis (2.28); docs/model.md,
-// J2 plasticity and work hardening).
+// sigma_Y(eps_p) = sigma_y0 + H_iso eps_p + Q (1 - exp(-b eps_p)) and its slope.
+Real yield_stress_at(const MaterialParams& p, Real eq_plastic_strain) {
+  return p.yield_stress + p.isotropic_modulus() * eq_plastic_strain + voce_term(p, eq_plastic_strain);
+}
+Real yield_slope_at(const MaterialParams& p, Real eq_plastic_strain) {
+  return p.isotropic_modulus() + voce_slope(p, eq_plastic_strain);
+}
+
+// int_{eps_p}^{eps_p + d} sigma_Y(a) da, exact (thesis (2.28); docs/model.md, J2 plasticity and
+// work hardening); Voce's part as Q d + Q/b e^(-b eps_p) expm1(-b d).
 Real plastic_work_increment(const MaterialParams& p, Real eq_plastic_strain, Real d) {
-  return p.yield_stress * d + p.plastic_modulus() * (eq_plastic_strain * d + 0.5 * d * d);
+  Real w = p.yield_stress * d + p.isotropic_modulus() * (eq_plastic_strain * d + 0.5 * d * d);
+  if (p.voce_saturation != 0.0 && p.voce_rate != 0.0) {
+    w += p.voce_saturation *
+         (d + std::exp(-p.voce_rate * eq_plastic_strain) * std::expm1(-p.voce_rate * d) / p.voce_rate);
+  }
+  return w;
 }
 
 // C^-1 in the [xx, yy, zz, xy] -> [xx, yy, zz, 2xy] convention (isotropic 3D compliance).
@@ -99,39 +120,158 @@ Mat4 consistent_tangent(const MaterialParams& p, const Vec4& unit_normal, Real t
          2.0 * g * theta_bar * unit_normal * unit_normal.transpose();
 }
 
-// Backward-Euler radial return (Wilkins; Simo & Hughes ch. 3). With linear hardening the
-// consistency condition q_trial - 3G d = sigma_y0 + H'(eps_p + d) is linear in d.
+// The back-stress part of the consistency condition at a trial plastic multiplier d. Back-stress
+// i ends at beta_i (alpha_i^n + sqrt(2/3) C_i d n) with beta_i = 1/(1 + gamma_i d) (backward
+// Euler of Armstrong-Frederick), or at a fixed beta_i = 1/(1 + gamma_i d*) when the recovery is
+// frozen at d* (docs/model.md, Hardening laws: the interior-point backend's scheme). The flow
+// direction n is that of eta = s_trial - sum beta_i alpha_i^n.
+struct BackStressTerms {
+  Vec4 eta = Vec4::Zero();    // s_trial - sum beta_i alpha_i^n
+  Vec4 drift = Vec4::Zero();  // d eta / d d = sum gamma_i beta_i^2 alpha_i^n (0 when frozen)
+  Real modulus = 0.0;         // sum C_i beta_i
+  Real slope = 0.0;           // d(d * sum C_i beta_i)/d d
+  std::array<Real, kMaxBackStresses> beta{};
+};
+
+BackStressTerms back_stress_terms(const MaterialParams& p, const MaterialState& committed, const Vec4& s_trial, Real d,
+                                  std::optional<Real> frozen) {
+  BackStressTerms t;
+  t.eta = s_trial;
+  for (int i = 0; i < p.n_back_stresses(); ++i) {
+    const BackStressLaw law = p.back_stress_law(i);
+    const Vec4& alpha = committed.back_stress[static_cast<std::size_t>(i)];
+    const Real beta = 1.0 / (1.0 + law.recovery * frozen.value_or(d));
+    t.beta[static_cast<std::size_t>(i)] = beta;
+    t.eta -= beta * alpha;
+    t.modulus += law.modulus * beta;
+    if (frozen) {
+      t.slope += law.modulus * beta;
+    } else {
+      t.slope += law.modulus * beta * beta;
+      t.drift += law.recovery * beta * beta * alpha;
+    }
+  }
+  return t;
+}
+
+// The von Mises norm sqrt(3/2 x:x) of a deviator.
+Real von_mises_of_deviator(const Vec4& s) { return std::sqrt(3.0) * std::sqrt(0.5 * contract(s, s)); }
+
+// Consistency residual r(d) = q(eta) - (3G + sum C_i beta_i) d - sigma_Y(eps_p + d) and -dr/dd.
+struct Consistency {
+  Real residual;
+  Real stiffness;  // -dr/dd = 3G + slope + sigma_Y' - 3/2 eta:drift / q(eta), > 0
+};
+
+Consistency consistency(const MaterialParams& p, const BackStressTerms& t, Real eps_p, Real d) {
+  const Real g = p.shear_modulus();
+  const Real q = von_mises_of_deviator(t.eta);
+  const Real coupling = q > 0.0 ? 1.5 * contract(t.eta, t.drift) / q : 0.0;
+  return {q - (3.0 * g + t.modulus) * d - yield_stress_at(p, eps_p + d),
+          3.0 * g + t.slope + yield_slope_at(p, eps_p + d) - coupling};
+}
+
+// The plastic multiplier d > 0 of a trial state outside the surface. Linear hardening (every
+// back-stress linear or frozen, no Voce term) has it in closed form; otherwise r(d) is strictly
+// decreasing (|sqrt(3/2) n:drift| <= sum C_i beta_i^2 while each back-stress stays within its
+// saturation sqrt(2/3) C_i/gamma_i) and Newton's method runs inside a bracket that bisection
+// keeps.
+Real plastic_multiplier(const MaterialParams& p, const MaterialState& committed, const Vec4& s_trial,
+                        std::optional<Real> frozen) {
+  const Real eps_p = committed.eq_plastic_strain;
+  const BackStressTerms t0 = back_stress_terms(p, committed, s_trial, 0.0, frozen);
+  const Consistency c0 = consistency(p, t0, eps_p, 0.0);
+  const bool linear = (frozen || p.has_potential()) && !(p.voce_saturation != 0.0 && p.voce_rate != 0.0);
+  if (linear) return c0.residual / c0.stiffness;
+  Real lo = 0.0;
+  Real hi = std::numeric_limits<Real>::infinity();
+  Real d = c0.residual / c0.stiffness;
+  const Real scale = yield_stress_at(p, eps_p);
+  for (int iter = 0; iter < 100; ++iter) {
+    const Consistency c = consistency(p, back_stress_terms(p, committed, s_trial, d, frozen), eps_p, d);
+    if (std::abs(c.residual) <= 1e-14 * scale) return d;
+    (c.residual > 0.0 ? lo : hi) = d;
+    Real next = d + c.residual / c.stiffness;
+    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * d;
+    if (std::abs(next - d) <= 1e-15 * d) return next;
+    d = next;
+  }
+  throw NumericalError(fmt::format(
+      "update_material: the return mapping's plastic multiplier did not converge in 100 iterations (d = {:g}); "
+      "check the hardening parameters (chaboche_C, chaboche_gamma, voce_Q, voce_b)",
+      d));
+}
+
+// Backward-Euler return mapping of J2 plasticity with isotropic (linear and Voce) and kinematic
+// (Prager, Armstrong-Frederick, Chaboche) hardening (Simo & Hughes, Computational Inelasticity,
+// 1998, ch. 3; Chaboche 2008, Int. J. Plast. 24; docs/model.md, Hardening laws). The plastic flow
+// is along n = eta/|eta|, and the consistency condition is one scalar equation in d; with
+// isotropic hardening alone it is the radial return of Wilkins.
+//
+// Algorithmic tangent (docs/model.md derives it):
+//   C_alg = K 1(x)1 + 2G theta I_dev - 2G theta_bar n(x)n - (1 - theta) sqrt(3/2) 2G/D (a - n (n:a))(x)n,
+//   theta = 1 - 3G d/q(eta),  theta_bar = 3G/D - (1 - theta),  D = -dr/dd,  a = d eta/d d,
+// symmetric unless a recovery term acts (a != 0).
 MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain_increment,
-                                     const MaterialState& committed) {
+                                     const MaterialState& committed, std::optional<Real> frozen) {
   const Mat4 c = elastic_matrix(p);
   const Vec4 trial_stress = committed.stress + c * strain_increment;
   const Vec4 s_trial = deviator(trial_stress);
-  const Real q_trial = von_mises(trial_stress);
   const Real eps_p = committed.eq_plastic_strain;
   const Real sigma_pl = yield_stress_at(p, eps_p);
+  const BackStressTerms t0 = back_stress_terms(p, committed, s_trial, 0.0, frozen);
 
   MaterialUpdate u;
   u.trial = committed;
   u.trial.yield_stress = sigma_pl;
-  if (q_trial <= sigma_pl * (1.0 + kYieldTolerance)) {
+  if (von_mises_of_deviator(t0.eta) <= sigma_pl * (1.0 + kYieldTolerance)) {
     u.stress = trial_stress;
     u.tangent = c;
-  } else {
-    const Real g = p.shear_modulus();
-    const Real h = p.plastic_modulus();
-    const Real d = (q_trial - sigma_pl) / (3.0 * g + h);
-    const Real theta = 1.0 - 3.0 * g * d / q_trial;
-    const Real theta_bar = 3.0 * g / (3.0 * g + h) - (1.0 - theta);
-    u.stress = trial_stress - (1.0 - theta) * s_trial;
-    u.tangent = consistent_tangent(p, s_trial / std::sqrt(contract(s_trial, s_trial)), theta, theta_bar);
-    u.yielded = true;
-    u.trial.eq_plastic_strain = eps_p + d;
-    u.trial.plastic_work += plastic_work_increment(p, eps_p, d);
-    u.trial.yield_stress = yield_stress_at(p, eps_p + d);
-    u.energy = plastic_work_increment(p, eps_p, d);
+    u.trial.stress = u.stress;
+    u.energy = elastic_energy_change(p, committed.stress, u.stress);
+    return u;
   }
+  const Real g = p.shear_modulus();
+  const Real d = plastic_multiplier(p, committed, s_trial, frozen);
+  const BackStressTerms t = back_stress_terms(p, committed, s_trial, d, frozen);
+  const Real q_eta = von_mises_of_deviator(t.eta);
+  const Vec4 n = t.eta / std::sqrt(contract(t.eta, t.eta));
+  const Real theta = 1.0 - 3.0 * g * d / q_eta;
+  const Real stiffness = consistency(p, t, eps_p, d).stiffness;
+  const Real theta_bar = 3.0 * g / stiffness - (1.0 - theta);
+  u.stress = trial_stress - (1.0 - theta) * t.eta;
+  u.tangent = consistent_tangent(p, n, theta, theta_bar);
+  if (!frozen && p.n_back_stresses() > 0 && !p.has_potential()) {
+    const Vec4 a_perp = t.drift - contract(n, t.drift) * n;
+    u.tangent -= (1.0 - theta) * std::sqrt(1.5) * 2.0 * g / stiffness * a_perp * n.transpose();
+  }
+  u.yielded = true;
+  u.trial.eq_plastic_strain = eps_p + d;
+  u.trial.yield_stress = yield_stress_at(p, eps_p + d);
+
+  // Plastic strain increment sqrt(3/2) d n; back-stress i ends at beta_i (alpha_i^n + 2/3 C_i deps_p).
+  // The stored energy of a linear back-stress, 3/(4 C) alpha:alpha, changes by
+  // 1/2 deps_p:(alpha_new + alpha_start): with the recovery frozen, alpha_start = beta alpha^n.
+  const Vec4 d_eps_p = std::sqrt(1.5) * d * n;
+  Real stored = 0.0;
+  Real kinematic_work = 0.0;
+  for (int i = 0; i < p.n_back_stresses(); ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    const Vec4& alpha_n = committed.back_stress[k];
+    const Vec4 alpha = t.beta[k] * (alpha_n + 2.0 / 3.0 * p.back_stress_law(i).modulus * d_eps_p);
+    stored += 0.5 * contract(d_eps_p, alpha + t.beta[k] * alpha_n);
+    kinematic_work += 0.5 * contract(d_eps_p, alpha + alpha_n);
+    u.trial.back_stress[k] = alpha;
+  }
+  u.trial.plastic_work += plastic_work_increment(p, eps_p, d) + kinematic_work;
   u.trial.stress = u.stress;
-  u.energy += elastic_energy_change(p, committed.stress, u.stress);
+  if (frozen || p.has_potential()) {
+    u.energy = plastic_work_increment(p, eps_p, d) + stored + elastic_energy_change(p, committed.stress, u.stress);
+  } else {
+    // Armstrong-Frederick's recovery has no potential: the trapezoidal work 1/2 (S_n + S):dE
+    // stands in for the energy (a number to report, not an objective).
+    u.energy = 0.5 * (committed.stress + u.stress).dot(strain_increment);
+  }
   return u;
 }
 
@@ -228,12 +368,38 @@ MaterialUpdate substep_update(const MaterialParams& p, const Vec4& strain_increm
   return u;
 }
 
-MaterialUpdate integrate(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
+MaterialUpdate integrate(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed,
+                         std::optional<Real> frozen) {
   if (!p.plastic) return elastic_update(p, strain_increment, committed);
   if (p.integration == StressIntegration::Substep) {
     return substep_update(p, strain_increment, committed);
   }
-  return return_mapping_update(p, strain_increment, committed);
+  return return_mapping_update(p, strain_increment, committed, frozen);
+}
+
+// The plastic branch of C^EP at a relative stress xi on a surface of size sigma_Y with hardening
+// modulus h (docs/model.md, Sub-stepping and Hardening laws):
+//   C^EP = C - 2G beta xi xi^T,  beta = 3 / (2 sigma_Y^2 (1 + h/(3G))).
+Mat4 plastic_branch(const MaterialParams& p, const Vec4& xi, Real yield_stress, Real h) {
+  require(yield_stress > 0.0, "plastic_tangent: yield_stress must be > 0 (it divides C^EP)");
+  const Real g = p.shear_modulus();
+  const Real beta = 1.5 / (yield_stress * yield_stress) / (1.0 + h / (3.0 * g));
+  return elastic_matrix(p) - 2.0 * g * beta * xi * xi.transpose();
+}
+
+// Relative stress xi = s - sum alpha_i and the hardening modulus of a state,
+// h = sigma_Y' + sum (C_i - gamma_i sqrt(3/2) n:alpha_i), n = xi/|xi|: dq(xi) = sigma_Y' dp under flow.
+std::pair<Vec4, Real> relative_stress_and_modulus(const MaterialParams& p, const MaterialState& state) {
+  Vec4 xi = deviator(state.stress);
+  for (int i = 0; i < p.n_back_stresses(); ++i) xi -= state.back_stress[static_cast<std::size_t>(i)];
+  const Real q = von_mises_of_deviator(xi);
+  Real h = yield_slope_at(p, state.eq_plastic_strain);
+  for (int i = 0; i < p.n_back_stresses(); ++i) {
+    const BackStressLaw law = p.back_stress_law(i);
+    const Vec4& alpha = state.back_stress[static_cast<std::size_t>(i)];
+    h += law.modulus - (q > 0.0 ? law.recovery * 1.5 * contract(xi, alpha) / q : 0.0);
+  }
+  return {xi, h};
 }
 
 }  // namespace
@@ -256,11 +422,16 @@ Mat4 elastic_matrix(const MaterialParams& p) {
 // deviator and sigma_pl separately, as the monotonicity study needs (docs/model.md, Pointwise
 // operator A).
 Mat4 plastic_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress) {
-  require(yield_stress > 0.0, "plastic_tangent: yield_stress must be > 0 (it divides C^EP)");
-  const Real g = p.shear_modulus();
-  const Real beta = 1.5 / (yield_stress * yield_stress) / (1.0 + p.plastic_modulus() / (3.0 * g));
-  const Vec4 s = deviator(stress);
-  return elastic_matrix(p) - 2.0 * g * beta * s * s.transpose();
+  return plastic_branch(p, deviator(stress), yield_stress, p.plastic_modulus());
+}
+
+Mat4 continuum_tangent(const MaterialParams& p, const MaterialState& state) {
+  if (!p.plastic) return elastic_matrix(p);
+  const auto [xi, h] = relative_stress_and_modulus(p, state);
+  if (von_mises_of_deviator(xi) < state.yield_stress * (1.0 - kOnSurfaceTolerance) || !(state.yield_stress > 0.0)) {
+    return elastic_matrix(p);
+  }
+  return plastic_branch(p, xi, state.yield_stress, h);
 }
 
 Mat4 continuum_tangent(const MaterialParams& p, const Vec4& stress, Real yield_stress) {
@@ -276,9 +447,12 @@ MaterialState initial_state(const MaterialParams& p) {
   return state;
 }
 
-MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
+namespace {
+
+MaterialUpdate checked_update(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed,
+                              std::optional<Real> frozen) {
   require_finite(strain_increment, committed);
-  MaterialUpdate u = integrate(p, strain_increment, committed);
+  MaterialUpdate u = integrate(p, strain_increment, committed, frozen);
   // Finite input with non-finite output means inadmissible parameters (e.g. E_T = E).
   if (!u.stress.allFinite() || !u.tangent.allFinite() || !std::isfinite(u.energy)) {
     throw NumericalError(
@@ -292,6 +466,18 @@ MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_incre
           (u.trial.eq_plastic_strain >= committed.eq_plastic_strain && u.trial.yield_stress >= committed.yield_stress),
       "the return mapping never lowers the plastic strain or the yield stress");
   return u;
+}
+
+}  // namespace
+
+MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed) {
+  return checked_update(p, strain_increment, committed, std::nullopt);
+}
+
+MaterialUpdate update_material(const MaterialParams& p, const Vec4& strain_increment, const MaterialState& committed,
+                               FrozenRecovery frozen) {
+  ROLLER_ASSERT(frozen.multiplier >= 0.0, "a frozen plastic multiplier is >= 0");
+  return checked_update(p, strain_increment, committed, frozen.multiplier);
 }
 
 Real sqrt_j2(const Vec4& stress) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <string>
 
 namespace roller {
 
@@ -19,12 +20,60 @@ Real MaterialParams::plastic_modulus() const {
   return youngs_modulus * tangent_modulus / (youngs_modulus - tangent_modulus);
 }
 
+Real MaterialParams::isotropic_modulus() const {
+  switch (hardening) {
+    case Hardening::Isotropic: return plastic_modulus();
+    case Hardening::Mixed: return (1.0 - kinematic_fraction) * plastic_modulus();
+    case Hardening::Kinematic:
+    case Hardening::Chaboche: return 0.0;
+  }
+  return 0.0;
+}
+
+int MaterialParams::n_back_stresses() const {
+  if (!plastic) return 0;
+  switch (hardening) {
+    case Hardening::Isotropic: return 0;
+    case Hardening::Kinematic:
+    case Hardening::Mixed: return 1;
+    case Hardening::Chaboche: return n_chaboche;
+  }
+  return 0;
+}
+
+BackStressLaw MaterialParams::back_stress_law(int i) const {
+  switch (hardening) {
+    case Hardening::Kinematic: return {plastic_modulus(), 0.0};
+    case Hardening::Mixed: return {kinematic_fraction * plastic_modulus(), 0.0};
+    case Hardening::Chaboche: return chaboche[static_cast<std::size_t>(i)];
+    case Hardening::Isotropic: break;
+  }
+  return {};
+}
+
+bool MaterialParams::hardening_is_linear() const {
+  if (voce_saturation != 0.0 && voce_rate != 0.0) return false;
+  for (int i = 0; i < n_back_stresses(); ++i)
+    if (back_stress_law(i).recovery != 0.0) return false;
+  return true;
+}
+
+bool MaterialParams::has_potential() const {
+  for (int i = 0; i < n_back_stresses(); ++i)
+    if (back_stress_law(i).recovery != 0.0) return false;
+  return true;
+}
+
 namespace {
+
+std::string describe_text(const std::string& field, const std::string& value, const std::string& rule) {
+  return "material." + field + " = " + value + ": " + rule;
+}
 
 std::string describe(const std::string& field, Real value, const std::string& rule) {
   std::ostringstream out;
-  out << "material." << field << " = " << std::setprecision(12) << value << ": " << rule;
-  return out.str();
+  out << std::setprecision(12) << value;
+  return describe_text(field, out.str(), rule);
 }
 
 // The comparisons are written so that NaN fails every rule.
@@ -49,6 +98,43 @@ std::string first_violation(const MaterialParams& p) {
            << " when plastic = true (E_T = 0 is perfect plasticity)";
       return describe("tangent_modulus", et, rule.str());
     }
+  }
+  if (p.plastic) {
+    const std::string law = enum_name(p.hardening);
+    if (p.hardening == Hardening::Mixed && !(p.kinematic_fraction >= 0.0 && p.kinematic_fraction <= 1.0))
+      return describe("kinematic_fraction", p.kinematic_fraction,
+                      "must satisfy 0 <= m <= 1 (the kinematic share of H')");
+    if (p.hardening == Hardening::Chaboche) {
+      if (p.tangent_modulus != 0.0)
+        return describe("tangent_modulus", p.tangent_modulus,
+                        "must be 0 with hardening = \"chaboche\" (its hardening is in the back-stresses; "
+                        "use a back-stress with gamma = 0 for a linear kinematic part and voce_Q/voce_b for "
+                        "an isotropic one)");
+      if (!(p.n_chaboche >= 1 && p.n_chaboche <= kMaxBackStresses))
+        return describe_text("chaboche_C", "(" + std::to_string(p.n_chaboche) + " values)",
+                             "hardening = \"chaboche\" needs 1 to 4 back-stresses");
+      for (int i = 0; i < p.n_chaboche; ++i) {
+        const BackStressLaw& b = p.chaboche[static_cast<std::size_t>(i)];
+        const std::string entry = "entry " + std::to_string(i + 1) + " ";
+        if (!(std::isfinite(b.modulus) && b.modulus >= 0.0))
+          return describe("chaboche_C", b.modulus, entry + "must be finite and >= 0 [MPa]");
+        if (!(std::isfinite(b.recovery) && b.recovery >= 0.0))
+          return describe("chaboche_gamma", b.recovery, entry + "must be finite and >= 0");
+      }
+    } else if (p.n_chaboche != 0) {
+      return describe_text("chaboche_C", "(" + std::to_string(p.n_chaboche) + " values)",
+                           "back-stresses need hardening = \"chaboche\" (it is \"" + law + "\")");
+    }
+    if (!(std::isfinite(p.voce_saturation) && p.voce_saturation >= 0.0))
+      return describe("voce_Q", p.voce_saturation, "must be finite and >= 0 [MPa] (Voce saturation)");
+    if (!(std::isfinite(p.voce_rate) && p.voce_rate >= 0.0))
+      return describe("voce_b", p.voce_rate, "must be finite and >= 0 (Voce rate)");
+    if (p.integration == StressIntegration::Substep &&
+        (p.hardening != Hardening::Isotropic || p.voce_saturation != 0.0))
+      return describe_text(
+          "stress_integration", "\"substep\"",
+          "substep integrates linear isotropic hardening only; use return_mapping with hardening = \"" + law +
+              "\" or Voce terms");
   }
   const Real rho = p.density;
   if (!(std::isfinite(rho) && rho >= 0.0)) {

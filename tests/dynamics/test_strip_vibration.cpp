@@ -35,8 +35,8 @@ Scene cantilever(Real dt, int steps, bool lumped) {
   s.dynamics.lumped_mass = lumped;
   DisplacementBC clamp;
   clamp.nodes.set_name = "left";
-  clamp.x = Ramp{0.0, 1, 1};
-  clamp.y = Ramp{0.0, 1, 1};
+  clamp.x = Ramp{0.0, 1, 1, {}};
+  clamp.y = Ramp{0.0, 1, 1, {}};
   s.displacements.push_back(clamp);
   return s;
 }
@@ -77,7 +77,7 @@ TEST_CASE("Elastic strip in its first mode decays exactly by Houbolt's dissipati
     const Index d = dofs.free_dofs()[i];
     NodalLoad load;
     load.nodes.numbers = {d / 2 + 1};
-    (d % 2 == 0 ? load.fx : load.fy) = Ramp{f_free(i), 1, 1};
+    (d % 2 == 0 ? load.fx : load.fy) = Ramp{f_free(i), 1, 1, {}};
     scene.loads.push_back(load);
   }
   Simulation sim(std::move(scene));

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/uniaxial_stress.hpp"
 #include "roller/core/error.hpp"
 #include "roller/material/j2_plasticity.hpp"
 
@@ -77,21 +78,6 @@ Vec4 fd_energy_gradient(const MaterialParams& p, const Vec4& de, const MaterialS
     g(j) = (update_material(p, plus, state).energy - update_material(p, minus, state).energy) / (2.0 * h);
   }
   return g;
-}
-
-// One increment of axial strain under uniaxial stress: Newton on the lateral strain increments
-// (yy, zz; zz is free here) so that S_yy = S_zz = 0, with the consistent tangent.
-MaterialUpdate uniaxial_stress_increment(const MaterialParams& p, Real d_axial, const MaterialState& state) {
-  Vec4 de = vec4(d_axial, -p.poisson_ratio * d_axial, -p.poisson_ratio * d_axial, 0.0);
-  for (int iteration = 0; iteration < 30; ++iteration) {
-    const MaterialUpdate u = update_material(p, de, state);
-    const Vec2 residual(u.stress(1), u.stress(2));
-    if (residual.norm() <= 1e-11 * p.yield_stress) return u;
-    const Mat2 jacobian = u.tangent.block<2, 2>(1, 1);
-    de.segment<2>(1) -= jacobian.inverse() * residual;
-  }
-  FAIL("uniaxial stress Newton did not converge");
-  return {};
 }
 
 // The same for plane-strain compression: zz strain held at zero, S_yy = 0.
@@ -223,7 +209,7 @@ TEST_CASE("uniaxial stress follows the bilinear curve, through reverse yielding"
   Real max_lateral_stress = 0.0;
   for (int k = 1; k <= n_load + n_unload; ++k) {
     const Real d = k <= n_load ? eps_max / n_load : -2.0 * eps_max / n_unload;
-    const MaterialUpdate u = uniaxial_stress_increment(p, d, state);
+    const MaterialUpdate u = testing::uniaxial_strain_step(p, d, state).update;
     state = u.trial;
     strain += d;
     const UniaxialAnswer exact = k <= n_load ? bilinear_loading(p, strain) : bilinear_reversal(p, eps_max, strain);

@@ -148,3 +148,18 @@ TEST_CASE("Hertz and Cattaneo: ipopt and penalty agree step by step", "[contact]
   SECTION("hertz") { check_lockstep_agreement("hertz", {{"contact.penalty.factor", "1e5"}}); }
   SECTION("cattaneo") { check_lockstep_agreement("cattaneo", {}); }
 }
+
+// The kinematic hardening laws on Z1 (docs/model.md, Hardening laws). Prager has a potential: both
+// backends solve it directly. Armstrong-Frederick has none: ipopt solves with each point's
+// recovery frozen and iterates it to the backward-Euler update, penalty runs Newton with the
+// unsymmetric consistent tangent; the same per-step agreement as the isotropic law's.
+TEST_CASE("Z1 with kinematic and Armstrong-Frederick hardening: ipopt and penalty agree step by step",
+          "[contact][ipopt][agreement][hardening][slow]") {
+  SECTION("kinematic (Prager)") { check_lockstep_agreement("z1_outf05", {{"material.hardening", "\"kinematic\""}}); }
+  SECTION("Armstrong-Frederick") {
+    check_lockstep_agreement("z1_outf05", {{"material.kappa", "0"},
+                                           {"material.hardening", "\"chaboche\""},
+                                           {"material.chaboche_C", "[15800.0]"},
+                                           {"material.chaboche_gamma", "[300.0]"}});
+  }
+}

@@ -100,6 +100,9 @@ struct OperatorOptions {
 // A = C + T (+ mass_scale I) at `stress` [xx, yy, zz, xy] with current yield stress
 // `yield_stress` (ignored for TangentKind::Elastic; must be > 0 for PlasticBranch).
 Mat4 operator_a(const MaterialParams& material, const Vec4& stress, Real yield_stress, const OperatorOptions& options);
+// The same at an integration point's state: with TangentKind::Continuum, the material law's own
+// C^EP (kinematic laws: the relative stress and the state's hardening modulus).
+Mat4 operator_a(const MaterialParams& material, const MaterialState& state, const OperatorOptions& options);
 
 // A with the algorithmic (consistent) tangent of the backward-Euler return: the material update
 // of `strain_increment` [xx, yy, zz, 2xy] from `committed` gives the tangent and the stress that

@@ -44,9 +44,10 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
 
 // Residual state under x (the column of elements whose initial x-range holds it), by depth.
 struct DepthSample {
-  Real depth = 0.0;            // of the element's centroid in the initial mesh [mm]
-  Vec4 stress = Vec4::Zero();  // mean Cauchy stress [xx, yy, zz, xy] [MPa]
-  Real plastic_strain = 0.0;   // mean eps_p
+  Real depth = 0.0;                 // of the element's centroid in the initial mesh [mm]
+  Vec4 stress = Vec4::Zero();       // mean Cauchy stress [xx, yy, zz, xy] [MPa]
+  Real plastic_strain = 0.0;        // mean eps_p
+  Vec4 back_stress = Vec4::Zero();  // mean centre of the yield surface, sum of back-stresses [MPa]
 };
 std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_height, Real x);
 

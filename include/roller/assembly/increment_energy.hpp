@@ -35,6 +35,7 @@ class IncrementEnergy : public NewtonObjective {
 
   Index n_free() const { return model_.dof_map().n_free(); }
   const StripModel& model() const { return model_; }
+  StripModel& model() { return model_; }
   // Full increment vector for free values x.
   VecX full_increment(const VecX& x) const;
   // Pi(x) and its gradient over all dofs: internal minus external forces, whose entries at the

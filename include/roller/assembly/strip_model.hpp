@@ -60,6 +60,15 @@ class StripModel {
   // sizes do not fit this mesh, NumericalError when an element is inverted.
   void restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states);
 
+  // Armstrong-Frederick's recovery for the minimisers (docs/model.md, Hardening laws): whether the
+  // law has a recovery term (no incremental potential), and evaluate() with each point's recovery
+  // frozen at the given plastic multipliers (one per integration point; empty: the exact update).
+  bool has_recovery() const { return !material_.has_potential(); }
+  void freeze_recovery(std::vector<Real> multipliers);
+  // Each integration point's plastic multiplier (trial minus committed eq_plastic_strain) of the
+  // increment u, with the recovery as it is frozen now.
+  std::vector<Real> plastic_multipliers(const VecX& u);
+
   // Start-of-increment coordinates of each node (the reference of the next increment).
   const std::vector<Vec2>& reference_coordinates() const { return reference_; }
   // Current coordinates X0 + total displacement (equal to reference_coordinates() for finite
@@ -112,6 +121,7 @@ class StripModel {
   std::vector<Vec2> reference_;
   VecX total_displacement_;
   std::vector<MaterialState> committed_;
+  std::vector<Real> frozen_recovery_;  // per integration point, or empty (freeze_recovery)
 
   DofMap dofs_;
   // Sparsity of the Hessian over the free dofs (compressed columns, full symmetric storage).

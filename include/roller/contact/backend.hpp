@@ -53,6 +53,10 @@ class ContactBackend {
   // Whether solve() finds a suspended roller's position with the strip (IncrementProblem::free_roller);
   // a backend that does not is given problems whose roller is placed.
   virtual bool solves_roller_height() const { return false; }
+  // Whether the backend minimises the increment energy (and so needs a potential: a law with
+  // Armstrong-Frederick recovery is then solved with the recovery frozen and iterated), or
+  // solves the equilibrium equations with the exact, unsymmetric tangent.
+  virtual bool minimises_energy() const { return true; }
   // The inertia of the strip tangent `k` when this backend still holds a factorisation of exactly
   // that matrix (a constant tangent kept over increments), nullopt otherwise: the run-time
   // monitor's check of the same matrix without a factorisation of its own.
@@ -60,6 +64,7 @@ class ContactBackend {
 
  private:
   virtual BackendResult do_solve(IncrementProblem& problem, const VecX& x0) = 0;
+  BackendResult solve_settling_recovery(IncrementProblem& problem, const VecX& x0);
   virtual std::optional<Inertia> do_held_tangent_inertia(const SparseMatrix& /*k*/) { return std::nullopt; }
 };
 

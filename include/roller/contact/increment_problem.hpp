@@ -72,6 +72,7 @@ class IncrementProblem {
     return strip_.evaluate(x, gradient, hessian);
   }
   VecX full_increment(const VecX& x) const { return strip_.full_increment(x); }
+  StripModel& strip_model() { return strip_.model(); }
   // The strip's tangent is the same matrix at every x (StripModel::tangent_is_constant).
   bool strip_tangent_is_constant() const { return strip_.model().tangent_is_constant(); }
 

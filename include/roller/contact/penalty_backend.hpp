@@ -22,6 +22,7 @@ class PenaltyBackend : public ContactBackend {
  public:
   PenaltyBackend(ContactOptions options, NewtonOptions newton);
   std::string name() const override { return "penalty"; }
+  bool minimises_energy() const override { return false; }
 
   struct Stiffness {
     Real normal, tangential;  // kN, kT of one candidate [N/mm per mm width]

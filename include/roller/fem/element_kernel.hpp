@@ -29,7 +29,10 @@ struct ElementInput {
   ElementType type = ElementType::Q4;
   const std::vector<PointGeometry>* geometry = nullptr;  // start-of-increment configuration
   const MaterialState* committed = nullptr;              // one state per integration point
-  ElementVector displacement;                            // increment u, ordered [u_x0, u_y0, u_x1, u_y1, ...]
+  // Armstrong-Frederick's recovery frozen at these plastic multipliers, one per integration point
+  // (update_material with FrozenRecovery); nullptr: the exact backward-Euler update.
+  const Real* frozen_recovery = nullptr;
+  ElementVector displacement;  // increment u, ordered [u_x0, u_y0, u_x1, u_y1, ...]
 };
 
 struct ElementOutput {

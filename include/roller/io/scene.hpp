@@ -42,12 +42,15 @@ struct NodeSelector {
 };
 
 // A prescribed ramp: the quantity reaches `value` at the end of step `ramp_last`, rising
-// linearly from 0 at the end of step ramp_first-1, and stays constant afterwards.
+// linearly from 0 at the end of step ramp_first-1, and stays constant afterwards. Or, when
+// `history` is given, a piecewise-linear history through (0, 0) and its (step, value) points,
+// held after the last (a load cycle).
 struct Ramp {
   Real value = 0.0;
   int ramp_first = 1;
   int ramp_last = 1;
-  Real at_step(int step) const;  // cumulative value at the end of `step` (steps are 1-based)
+  std::vector<std::array<Real, 2>> history;  // (step, value), steps increasing
+  Real at_step(int step) const;              // cumulative value at the end of `step` (steps are 1-based)
 };
 
 // Prescribed displacement of the selected nodes in x and/or y (a component that is absent is

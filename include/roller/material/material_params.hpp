@@ -1,6 +1,8 @@
 #pragma once
-// Material data of the strip: isotropic elasticity, optional J2 plasticity with linear
-// isotropic work hardening (docs/model.md, Material), density for dynamic scenes.
+// Material data of the strip: isotropic elasticity, optional J2 plasticity with isotropic,
+// kinematic, mixed or Chaboche hardening (docs/model.md, Material and Hardening laws), density
+// for dynamic scenes.
+#include <array>
 #include <string>
 
 #include "roller/core/enum_names.hpp"
@@ -20,6 +22,32 @@ struct EnumNames<StressIntegration> {
       {{StressIntegration::ReturnMapping, "return_mapping"}, {StressIntegration::Substep, "substep"}}};
 };
 
+// How the yield surface moves and grows with plastic flow (docs/model.md, Hardening laws). Every
+// law is one yield stress sigma_Y(p) = sigma_y0 + H_iso p + Q (1 - exp(-b p)) around a centre
+// alpha = sum of back-stresses, each evolving as d alpha_i = 2/3 C_i d eps_p - gamma_i alpha_i dp.
+enum class Hardening {
+  Isotropic,  // H_iso = H' (from tangent_modulus), no back-stress: today's default
+  Kinematic,  // linear kinematic (Prager): one back-stress C = H', gamma = 0
+  Mixed,      // H_iso = (1 - m) H', one back-stress C = m H', gamma = 0 (m = kinematic_fraction)
+  Chaboche,   // up to four back-stresses (C_i, gamma_i); one with gamma > 0 is Armstrong-Frederick
+};
+template <>
+struct EnumNames<Hardening> {
+  static constexpr std::array<std::pair<Hardening, const char*>, 4> names{{{Hardening::Isotropic, "isotropic"},
+                                                                           {Hardening::Kinematic, "kinematic"},
+                                                                           {Hardening::Mixed, "mixed"},
+                                                                           {Hardening::Chaboche, "chaboche"}}};
+};
+
+inline constexpr int kMaxBackStresses = 4;
+
+// One back-stress of the Chaboche law: modulus C [MPa] and recovery gamma [-] (C/gamma is its
+// saturation in uniaxial stress).
+struct BackStressLaw {
+  Real modulus = 0.0;   // C_i [MPa], >= 0
+  Real recovery = 0.0;  // gamma_i [-], >= 0 (0: linear kinematic)
+};
+
 struct MaterialParams {
   Real youngs_modulus = 2.1e5;  // E [MPa]
   Real poisson_ratio = 0.3;     // nu [-], 0 <= nu < 0.5
@@ -30,6 +58,14 @@ struct MaterialParams {
   StressIntegration integration = StressIntegration::ReturnMapping;
   int n_substeps = 10;  // sub-steps of the Substep integration, >= 1
 
+  Hardening hardening = Hardening::Isotropic;
+  Real kinematic_fraction = 0.5;  // m of the Mixed law, 0 <= m <= 1
+  // Back-stresses of the Chaboche law (the first n_chaboche of the array).
+  std::array<BackStressLaw, kMaxBackStresses> chaboche{};
+  int n_chaboche = 0;
+  Real voce_saturation = 0.0;  // Q [MPa] >= 0 of the Voce isotropic term Q (1 - exp(-b p))
+  Real voce_rate = 0.0;        // b [-] >= 0
+
   // Derived quantities.
   Real shear_modulus() const;  // G = E / (2(1+nu))
   Real bulk_modulus() const;   // K = E / (3(1-2nu))
@@ -37,6 +73,18 @@ struct MaterialParams {
   // Plastic modulus of the uniaxial curve, H' = E E_T / (E - E_T): the slope of yield stress
   // versus equivalent plastic strain.
   Real plastic_modulus() const;
+  // Slope of the linear isotropic term H_iso [MPa] of sigma_Y(p) (the share of H' that is
+  // isotropic; 0 for Kinematic and Chaboche).
+  Real isotropic_modulus() const;
+  // The back-stresses the law carries (Kinematic and Mixed: one with gamma = 0), at most
+  // kMaxBackStresses; none when the material is elastic.
+  int n_back_stresses() const;
+  BackStressLaw back_stress_law(int i) const;
+  // True when every back-stress is linear (gamma = 0) and no Voce term: the return mapping's
+  // consistency condition is then linear in the plastic multiplier.
+  bool hardening_is_linear() const;
+  // True when the update has an incremental potential (no Armstrong-Frederick recovery term).
+  bool has_potential() const;
 
   // True when every field is admissible; otherwise false and *why names the field, its value
   // and the violated rule.

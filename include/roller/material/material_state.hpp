@@ -1,6 +1,9 @@
 #pragma once
 // State stored at each integration point and committed only after an increment converges.
+#include <array>
+
 #include "roller/core/types.hpp"
+#include "roller/material/material_params.hpp"
 
 namespace roller {
 
@@ -11,7 +14,10 @@ struct MaterialState {
   Vec4 stress = Vec4::Zero();
   Real eq_plastic_strain = 0.0;  // equivalent plastic strain, eps_p = int sqrt(2/3 dep:dep)
   Real plastic_work = 0.0;       // W_pl = int tau:d(eps_p) per unit volume [MPa = mJ/mm^3]
-  Real yield_stress = 0.0;       // current sigma_pl = sigma_y0 + H' eps_p (0 for elastic)
+  Real yield_stress = 0.0;       // current size of the yield surface sigma_Y(eps_p) (0 for elastic)
+  // Back-stresses alpha_i [xx, yy, zz, xy] (deviatoric; the centre of the yield surface is their
+  // sum); the first MaterialParams::n_back_stresses() are used, the rest stay zero.
+  std::array<Vec4, kMaxBackStresses> back_stress{Vec4::Zero(), Vec4::Zero(), Vec4::Zero(), Vec4::Zero()};
 };
 
 }  // namespace roller

@@ -93,7 +93,8 @@ bool evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& 
   }
   const Real strip_scale = strip->force_scale;
   e.contact.assign(p.candidates().size(), NodeContact{});
-  e.symmetric = true;
+  // Armstrong-Frederick's consistent tangent is unsymmetric (docs/model.md, Hardening laws).
+  e.symmetric = !p.strip_model().has_recovery();
   Real contact_norm2 = 0.0, floor2 = 0.0;
   Mat2 block;
   for (std::size_t i = 0; i < p.candidates().size(); ++i) {
