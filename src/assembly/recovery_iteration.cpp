@@ -20,7 +20,9 @@ Real multiplier_tolerance(const MaterialParams& m, Real stress_tolerance) {
 }  // namespace
 
 RecoveryIteration::RecoveryIteration(StripModel& strip, Real stress_tolerance)
-    : strip_(strip), active_(strip.has_recovery()), tolerance_(multiplier_tolerance(strip.material(), stress_tolerance)) {
+    : strip_(strip),
+      active_(strip.has_recovery()),
+      tolerance_(multiplier_tolerance(strip.material(), stress_tolerance)) {
   if (!active_) return;
   const std::size_t n = strip.states().size();
   frozen_.assign(n, 0.0);

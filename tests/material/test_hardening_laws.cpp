@@ -71,8 +71,7 @@ Real loop_peak_stress(const MaterialParams& p, Real d_eps_p) {
   Real s = p.yield_stress;
   for (int i = 0; i < p.n_chaboche; ++i) {
     const BackStressLaw b = p.chaboche[static_cast<std::size_t>(i)];
-    s += b.recovery > 0.0 ? b.modulus / b.recovery * std::tanh(0.5 * b.recovery * d_eps_p)
-                          : 0.5 * b.modulus * d_eps_p;
+    s += b.recovery > 0.0 ? b.modulus / b.recovery * std::tanh(0.5 * b.recovery * d_eps_p) : 0.5 * b.modulus * d_eps_p;
   }
   return s;
 }
@@ -175,7 +174,7 @@ TEST_CASE("Armstrong-Frederick and Chaboche stabilise on the closed-form loop un
   }
 }
 
-TEST_CASE("Armstrong-Frederick ratchets by the closed-form strain per cycle; Prager closes its loop",
+TEST_CASE("Armstrong-Frederick ratchets by the closed-form strain per cycle, Prager closes its loop",
           "[material][hardening]") {
   const Real s_max = 400.0, s_min = -300.0;
   SECTION("Armstrong-Frederick: d_eps_p = 1/gamma ln[((C/gamma)^2 - X_min^2) / ((C/gamma)^2 - X_max^2)]") {
@@ -299,7 +298,9 @@ std::vector<std::pair<std::string, MaterialParams>> laws() {
   mixed.kinematic_fraction = 0.3;
   mixed.voce_saturation = 80.0;
   mixed.voce_rate = 30.0;
-  return {{"kinematic", kin}, {"mixed with Voce", mixed}, {"Armstrong-Frederick", armstrong_frederick()},
+  return {{"kinematic", kin},
+          {"mixed with Voce", mixed},
+          {"Armstrong-Frederick", armstrong_frederick()},
           {"Chaboche", chaboche3()}};
 }
 

@@ -3,6 +3,7 @@
 
 usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
                                       [--element-size 0.2] [--out problems]
+                                      [--kinematic E_T]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -13,6 +14,9 @@ over x = 88...112 and the top 6 mm, graded outside. One pass: press to P at x = 
 roll 16 mm = 8a to x = 108 under P (steps 4-19, 0.5a per step), lift 0.3 mm (steps 20-21); the
 window of passes.csv is then x = 96...104. --element-size changes the uniform size (0.1: 40
 elements across 2a, 4.8e4 dofs, the strip of `rollerpy bench-passes`) and --out the folder.
+--kinematic E_T writes problems/shakedown_kinematic_pXX.toml instead: the same strip with linear
+kinematic (Prager) hardening of tangent modulus E_T, whose cycles above Johnson's 4.0 close
+(plastic shakedown) where the perfectly plastic strip ratchets (docs/validation.md).
 """
 import math
 import os
@@ -69,17 +73,26 @@ def fmt_lines(values):
     return "[\n" + "\n".join(out) + "\n]"
 
 
-def scene(ratio, passes, h):
+def hardening_lines(kinematic):
+    """The [material] lines after yield_stress: perfectly plastic, or Prager with E_T."""
+    if kinematic is None:
+        return "tangent_modulus = 0.0"
+    return 'hardening = "kinematic"     # Prager: the yield surface moves, C = H\'\ntangent_modulus = %g' % kinematic
+
+
+def scene(ratio, passes, h, kinematic=None):
     sigma_y = math.sqrt(3.0) * P0 / ratio
     xs, ys = lines(h)
-    name = "shakedown_p%02d" % round(10 * ratio)
+    prefix = "shakedown_p" if kinematic is None else "shakedown_kinematic_p"
+    name = prefix + "%02d" % round(10 * ratio)
+    law = "elastic-perfectly plastic strip" if kinematic is None else "Prager-hardening strip"
     return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
 # python/rollerpy/validation/make_shakedown_scenes.py, not this file); docs/validation.md,
 # "Shakedown: repeated rolling of a line contact".
 # Frictionless rolling of a rigid cylinder (R = 100 mm) under P = {load:.1f} N/mm over an
-# elastic-perfectly plastic strip: Hertz a = {a} mm, p0 = {p0:.1f} MPa, k = sigma_y/sqrt(3) =
+# {law}: Hertz a = {a} mm, p0 = {p0:.1f} MPa, k = sigma_y/sqrt(3) =
 # {k:.1f} MPa. Johnson: first yield at p0/k = 3.1, elastic shakedown limit 4.0.
-title = "Shakedown: frictionless rolling at p0/k = {ratio}, {passes} passes"
+title = "Shakedown: frictionless rolling at p0/k = {ratio}, {passes} passes{title_law}"
 kinematics = "small"
 
 [mesh]
@@ -94,7 +107,7 @@ q4_formulation = "bbar"
 E = {E}
 nu = {NU}
 yield_stress = {sy:.4f}
-tangent_modulus = 0.0
+{hardening}
 
 [steps]
 count = 21              # one pass
@@ -131,15 +144,16 @@ dy = 0.3
 backend = "ipopt"
 friction = 0.0
 """.format(ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
-           E=E, NU=NU, sy=sigma_y, R=R)
+           E=E, NU=NU, sy=sigma_y, R=R, law=law, hardening=hardening_lines(kinematic),
+           title_law="" if kinematic is None else ", kinematic hardening")
 
 
-def write_scenes(loads, passes, element_size, out):
+def write_scenes(loads, passes, element_size, out, kinematic=None):
     """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
     os.makedirs(out, exist_ok=True)
     written = []
     for ratio in loads:
-        name, text = scene(ratio, passes, element_size)
+        name, text = scene(ratio, passes, element_size, kinematic)
         path = os.path.join(out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)
@@ -153,6 +167,9 @@ def main(argv=None):
     ap.add_argument("--passes", type=int, default=5)
     ap.add_argument("--element-size", type=float, default=0.2)
     ap.add_argument("--out", default=PROBLEMS)
+    ap.add_argument("--kinematic", type=float, default=None, metavar="E_T",
+                    help="linear kinematic hardening with this tangent modulus [MPa]")
     args = ap.parse_args(argv)
-    for path in write_scenes([float(r) for r in args.loads.split(",")], args.passes, args.element_size, args.out):
+    loads = [float(r) for r in args.loads.split(",")]
+    for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic):
         print("wrote", path)
