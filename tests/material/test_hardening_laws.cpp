@@ -8,7 +8,9 @@
 // with N, 2N and 4N steps (Richardson) and also check that the error halves.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../support/uniaxial_stress.hpp"
@@ -267,28 +269,27 @@ MaterialState prestate(const MaterialParams& p) {
   return s;
 }
 
+// Central differences of the stress (a 4x4 tangent) and of the energy (its 1x4 gradient) of an
+// update with respect to the strain increment.
 template <class Update>
-Mat4 fd_tangent(Update update, const Vec4& de, Real h) {
-  Mat4 d;
+std::pair<Mat4, Eigen::Matrix<Real, 1, 4>> central_differences(Update update, const Vec4& de, Real h) {
+  Mat4 tangent;
+  Eigen::Matrix<Real, 1, 4> gradient;
   for (int j = 0; j < 4; ++j) {
     Vec4 plus = de, minus = de;
     plus(j) += h;
     minus(j) -= h;
-    d.col(j) = (update(plus).stress - update(minus).stress) / (2.0 * h);
+    const MaterialUpdate up = update(plus), down = update(minus);
+    tangent.col(j) = (up.stress - down.stress) / (2.0 * h);
+    gradient(j) = (up.energy - down.energy) / (2.0 * h);
   }
-  return d;
+  return {tangent, gradient};
 }
-
-template <class Update>
-Vec4 fd_energy(Update update, const Vec4& de, Real h) {
-  Vec4 g;
-  for (int j = 0; j < 4; ++j) {
-    Vec4 plus = de, minus = de;
-    plus(j) += h;
-    minus(j) -= h;
-    g(j) = (update(plus).energy - update(minus).energy) / (2.0 * h);
-  }
-  return g;
+Mat4 fd_tangent(const std::function<MaterialUpdate(const Vec4&)>& update, const Vec4& de, Real h) {
+  return central_differences(update, de, h).first;
+}
+Vec4 fd_energy(const std::function<MaterialUpdate(const Vec4&)>& update, const Vec4& de, Real h) {
+  return central_differences(update, de, h).second.transpose();
 }
 
 std::vector<std::pair<std::string, MaterialParams>> laws() {
