@@ -384,3 +384,29 @@ TEST_CASE("Hardening parameters are checked", "[material][hardening]") {
   CHECK_FALSE(p.is_valid(&why));
   CHECK(why.find("kinematic_fraction") != std::string::npos);
 }
+
+TEST_CASE("The continuum tangent of a kinematic state is the consistent tangent of a vanishing plastic increment",
+          "[material][hardening]") {
+  // The run-time monotonicity monitor's C^EP (docs/model.md, Hardening laws): xi = s - alpha and
+  // the state's hardening modulus h = sigma_Y' + sum (C_i - gamma_i sqrt(3/2) n:alpha_i).
+  for (const auto& [name, p] : laws()) {
+    INFO(name);
+    MaterialState s = prestate(p);
+    const Real ey = p.yield_stress / p.youngs_modulus;
+    // Push the state plastically along its own flow, so it sits on the surface.
+    Vec4 xi = s.stress;
+    const Real mean = (s.stress(0) + s.stress(1) + s.stress(2)) / 3.0;
+    xi.head<3>().array() -= mean;
+    for (int i = 0; i < p.n_back_stresses(); ++i) xi -= s.back_stress[static_cast<std::size_t>(i)];
+    Vec4 flow = xi / xi.norm();
+    flow(3) *= 2.0;  // as an engineering strain
+    const MaterialUpdate push = update_material(p, 0.5 * ey * flow, s);
+    REQUIRE(push.yielded);
+    s = push.trial;
+    const MaterialUpdate tiny = update_material(p, 1e-9 * ey * flow, s);
+    REQUIRE(tiny.yielded);
+    const Mat4 continuum = continuum_tangent(p, s);
+    CHECK((continuum - tiny.tangent).norm() / continuum.norm() < 1e-6);
+    CHECK((continuum - elastic_matrix(p)).norm() > 1e-3 * continuum.norm());
+  }
+}
