@@ -176,24 +176,33 @@ Consistency consistency(const MaterialParams& p, const BackStressTerms& t, Real 
 // decreasing (|sqrt(3/2) n:drift| <= sum C_i beta_i^2 while each back-stress stays within its
 // saturation sqrt(2/3) C_i/gamma_i) and Newton's method runs inside a bracket that bisection
 // keeps.
-Real plastic_multiplier(const MaterialParams& p, const MaterialState& committed, const Vec4& s_trial,
-                        std::optional<Real> frozen) {
+// The plastic multiplier and the back-stress terms and consistency at it.
+struct PlasticSolution {
+  Real d = 0.0;
+  BackStressTerms terms;
+  Consistency consistency{0.0, 0.0};
+};
+
+PlasticSolution plastic_multiplier(const MaterialParams& p, const MaterialState& committed, const Vec4& s_trial,
+                                   const BackStressTerms& t0, std::optional<Real> frozen) {
   const Real eps_p = committed.eq_plastic_strain;
-  const BackStressTerms t0 = back_stress_terms(p, committed, s_trial, 0.0, frozen);
   const Consistency c0 = consistency(p, t0, eps_p, 0.0);
   const bool linear = (frozen || p.has_potential()) && !(p.voce_saturation != 0.0 && p.voce_rate != 0.0);
-  if (linear) return c0.residual / c0.stiffness;
+  // Linear: the terms do not depend on d, and neither does the stiffness (no Voce term).
+  if (linear) return {c0.residual / c0.stiffness, t0, c0};
   Real lo = 0.0;
   Real hi = std::numeric_limits<Real>::infinity();
   Real d = c0.residual / c0.stiffness;
   const Real scale = yield_stress_at(p, eps_p);
   for (int iter = 0; iter < 100; ++iter) {
-    const Consistency c = consistency(p, back_stress_terms(p, committed, s_trial, d, frozen), eps_p, d);
-    if (std::abs(c.residual) <= 1e-14 * scale) return d;
-    (c.residual > 0.0 ? lo : hi) = d;
-    Real next = d + c.residual / c.stiffness;
+    PlasticSolution at{d, back_stress_terms(p, committed, s_trial, d, frozen), {0.0, 0.0}};
+    at.consistency = consistency(p, at.terms, eps_p, d);
+    const Real r = at.consistency.residual;
+    if (std::abs(r) <= 1e-14 * scale) return at;
+    (r > 0.0 ? lo : hi) = d;
+    Real next = d + r / at.consistency.stiffness;
     if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * d;
-    if (std::abs(next - d) <= 1e-15 * d) return next;
+    if (std::abs(next - d) <= 1e-15 * d) return at;
     d = next;
   }
   throw NumericalError(fmt::format(
@@ -232,12 +241,13 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
     return u;
   }
   const Real g = p.shear_modulus();
-  const Real d = plastic_multiplier(p, committed, s_trial, frozen);
-  const BackStressTerms t = back_stress_terms(p, committed, s_trial, d, frozen);
+  const PlasticSolution solution = plastic_multiplier(p, committed, s_trial, t0, frozen);
+  const Real d = solution.d;
+  const BackStressTerms& t = solution.terms;
   const Real q_eta = von_mises_of_deviator(t.eta);
   const Vec4 n = t.eta / std::sqrt(contract(t.eta, t.eta));
   const Real theta = 1.0 - 3.0 * g * d / q_eta;
-  const Real stiffness = consistency(p, t, eps_p, d).stiffness;
+  const Real stiffness = solution.consistency.stiffness;
   const Real theta_bar = 3.0 * g / stiffness - (1.0 - theta);
   u.stress = trial_stress - (1.0 - theta) * t.eta;
   u.tangent = consistent_tangent(p, n, theta, theta_bar);
