@@ -52,8 +52,8 @@ std::vector<std::pair<std::string, MaterialParams>> laws() {
 }
 
 // Median seconds of one sweep of update_material over the states.
-double sweep_seconds(const MaterialParams& p, const std::vector<MaterialState>& states, const Vec4& de,
-                     int repeats, double& checksum) {
+double sweep_seconds(const MaterialParams& p, const std::vector<MaterialState>& states, const Vec4& de, int repeats,
+                     double& checksum) {
   std::vector<double> times;
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
