@@ -130,26 +130,43 @@ struct BackStressTerms {
   Vec4 drift = Vec4::Zero();  // d eta / d d = sum gamma_i beta_i^2 alpha_i^n (0 when frozen)
   Real modulus = 0.0;         // sum C_i beta_i
   Real slope = 0.0;           // d(d * sum C_i beta_i)/d d
-  std::array<Real, kMaxBackStresses> beta{};
+  Eigen::Array4d beta = Eigen::Array4d::Ones();
 };
 
-BackStressTerms back_stress_terms(const MaterialParams& p, const MaterialState& committed, const Vec4& s_trial, Real d,
-                                  std::optional<Real> frozen) {
+// A committed state's back-stresses with their laws, gathered once per update so that the
+// consistency iteration works on fixed-size arrays (entries past n are zero and add nothing).
+struct BackStressSet {
+  int n = 0;
+  Eigen::Array4d modulus = Eigen::Array4d::Zero();   // C_i
+  Eigen::Array4d recovery = Eigen::Array4d::Zero();  // gamma_i
+  Mat4 alpha = Mat4::Zero();                         // columns alpha_i^n
+};
+
+BackStressSet back_stress_set(const MaterialParams& p, const MaterialState& committed) {
+  static_assert(kMaxBackStresses == 4, "the back-stress arrays hold four");
+  BackStressSet b;
+  b.n = p.n_back_stresses();
+  for (int i = 0; i < b.n; ++i) {
+    const BackStressLaw law = p.back_stress_law(i);
+    b.modulus(i) = law.modulus;
+    b.recovery(i) = law.recovery;
+    b.alpha.col(i) = committed.back_stress[static_cast<std::size_t>(i)];
+  }
+  return b;
+}
+
+BackStressTerms back_stress_terms(const BackStressSet& b, const Vec4& s_trial, Real d, std::optional<Real> frozen) {
   BackStressTerms t;
   t.eta = s_trial;
-  for (int i = 0; i < p.n_back_stresses(); ++i) {
-    const BackStressLaw law = p.back_stress_law(i);
-    const Vec4& alpha = committed.back_stress[static_cast<std::size_t>(i)];
-    const Real beta = 1.0 / (1.0 + law.recovery * frozen.value_or(d));
-    t.beta[static_cast<std::size_t>(i)] = beta;
-    t.eta -= beta * alpha;
-    t.modulus += law.modulus * beta;
-    if (frozen) {
-      t.slope += law.modulus * beta;
-    } else {
-      t.slope += law.modulus * beta * beta;
-      t.drift += law.recovery * beta * beta * alpha;
-    }
+  if (b.n == 0) return t;
+  t.beta = 1.0 / (1.0 + b.recovery * frozen.value_or(d));
+  t.eta -= b.alpha * t.beta.matrix();
+  t.modulus = (b.modulus * t.beta).sum();
+  if (frozen) {
+    t.slope = t.modulus;
+  } else {
+    t.slope = (b.modulus * t.beta.square()).sum();
+    t.drift = b.alpha * (b.recovery * t.beta.square()).matrix();
   }
   return t;
 }
@@ -183,8 +200,8 @@ struct PlasticSolution {
   Consistency consistency{0.0, 0.0};
 };
 
-PlasticSolution plastic_multiplier(const MaterialParams& p, const MaterialState& committed, const Vec4& s_trial,
-                                   const BackStressTerms& t0, std::optional<Real> frozen) {
+PlasticSolution plastic_multiplier(const MaterialParams& p, const MaterialState& committed, const BackStressSet& b,
+                                   const Vec4& s_trial, const BackStressTerms& t0, std::optional<Real> frozen) {
   const Real eps_p = committed.eq_plastic_strain;
   const Consistency c0 = consistency(p, t0, eps_p, 0.0);
   const bool linear = (frozen || p.has_potential()) && !(p.voce_saturation != 0.0 && p.voce_rate != 0.0);
@@ -195,7 +212,7 @@ PlasticSolution plastic_multiplier(const MaterialParams& p, const MaterialState&
   Real d = c0.residual / c0.stiffness;
   const Real scale = yield_stress_at(p, eps_p);
   for (int iter = 0; iter < 100; ++iter) {
-    PlasticSolution at{d, back_stress_terms(p, committed, s_trial, d, frozen), {0.0, 0.0}};
+    PlasticSolution at{d, back_stress_terms(b, s_trial, d, frozen), {0.0, 0.0}};
     at.consistency = consistency(p, at.terms, eps_p, d);
     const Real r = at.consistency.residual;
     if (std::abs(r) <= 1e-14 * scale) return at;
@@ -228,7 +245,8 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
   const Vec4 s_trial = deviator(trial_stress);
   const Real eps_p = committed.eq_plastic_strain;
   const Real sigma_pl = yield_stress_at(p, eps_p);
-  const BackStressTerms t0 = back_stress_terms(p, committed, s_trial, 0.0, frozen);
+  const BackStressSet b = back_stress_set(p, committed);
+  const BackStressTerms t0 = back_stress_terms(b, s_trial, 0.0, frozen);
 
   MaterialUpdate u;
   u.trial = committed;
@@ -241,7 +259,7 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
     return u;
   }
   const Real g = p.shear_modulus();
-  const PlasticSolution solution = plastic_multiplier(p, committed, s_trial, t0, frozen);
+  const PlasticSolution solution = plastic_multiplier(p, committed, b, s_trial, t0, frozen);
   const Real d = solution.d;
   const BackStressTerms& t = solution.terms;
   const Real q_eta = von_mises_of_deviator(t.eta);
@@ -265,11 +283,11 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
   const Vec4 d_eps_p = std::sqrt(1.5) * d * n;
   Real stored = 0.0;
   Real kinematic_work = 0.0;
-  for (int i = 0; i < p.n_back_stresses(); ++i) {
+  for (int i = 0; i < b.n; ++i) {
     const std::size_t k = static_cast<std::size_t>(i);
     const Vec4& alpha_n = committed.back_stress[k];
-    const Vec4 alpha = t.beta[k] * (alpha_n + 2.0 / 3.0 * p.back_stress_law(i).modulus * d_eps_p);
-    stored += 0.5 * contract(d_eps_p, alpha + t.beta[k] * alpha_n);
+    const Vec4 alpha = t.beta(i) * (alpha_n + 2.0 / 3.0 * b.modulus(i) * d_eps_p);
+    stored += 0.5 * contract(d_eps_p, alpha + t.beta(i) * alpha_n);
     kinematic_work += 0.5 * contract(d_eps_p, alpha + alpha_n);
     u.trial.back_stress[k] = alpha;
   }
