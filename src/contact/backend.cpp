@@ -37,6 +37,7 @@ BackendResult ContactBackend::solve_settling_recovery(IncrementProblem& problem,
   RecoveryIteration recovery(problem.strip_model(), kRecoveryStressTolerance);
   BackendResult r = do_solve(problem, x0);
   SolveCounters counters = r.counters;
+  BackendDetails details = r.details;
   while (r.converged() && !recovery.settled(problem.full_increment(r.x))) {
     if (recovery.passes() >= RecoveryIteration::max_passes()) {
       r.status = Termination::Failed;
@@ -45,8 +46,10 @@ BackendResult ContactBackend::solve_settling_recovery(IncrementProblem& problem,
     }
     r = do_solve(problem, r.x);
     counters += r.counters;
+    details.add(r.details);
   }
   r.counters = counters;
+  r.details = details;
   return r;
 }
 

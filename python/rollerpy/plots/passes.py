@@ -1,6 +1,6 @@
 """Figures (PNG) of a multi-pass run: what each pass left in the strip.
 
-usage: ./rollerpy plot-passes OUT_DIR
+usage: ./rollerpy plot-passes OUT_DIR [--compare OUT_DIR2 ...]
 
 Reads OUT_DIR/passes.csv, residual_depth.csv and summary.json (docs/scenes.md, Outputs) and
 writes into OUT_DIR:
@@ -8,12 +8,18 @@ writes into OUT_DIR:
                       track window (max and area mean), in the band at the depth of maximum shear,
                       the net residual shear strain increment there, and the permanent settlement
                       |du_y| of the mid-track surface; the verdict of summary.json in the title
-  residual_depth.png  residual stresses sigma_xx, sigma_zz (the out-of-plane one) and sigma_xy and
-                      the equivalent plastic strain under the middle of the track against depth,
-                      one curve per pass
+  residual_depth.png  residual stresses sigma_xx, sigma_zz (the out-of-plane one) and sigma_xy,
+                      the equivalent plastic strain and, with a kinematic law, the back-stress
+                      sum alpha_xx under the middle of the track against depth, one curve per pass
+  ratchet.png         with --compare: the net residual shear strain increment per pass (signed:
+                      positive when the material above that depth moved in +x, the roller's
+                      travel, relative to the material below) and the
+                      mean plastic strain increment per pass of OUT_DIR and each compared run,
+                      labelled with the scene and its hardening law
 Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
 import os
+import tomllib
 
 from ..command import parser
 from ..outputs import read_numbers, read_summary
@@ -52,14 +58,18 @@ def plot_passes(out, rows, title):
 
 def plot_depth(out, rows, title):
     passes = sorted({int(r["pass"]) for r in rows})
-    fig, axes = plt.subplots(1, 4, figsize=(12, 4.5), sharey=True)
+    keys = ["sxx", "szz", "sxy", "eq_plastic_strain"]
+    labels = ["residual σ_xx [MPa]", "residual σ_zz [MPa]", "residual σ_xy [MPa]", "ε̄ᵖ"]
+    if any(r.get("back_xx", 0.0) != 0.0 for r in rows):  # a kinematic law: the yield surface's centre
+        keys.append("back_xx")
+        labels.append("back-stress Σα_xx [MPa]")
+    fig, axes = plt.subplots(1, len(keys), figsize=(3 * len(keys), 4.5), sharey=True)
     colours = plt.cm.viridis([i / max(1, len(passes) - 1) for i in range(len(passes))])
     for colour, p in zip(colours, passes):
         sel = [r for r in rows if int(r["pass"]) == p]
         depth = [r["depth"] for r in sel]
-        for ax, key in zip(axes, ["sxx", "szz", "sxy", "eq_plastic_strain"]):
+        for ax, key in zip(axes, keys):
             ax.plot([r[key] for r in sel], depth, color=colour, label="pass %d" % p)
-    labels = ["residual σ_xx [MPa]", "residual σ_zz [MPa]", "residual σ_xy [MPa]", "ε̄ᵖ"]
     for ax, label in zip(axes, labels):
         ax.set_xlabel(label)
         ax.grid(True, alpha=0.3)
@@ -90,8 +100,52 @@ def plot(out):
     return os.path.join(out, "passes.png"), os.path.join(out, "residual_depth.png")
 
 
+def run_label(out):
+    """'scene (hardening law)' of a run, from its resolved scene."""
+    try:
+        with open(os.path.join(out, "scene.resolved.toml"), "rb") as f:
+            scene = tomllib.load(f)
+    except (OSError, tomllib.TOMLDecodeError):
+        return os.path.basename(os.path.normpath(out))
+    material = scene.get("material", {})
+    law = material.get("hardening", "elastic" if "yield_stress" not in material else "isotropic")
+    if law == "chaboche":
+        law += " C=%s γ=%s" % (material.get("chaboche_C"), material.get("chaboche_gamma"))
+    elif law in ("isotropic", "kinematic", "mixed"):
+        law += " E_T=%g" % material.get("tangent_modulus", 0.0)
+    return "%s, %s" % (scene.get("name", out), law)
+
+
+def plot_ratchet(outs, path):
+    """ratchet.png: the runs' net shear strain increment and mean plastic increment per pass."""
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 7), sharex=True)
+    for out in outs:
+        rows = read_numbers(os.path.join(out, "passes.csv"))
+        passes = [int(r["pass"]) for r in rows]
+        label = run_label(out)
+        top.plot(passes, [r["residual_shear_increment"] for r in rows], "o-", label=label)
+        bottom.semilogy(passes, positive([r["mean_plastic_increment"] for r in rows]), "s-", label=label)
+    top.axhline(0.0, color="k", lw=0.8)
+    top.set_ylabel("net Δγ_xy over the pass\nat the depth of max shear")
+    bottom.set_ylabel("mean Δε̄ᵖ over the pass\nin the track window")
+    bottom.set_xlabel("pass")
+    for ax in (top, bottom):
+        ax.grid(True, which="both", alpha=0.3)
+    top.legend(fontsize=8)
+    top.set_title("ratchetting per pass (positive: the layer above moved along the roller's travel, +x)",
+                  fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    return path
+
+
 def main(argv=None):
     ap = parser("plot-passes", __doc__)
     ap.add_argument("out")
+    ap.add_argument("--compare", nargs="+", default=[], metavar="OUT_DIR",
+                    help="other multi-pass runs drawn beside OUT_DIR in ratchet.png")
     args = ap.parse_args(argv)
     print("wrote %s and %s" % plot(args.out))
+    if args.compare:
+        print("wrote", plot_ratchet([args.out] + args.compare, os.path.join(args.out, "ratchet.png")))

@@ -1,0 +1,44 @@
+"""plot-passes on multi-pass output folders written here (the files' documented columns):
+passes.png and residual_depth.png of one run, ratchet.png of several with --compare, each run
+labelled with its scene and hardening law from scene.resolved.toml."""
+import os
+
+from rollerpy.plots import passes
+
+
+def write_run(folder, name, material, shear_per_pass):
+    os.makedirs(folder)
+    with open(os.path.join(folder, "scene.resolved.toml"), "w") as f:
+        f.write('name = "%s"\n[material]\nE = 210000.0\nyield_stress = 888.0\n%s\n' % (name, material))
+    with open(os.path.join(folder, "summary.json"), "w") as f:
+        f.write('{"scene": "%s", "passes": {"verdict": "ratchetting", "p0_over_k": 4.5}}' % name)
+    cols = ("step,pass,max_plastic_increment,mean_plastic_increment,band_plastic_increment,surface_ux,"
+            "surface_uy,surface_dux,surface_duy,shear_depth,residual_shear_strain,residual_shear_increment,"
+            "peak_pressure,contact_half_width,track_start,track_end")
+    with open(os.path.join(folder, "passes.csv"), "w") as f:
+        f.write(cols + "\n")
+        for p, g in enumerate(shear_per_pass, start=1):
+            f.write("%d,%d,1e-2,%g,1e-3,0,0,0,-1e-5,1.0,0,%g,2300,2.0,96,104\n" % (21 * p, p, 4e-4 / p, g))
+    with open(os.path.join(folder, "residual_depth.csv"), "w") as f:
+        f.write("step,pass,x,depth,sxx,syy,szz,sxy,eq_plastic_strain,back_xx,back_yy,back_zz,back_xy\n")
+        for p in range(1, len(shear_per_pass) + 1):
+            for depth in (0.1, 0.5, 1.0, 2.0):
+                f.write("%d,%d,100,%g,%g,0,-10,5,1e-3,1,0,-1,0\n" % (21 * p, p, depth, -100 * depth))
+
+
+def test_one_run_and_a_comparison_write_their_figures(tmp_path):
+    epp = str(tmp_path / "epp")
+    kin = str(tmp_path / "kin")
+    af = str(tmp_path / "af")
+    write_run(epp, "shakedown_p45", "tangent_modulus = 0.0", [3e-3, -6e-4, -8e-4])
+    write_run(kin, "shakedown_kinematic_p45", 'hardening = "kinematic"\ntangent_modulus = 4200.0',
+              [3e-3, -8e-4, -5e-4])
+    write_run(af, "shakedown_kinematic_p45", 'hardening = "chaboche"\nchaboche_C = [4286.0]\n'
+              'chaboche_gamma = [20.0]', [3e-3, -8e-4, -4e-4])
+    written = passes.plot(epp)
+    assert all(os.path.getsize(p) > 10000 for p in written)
+    assert passes.run_label(epp) == "shakedown_p45, isotropic E_T=0"
+    assert passes.run_label(kin) == "shakedown_kinematic_p45, kinematic E_T=4200"
+    assert passes.run_label(af) == "shakedown_kinematic_p45, chaboche C=[4286.0] γ=[20.0]"
+    passes.main([epp, "--compare", kin, af])
+    assert os.path.getsize(os.path.join(epp, "ratchet.png")) > 10000
