@@ -156,7 +156,7 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
       r.iterations += s.counters.iterations;
       r.factorizations += s.counters.factorizations;
       r.penetration = std::max(r.penetration, s.max_penetration);
-      if (!s.converged) {
+      if (!s.converged()) {
         r.status = "failed";
         r.message = s.message;
         break;

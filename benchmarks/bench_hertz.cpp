@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
         penetration = 0.0;
         for (int step = 1; step <= sim.scene().steps.n_steps && ok; ++step) {
           const auto res = sim.advance_step(step);
-          ok = res.converged;
+          ok = res.converged();
           iterations += res.counters.iterations;
           penetration = std::max(penetration, res.max_penetration);
         }

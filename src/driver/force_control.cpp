@@ -66,7 +66,7 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
     out.force = *f;
     const Sample now{w, *f - target, settings.axis == ForceAxis::Horizontal || *f > 0.0};
     if (std::abs(now.r) <= settings.force_tolerance) {
-      out.converged = true;
+      out.status = Termination::Converged;
       out.stiffness = slope;
       return out;
     }
@@ -124,6 +124,7 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
     }
     w = w_next;
   }
+  out.status = Termination::LimitReached;
   out.message = fmt::format(
       "the roller's {} under the prescribed force {:.6g} N/mm did not converge in {} contact solves (force {:.6g} "
       "N/mm): take smaller steps (a larger steps.count, or steps.max_cuts)",

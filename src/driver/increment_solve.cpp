@@ -87,7 +87,7 @@ Vec2 IncrementSolve::strip_force() const {
 
 IncrementSolution IncrementSolve::finish() {
   report_.max_penetration = solution_.contact.max_penetration;
-  if (report_.converged) solution_.u = energy_.full_increment(solution_.contact.x);
+  if (report_.converged()) solution_.u = energy_.full_increment(solution_.contact.x);
   return std::move(solution_);
 }
 

@@ -57,7 +57,7 @@ class IncrementSolve {
 // the work of all of them.
 template <class Result>
 void add_solve(IncrementReport& report, const Result& r) {
-  report.converged = r.converged();
+  report.status = r.status;
   report.counters += r.counters;
   report.residual = r.residual;
   report.message = r.message;

@@ -24,7 +24,7 @@ IncrementSolution IncrementSolver::solve(IncrementEnergy& energy, const VecX& pr
     add_solve(report, newton);
     while (newton.converged() && !recovery.settled(energy.full_increment(x))) {
       if (recovery.passes() >= RecoveryIteration::max_passes()) {
-        report.converged = false;
+        report.status = Termination::LimitReached;
         report.message = recovery.failure();
         break;
       }

@@ -53,7 +53,7 @@ Row solver_row(const Simulation::StepRecord& r, const MonitorReport& monitor, do
           {"condensed_dofs", "-", static_cast<Real>(stats.condensed_dofs)},
           {"ipopt_time_s", "s", stats.ipopt_time_s},
           {"cold_restarts", "-", static_cast<Real>(stats.cold_restarts)},
-          {"status", "-", std::string(r.converged ? "converged" : "failed")}};
+          {"status", "-", std::string(enum_name(r.status))}};
 }
 
 Row contact_row(int step, int pass, const NodeContactRecord& c) {

@@ -43,8 +43,8 @@ void couple_suspended(IncrementSolve& solve) {
   const CouplingResult cr = couple_suspension(suspension, suspension.predicted_deflection(), force_at,
                                               1e-10 * motion.radius, max_deflection, 40);
   report.suspension_passes = cr.iterations;
-  if (!cr.converged) {
-    report.converged = false;
+  if (!cr.converged()) {
+    report.status = cr.status;
     report.message = cr.message;
   }
   solve.solution().deflection = cr.deflection;
@@ -102,7 +102,7 @@ class LoadedRoller {
     IncrementReport& report = solve_.report();
     if (!force_.fx) {
       if (!solve_at_x()) {
-        report.converged = false;
+        if (report.converged()) report.status = Termination::Failed;
         report.message = failure_;
       }
       return;
@@ -117,8 +117,8 @@ class LoadedRoller {
     };
     const ForceControlResult fc =
         solve_for_force(*force_.fx, solve_.start().load_offset.x(), settings(ForceAxis::Horizontal), fx_at);
-    if (!fc.converged) {
-      report.converged = false;
+    if (!fc.converged()) {
+      report.status = failure_.empty() ? fc.status : Termination::Failed;
       report.message = failure_.empty() ? fc.message : failure_;
       return;
     }
@@ -178,7 +178,7 @@ class LoadedRoller {
     const ForceControlResult fc =
         solve_for_force(*force_.fy, solution.load_offset.y(), settings(ForceAxis::Vertical), fy_at);
     solve_.report().load_passes += fc.iterations;
-    if (!fc.converged) return fail(fc.message);
+    if (!fc.converged()) return fail(fc.message);
     solution.load_offset.y() = fc.offset;
     solution.load_stiffness.y() = fc.stiffness;
     return last;

@@ -243,7 +243,7 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     state_.totals.cuts += res.cuts;
     state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
     outputs.write_solver_row(res, monitor.check(step, *model_), wall);
-    if (!res.converged) {
+    if (!res.converged()) {
       summary.converged = false;
       summary.message = res.message;
       if (options.progress) *options.progress << "error: " << res.message << "\n";

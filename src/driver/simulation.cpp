@@ -125,7 +125,7 @@ IncrementReport Simulation::advance(Real s_from, Real s_to) {
   IncrementStart start = increment_start(s_to);
   const IncrementSolution solution =
       solver_.solve(energy, prescribed, predictor(s_from, s_to, scene_.roller ? &start.motion : nullptr), start, inc);
-  if (inc.converged) commit(solution, start.motion, s_from, s_to, inc);
+  if (inc.converged()) commit(solution, start.motion, s_from, s_to, inc);
   return inc;
 }
 
@@ -147,14 +147,14 @@ VecX Simulation::predictor(Real s_from, Real s_to, const RollerMotion* motion) c
 
 void Simulation::commit(const IncrementSolution& solution, const RollerMotion& motion, Real s_from, Real s_to,
                         IncrementReport& inc) {
-  ROLLER_ASSERT(inc.converged && solution.u.size() == model_->n_dofs(), "a converged increment of all dofs");
+  ROLLER_ASSERT(inc.converged() && solution.u.size() == model_->n_dofs(), "a converged increment of all dofs");
   ROLLER_ASSERT(s_to > s_from, "an increment moves forward in steps");
   try {
     inc.n_yielded = model_->commit(solution.u);
   } catch (const NumericalError& e) {
     // A solver reported success at a state the strip cannot take (e.g. an inverted element):
     // treat it as a failed increment so the step is cut; nothing was committed.
-    inc.converged = false;
+    inc.status = Termination::Failed;
     inc.message = fmt::format("the increment's solution is not admissible: {}", e.what());
     return;
   }
@@ -258,13 +258,14 @@ Simulation::StepRecord Simulation::advance_step(int step) {
     res.counters += inc.counters;
     res.details.add(inc.details);
     res.last = inc;
-    if (inc.converged) {
+    if (inc.converged()) {
       s += ds;
       res.max_penetration = std::max(res.max_penetration, inc.max_penetration);
       res.n_yielded = inc.n_yielded;
       continue;
     }
     if (res.cuts >= scene_.steps.max_cuts) {
+      res.status = inc.status;  // how the last sub-increment ended: a budget ran out, or it failed
       res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}{}", step, res.cuts,
                                 ds, inc.message, incompressibility_hint(scene_.material));
       if (before_return && s == step - 1) {  // nothing of the step committed: undo the return too
@@ -276,7 +277,7 @@ Simulation::StepRecord Simulation::advance_step(int step) {
     ++res.cuts;
     ds *= 0.5;
   }
-  res.converged = true;
+  res.status = Termination::Converged;
   state_.roller_velocity = (state_.pose.centre - centre_start) / scene_.steps.dt;
   ++state_.steps_done;
   dynamics_.finish_step(model_->total_displacement());

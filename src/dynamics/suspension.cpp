@@ -54,7 +54,7 @@ CouplingResult couple_suspension(const Suspension& suspension, Real w0,
       return out;
     }
     if (std::abs(w_next - w) <= w_tolerance) {
-      out.converged = true;
+      out.status = Termination::Converged;
       return out;
     }
     w_prev = w;
@@ -62,6 +62,7 @@ CouplingResult couple_suspension(const Suspension& suspension, Real w0,
     have_prev = true;
     w = w_next;
   }
+  out.status = Termination::LimitReached;
   out.message = fmt::format(
       "the roller suspension and the contact did not converge in {} passes (last change of the deflection "
       "above {:.3g} mm): use a smaller time step or a stiffer suspension",

@@ -54,8 +54,8 @@ TEST_CASE("arc predictor: Z2 and Z1 reach the same states as the default predict
         INFO("step " << step);
         const auto a = arc.advance_step(step);
         const auto b = plain.advance_step(step);
-        REQUIRE(a.converged);
-        REQUIRE(b.converged);
+        REQUIRE(a.converged());
+        REQUIRE(b.converged());
         if (a.cuts > 0 || b.cuts > 0) break;
         CHECK((arc.roller_force() - plain.roller_force()).norm() <= 1e-3 * plain.roller_force().norm());
         ++compared;

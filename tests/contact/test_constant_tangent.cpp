@@ -26,8 +26,8 @@ TEST_CASE("constant tangent: one factorisation for the run, the answers of the u
   for (int step = 1; step <= condensed.scene().total_steps(); ++step) {
     const Simulation::StepRecord r = condensed.advance_step(step);
     INFO("step " << step << ": " << r.details.brief());
-    REQUIRE(r.converged);
-    REQUIRE(full.advance_step(step).converged);
+    REQUIRE(r.converged());
+    REQUIRE(full.advance_step(step).converged());
     CHECK(r.counters.factorizations == (step == 1 ? 1 : 0));  // reused after the first
     // Hertz is linear but for the contact: one linearisation solves an increment.
     CHECK(r.details.get<IpoptDetails>().linearisations == 1);
@@ -48,7 +48,7 @@ TEST_CASE("constant tangent: the run-time monitor takes the inertia of the conta
     std::vector<SceneOverride> overrides;
     if (plastic) overrides = {{"material.yield_stress", "300.0"}, {"material.tangent_modulus", "2100.0"}};
     Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml", overrides));
-    REQUIRE(sim.advance_step(1).converged);
+    REQUIRE(sim.advance_step(1).converged());
     StepMonitor borrowing(true, sim.scene().steps.dt, nullptr, sim.contact_backend(), nullptr);
     StepMonitor own(true, sim.scene().steps.dt, nullptr, nullptr, nullptr);
     const MonitorReport held = borrowing.check(1, sim.model()), computed = own.check(1, sim.model());
@@ -69,8 +69,8 @@ TEST_CASE("constant tangent: a resumed run factorises afresh and agrees to round
   test::TempDir dir("roller_constant_tangent_resume");
   Simulation whole(load_scene(scene)), first(load_scene(scene));
   for (int step = 1; step <= 2; ++step) {
-    REQUIRE(whole.advance_step(step).converged);
-    REQUIRE(first.advance_step(step).converged);
+    REQUIRE(whole.advance_step(step).converged());
+    REQUIRE(first.advance_step(step).converged());
   }
   first.save_state(dir.path() / "after_2.cbor");
   Simulation resumed(load_scene(scene));
@@ -78,8 +78,8 @@ TEST_CASE("constant tangent: a resumed run factorises afresh and agrees to round
   for (int step = 3; step <= 4; ++step) {
     INFO("step " << step);
     const Simulation::StepRecord w = whole.advance_step(step), r = resumed.advance_step(step);
-    REQUIRE(w.converged);
-    REQUIRE(r.converged);
+    REQUIRE(w.converged());
+    REQUIRE(r.converged());
     CHECK(w.counters.factorizations == 0);
     CHECK(r.counters.factorizations == (step == 3 ? 1 : 0));
     CHECK((whole.roller_force() - resumed.roller_force()).norm() <= 1e-10 * whole.roller_force().norm());

@@ -75,7 +75,7 @@ TEST_CASE("force control: a load nothing carries stops the step with a message",
   Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml",
                             {{"roller.centre", "[500.0, 200.0]"}, {"roller.path", "[{steps=[1,4], fy=1000.0}]"}}));
   const Simulation::StepRecord r = sim.advance_step(1);
-  CHECK_FALSE(r.converged);
+  CHECK_FALSE(r.converged());
   CHECK_THAT(r.message, Catch::Contains("nothing carries the load"));
 }
 
@@ -207,9 +207,9 @@ TEST_CASE("force control: a horizontal force beyond friction stops with a messag
       std::string(ROLLER_SOURCE_DIR) + "/problems/cattaneo.toml",
       {{"steps.count", "2"},
        {"roller.path", fmt::format("[{{steps=[1,1], fy={}}}, {{steps=[2,2], fy={}, fx={}}}]", p, p, -1.5 * mu * p)}}));
-  REQUIRE(sim.advance_step(1).converged);
+  REQUIRE(sim.advance_step(1).converged());
   const Simulation::StepRecord r = sim.advance_step(2);
-  CHECK_FALSE(r.converged);
+  CHECK_FALSE(r.converged());
   CHECK_THAT(r.message, Catch::Contains("the roller slides"));
   CHECK(std::isfinite(sim.state().pose.centre.x()));
   CHECK(sim.state().steps_done == 1);

@@ -48,7 +48,7 @@ TEST_CASE("passes: the second pass over an elastic strip repeats the first from 
                             {override_of(kPass), {"steps.count", "8"}, {"passes.count", "2"}}));
   std::vector<Vec2> pass1_force, pass1_centre;
   for (int step = 1; step <= 16; ++step) {
-    REQUIRE(sim.advance_step(step).converged);
+    REQUIRE(sim.advance_step(step).converged());
     if (step <= 8) {
       pass1_force.push_back(sim.roller_force());
       pass1_centre.push_back(sim.state().pose.centre);

@@ -13,7 +13,7 @@ TEST_CASE("penalty backend: a penalty beyond double precision stops the step and
       load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/z1_outf05.toml",
                  {{"contact.backend", "\"penalty\""}, {"contact.penalty.factor", "1e12"}, {"steps.max_cuts", "0"}}));
   const Simulation::StepRecord r = sim.advance_step(1);
-  CHECK_FALSE(r.converged);
+  CHECK_FALSE(r.converged());
   CHECK_THAT(r.message, Catch::Contains("too stiff for double precision"));
   CHECK_THAT(r.message, Catch::Contains("contact.penalty.factor"));
 }

@@ -91,8 +91,8 @@ TEST_CASE("rolling predictor: rolling with friction reaches the default predicto
       INFO("step " << step);
       const auto a = rolling.advance_step(step);
       const auto b = plain.advance_step(step);
-      REQUIRE(a.converged);
-      REQUIRE(b.converged);
+      REQUIRE(a.converged());
+      REQUIRE(b.converged());
       CHECK((rolling.roller_force() - plain.roller_force()).norm() <= 1e-4 * plain.roller_force().norm());
     }
   }

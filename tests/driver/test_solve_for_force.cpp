@@ -34,7 +34,7 @@ TEST_CASE("force control: a linear contact spring is met in two solves with its 
   for (const Real guess : {1e3, 2e5, 1e8}) {
     calls = 0;
     const ForceControlResult r = solve_for_force(1e4, 0.0, settings(1e-6, guess), force);
-    REQUIRE(r.converged);
+    REQUIRE(r.converged());
     CHECK(r.offset == Approx(d - 1e4 / k).epsilon(1e-12));
     CHECK(std::abs(r.force - 1e4) <= 1e-6);
     // The exact slope: one Newton step. A guess 200 times too soft lifts the roller off the strip
@@ -62,7 +62,7 @@ TEST_CASE("force control: a roller above the strip is lowered onto it, Hertz's l
   };
   const Real target = 1500.0;
   const ForceControlResult r = solve_for_force(target, 0.0, settings(1e-6 * target, e_star), force);
-  REQUIRE(r.converged);
+  REQUIRE(r.converged());
   CHECK(std::abs(r.force - target) <= 1e-6 * target);
   CHECK(-1.0 - r.offset == Approx(approach(target)).epsilon(1e-6));
   CHECK(r.iterations <= 20);  // 8 searching down, 7 in contact (measured: 15)
@@ -72,22 +72,22 @@ TEST_CASE("force control: loads nothing carries and failing solves stop with a m
   // A strip that gives way: the force saturates below the load.
   auto collapsing = [](Real w) -> std::optional<Real> { return 900.0 * std::tanh(std::max(-w, 0.0)); };
   const ForceControlResult c = solve_for_force(1000.0, 0.0, settings(1e-6, 1e3), collapsing);
-  CHECK_FALSE(c.converged);
+  CHECK_FALSE(c.converged());
   CHECK_THAT(c.message, Contains("nothing carries the load"));
   CHECK(std::isfinite(c.offset));
   // A pull: contact only pushes.
   auto contact = [](Real w) -> std::optional<Real> { return 1e3 * std::max(-w, 0.0); };
   const ForceControlResult pull = solve_for_force(-10.0, 0.0, settings(1e-6, 1e3), contact);
-  CHECK_FALSE(pull.converged);
+  CHECK_FALSE(pull.converged());
   CHECK_THAT(pull.message, Contains("nothing carries the load"));
   // Zero load with the roller off the strip: already there.
   const ForceControlResult zero = solve_for_force(0.0, 0.5, settings(1e-6, 1e3), contact);
-  CHECK(zero.converged);
+  CHECK(zero.converged());
   CHECK(zero.iterations == 1);
   // A solve that fails is reported, with where.
   auto failing = [](Real) -> std::optional<Real> { return std::nullopt; };
   const ForceControlResult f = solve_for_force(10.0, 0.25, settings(1e-6, 1e3), failing);
-  CHECK_FALSE(f.converged);
+  CHECK_FALSE(f.converged());
   CHECK_THAT(f.message, Contains("contact solve failed") && Contains("0.25 mm"));
 }
 
@@ -101,14 +101,14 @@ TEST_CASE("force control: a horizontal force of either sign is met on a friction
     ForceControlSettings s = settings(1e-6 * mu_p, k);
     s.axis = ForceAxis::Horizontal;
     const ForceControlResult r = solve_for_force(target, 0.0, s, friction);
-    REQUIRE(r.converged);
+    REQUIRE(r.converged());
     CHECK(std::abs(r.force - target) <= 1e-6 * mu_p);
     CHECK(r.offset == Approx(-mu_p / k * std::atanh(target / mu_p)).epsilon(1e-5));
   }
   ForceControlSettings s = settings(1e-6 * mu_p, k);
   s.axis = ForceAxis::Horizontal;
   const ForceControlResult slide = solve_for_force(-1000.0, 0.0, s, friction);
-  CHECK_FALSE(slide.converged);
+  CHECK_FALSE(slide.converged());
   CHECK_THAT(slide.message, Contains("the roller slides") && Contains("dx"));
   CHECK(std::isfinite(slide.offset));
 }

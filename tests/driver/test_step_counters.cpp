@@ -22,7 +22,7 @@ TEST_CASE("step counters: a suspended roller's linearisations and NLP solves sum
   for (int step = 1; step <= 6; ++step) {
     const Simulation::StepRecord r = sim.advance_step(step);
     INFO("step " << step << ": " << r.details.brief());
-    REQUIRE(r.converged);
+    REQUIRE(r.converged());
     CHECK(r.details.get<IpoptDetails>().linearisations == r.counters.factorizations);
     CHECK(r.details.get<IpoptDetails>().nlp_solves >= r.details.get<IpoptDetails>().linearisations);
     CHECK(r.details.get<IpoptDetails>().ipopt_time_s > 0.0);

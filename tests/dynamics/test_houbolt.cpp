@@ -126,14 +126,14 @@ TEST_CASE("Suspension coupling converges to the equilibrium with a linear contac
     return k_c * std::max(d - w, 0.0);
   };
   const CouplingResult r = couple_suspension(s, 0.0, force, 1e-12, 1e3, 40);
-  REQUIRE(r.converged);
+  REQUIRE(r.converged());
   const Real k_eff = s.effective_stiffness();
   CHECK(r.deflection == Approx(k_c * d / (k_eff + k_c)).epsilon(1e-10));
   CHECK(r.iterations <= 4);  // the secant is exact on a linear residual after the first step
   // A contact that fails is reported, not hidden.
   auto failing = [](Real) -> std::optional<Real> { return std::nullopt; };
   const CouplingResult f = couple_suspension(s, 0.0, failing, 1e-12, 1e3, 40);
-  CHECK_FALSE(f.converged);
+  CHECK_FALSE(f.converged());
   CHECK(f.message.find("contact solve failed") != std::string::npos);
   // A suspension far too soft for the force stops with a message instead of w = inf (a fuzzed
   // stiffness of 1e-308 gave "deflection w = inf").
@@ -141,7 +141,7 @@ TEST_CASE("Suspension coupling converges to the equilibrium with a linear contac
   soft.stiffness = 1e-308;
   const Suspension limp(soft, HouboltHistory::at_rest(VecX::Zero(1), dt));
   const CouplingResult g = couple_suspension(limp, 0.0, force, 1e-12, 1e3, 40);
-  CHECK_FALSE(g.converged);
+  CHECK_FALSE(g.converged());
   CHECK(std::isfinite(g.deflection));
   CHECK(g.message.find("too soft") != std::string::npos);
 }

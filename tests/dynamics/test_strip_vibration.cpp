@@ -88,7 +88,7 @@ TEST_CASE("Elastic strip in its first mode decays exactly by Houbolt's dissipati
   std::vector<Real> q;       // modal coordinate about the equilibrium
   std::vector<Real> scaled;  // energy about the equilibrium / (e0 |z|^(2n))
   for (int n = 1; n <= steps; ++n) {
-    REQUIRE(sim.advance_step(n).converged);
+    REQUIRE(sim.advance_step(n).converged());
     const VecX u = dofs.restrict_to_free(sim.model().total_displacement());
     const VecX du = u - u_static;
     const Real e = sim.dynamics().kinetic_energy() + 0.5 * du.dot(K * du);

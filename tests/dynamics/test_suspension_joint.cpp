@@ -30,8 +30,8 @@ struct JointAndPasses {
   std::pair<Simulation::StepRecord, Simulation::StepRecord> advance(int step) {
     auto a = joint.advance_step(step);
     auto b = passes.advance_step(step);
-    REQUIRE(a.converged);
-    REQUIRE(b.converged);
+    REQUIRE(a.converged());
+    REQUIRE(b.converged());
     joint_linearisations += a.details.get<IpoptDetails>().linearisations;
     passes_linearisations += b.details.get<IpoptDetails>().linearisations;
     return {a, b};
@@ -82,7 +82,7 @@ TEST_CASE("Suspended roller: the penalty backend couples by passes whatever the 
   REQUIRE(penalty.scene().contact.roller_coupling == RollerCoupling::Joint);
   for (int step = 1; step <= 6; ++step) {
     const Simulation::StepRecord r = penalty.advance_step(step);
-    REQUIRE(r.converged);
+    REQUIRE(r.converged());
     if (step >= 5) CHECK(r.last.suspension_passes >= 2);  // in contact from step 4 on
   }
 }

@@ -85,8 +85,8 @@ void check_lockstep_agreement(const std::string& name, const std::vector<SceneOv
     INFO("step " << step);
     const auto a = ip.advance_step(step);
     const auto b = pe.advance_step(step);
-    REQUIRE(a.converged);
-    REQUIRE(b.converged);
+    REQUIRE(a.converged());
+    REQUIRE(b.converged());
     CHECK(a.cuts == 0);
     CHECK(b.cuts == 0);
     const Real scale = pe.roller_force().norm();

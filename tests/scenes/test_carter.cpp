@@ -143,7 +143,7 @@ TEST_CASE("Carter under a prescribed traction: the creep is an outcome and meets
   std::vector<Real> xc(n + 1), offset(n + 1);
   for (int step = 1; step <= n; ++step) {
     const Simulation::StepRecord r = sim.advance_step(step);
-    REQUIRE(r.converged);
+    REQUIRE(r.converged());
     xc[step] = sim.state().pose.centre.x();
     offset[step] = sim.state().load_offset.x();
   }

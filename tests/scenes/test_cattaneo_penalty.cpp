@@ -71,9 +71,9 @@ slip = 1.0
 friction = 0.0
 )";
   Simulation sim(parse_scene(text, "translation.toml"));
-  for (int step = 1; step <= 2; ++step) REQUIRE(sim.advance_step(step).converged);
+  for (int step = 1; step <= 2; ++step) REQUIRE(sim.advance_step(step).converged());
   const Vec2 before = sim.roller_force();
-  for (int step = 3; step <= 4; ++step) REQUIRE(sim.advance_step(step).converged);
+  for (int step = 3; step <= 4; ++step) REQUIRE(sim.advance_step(step).converged());
   const Vec2 after = sim.roller_force();
   REQUIRE(before.y() > 0.0);
   CHECK(std::abs(after.x()) < 1e-6 * after.y());

@@ -59,7 +59,7 @@ std::vector<RollerRow> run(const std::string& scene, const std::string& backend,
   Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml", overrides));
   std::vector<RollerRow> rows{{0, sim.state().pose.centre, sim.roller_force()}};
   for (int step = 1; step <= sim.scene().steps.n_steps; ++step) {
-    REQUIRE(sim.advance_step(step).converged);
+    REQUIRE(sim.advance_step(step).converged());
     rows.push_back({step, sim.state().pose.centre, sim.roller_force()});
   }
   return rows;

@@ -39,8 +39,8 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
     int largest_step = 0;
     for (int step = 1; step <= sim.scene().steps.n_steps; ++step) {
       INFO("step " << step);
-      REQUIRE(sim.advance_step(step).converged);
-      REQUIRE(penalty.advance_step(step).converged);
+      REQUIRE(sim.advance_step(step).converged());
+      REQUIRE(penalty.advance_step(step).converged());
       const Real fy = sim.roller_force().y();
       // Before contact the coupling's own tolerance (k x 1e-10 R) is the scale, not the force.
       const Real coupling_tol = 2.0 * sim.scene().roller->suspension->stiffness * 1e-10 * sim.scene().roller->radius;
@@ -74,7 +74,7 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
   Real first_force_47 = 0.0;
   for (int step = 1; step <= first.scene().steps.n_steps; ++step) {
     INFO("DATA01 step " << step);
-    REQUIRE(first.advance_step(step).converged);
+    REQUIRE(first.advance_step(step).converged());
     CHECK(std::abs(suspension_imbalance(first)) <= 1e-5 * force_scale);
     if (step == 1) touched_at_step_1 = first.roller_force().y() > 0.0;
     if (step == 47) first_force_47 = first.roller_force().y();
@@ -94,7 +94,7 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
   CHECK(second.state().pose.centre.y() < first.scene().roller->start_centre->y() - 0.5);
   for (int step = 1; step <= second.scene().steps.n_steps; ++step) {
     INFO("DATA02 step " << step);
-    REQUIRE(second.advance_step(step).converged);
+    REQUIRE(second.advance_step(step).converged());
     if (step == 1) CHECK(second.roller_force().y() > 0.0);  // pressing into the groove at once
     CHECK(std::abs(suspension_imbalance(second)) <= 1e-5 * 2.0 * force_scale);
     // The thesis (its figures 5.18, 5.19): the second pass leaves larger stresses; it needs a

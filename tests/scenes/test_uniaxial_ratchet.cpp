@@ -24,7 +24,7 @@ std::vector<Real> block_strains(const std::vector<SceneOverride>& overrides) {
   const Mesh& mesh = sim.model().mesh();
   std::vector<Real> strains;
   for (int step = 1; step <= sim.scene().total_steps(); ++step) {
-    REQUIRE(sim.advance_step(step).converged);
+    REQUIRE(sim.advance_step(step).converged());
     Real uy = 0.0;
     int n = 0;
     for (Index a = 0; a < mesh.n_nodes(); ++a)

@@ -12,7 +12,7 @@ namespace roller::test {
 
 inline Simulation run_scene(const std::string& name, const std::vector<SceneOverride>& overrides = {}) {
   Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml", overrides));
-  for (int step = 1; step <= sim.scene().total_steps(); ++step) REQUIRE(sim.advance_step(step).converged);
+  for (int step = 1; step <= sim.scene().total_steps(); ++step) REQUIRE(sim.advance_step(step).converged());
   return sim;
 }
 

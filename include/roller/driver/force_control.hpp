@@ -11,6 +11,7 @@
 #include <string>
 
 #include "roller/core/types.hpp"
+#include "roller/solver/termination.hpp"
 
 namespace roller {
 
@@ -28,12 +29,13 @@ struct ForceControlSettings {
 };
 
 struct ForceControlResult {
-  bool converged = false;
+  Termination status = Termination::Failed;
   int iterations = 0;    // contact solves
   Real offset = 0.0;     // w at the last solve
   Real force = 0.0;      // F(w) there
   Real stiffness = 0.0;  // converged: the slope dF/d(-w) last used (> 0), a guess for the next increment
   std::string message;
+  bool converged() const { return status == Termination::Converged; }
 };
 
 // Finds w with F(w) = target, starting at w0. `force_at(w)` solves the increment with the centre

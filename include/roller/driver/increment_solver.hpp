@@ -20,7 +20,7 @@ namespace roller {
 // What an increment's solves did: the outcome of the last one, the work of all of them (a coupled
 // roller solves the contact several times).
 struct IncrementReport {
-  bool converged = false;
+  Termination status = Termination::Failed;
   SolveCounters counters;
   Real residual = 0.0;
   Real max_penetration = 0.0;
@@ -29,6 +29,7 @@ struct IncrementReport {
   int suspension_passes = 0;  // passes coupling the suspension with the contact
   int load_passes = 0;        // contact solves finding the height that carries the prescribed force
   std::string message;
+  bool converged() const { return status == Termination::Converged; }
 };
 
 // What a converged increment commits.

@@ -129,7 +129,7 @@ class Simulation {
     int step = 0;
     int pass = 1;
     Real time = 0.0;
-    bool converged = false;
+    Termination status = Termination::Failed;
     int cuts = 0;
     SolveCounters counters;  // of the step's sub-increments
     BackendDetails details;  // of the step's sub-increments: their work summed, the rest of the last one
@@ -137,6 +137,7 @@ class Simulation {
     Index n_yielded = 0;   // integration points that yielded in the step's last converged increment
     IncrementReport last;  // the last increment tried
     std::string message;   // why the step failed
+    bool converged() const { return status == Termination::Converged; }
     // The step ended a pass of a multi-pass run: what the pass left (analysis/pass_metrics.hpp),
     // with the residual state by depth under the middle of its track (at x = profile_x).
     struct PassEnd {

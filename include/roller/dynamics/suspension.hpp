@@ -14,6 +14,7 @@
 
 #include "roller/dynamics/houbolt.hpp"
 #include "roller/dynamics/suspension_spec.hpp"
+#include "roller/solver/termination.hpp"
 
 namespace roller {
 
@@ -42,11 +43,12 @@ class Suspension {
 };
 
 struct CouplingResult {
-  bool converged = false;
+  Termination status = Termination::Failed;
   int iterations = 0;  // contact solves
   Real deflection = 0.0;
   Real force = 0.0;  // F_y at the final deflection
   std::string message;
+  bool converged() const { return status == Termination::Converged; }
 };
 
 // Finds w with r(w) = 0. `contact_force(w)` solves the strip's contact increment with the roller

@@ -1,6 +1,8 @@
 #pragma once
 // How a solve ended: the one word for every solve (Newton, a contact backend, an NLP's friction
 // passes); the driver cuts the step on anything but Converged.
+#include "roller/core/enum_names.hpp"
+
 namespace roller {
 
 enum class Termination {
@@ -8,6 +10,13 @@ enum class Termination {
   LimitReached,  // an iteration, pass or stage budget ran out, or the method stalled: a smaller
                  // step (or a larger budget) may succeed
   Failed,        // no usable solution: the strip could not be evaluated, NaN, a solver error
+};
+template <>
+struct EnumNames<Termination> {
+  static constexpr std::array<std::pair<Termination, const char*>, 3> names{
+      {{Termination::Converged, "converged"},
+       {Termination::LimitReached, "limit_reached"},
+       {Termination::Failed, "failed"}}};
 };
 
 }  // namespace roller
