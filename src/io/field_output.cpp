@@ -91,7 +91,16 @@ StripFields strip_fields(const StripModel& model, const VecX& step_increment) {
   }
 
   out.point_data = {displacement, stress_n, sqrt_i2_n, mises_n, eps_p_n, strain_n, strain_inc_n};
-  out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl};
+  // The strip's make-up (docs/model.md, Layered strips and hardness profiles): each element's band
+  // (0 = the top [[layer]], the number of layers = [material]) and initial yield stress (0 elastic).
+  VtuField layer = field("layer", 1, n_el);
+  VtuField yield0 = field("initial_yield_stress", 1, n_el);
+  for (Index e = 0; e < n_el; ++e) {
+    const MaterialParams& m = model.material(e);
+    layer.values[e] = model.materials().layer_of(e);
+    yield0.values[e] = m.plastic ? m.yield_stress : 0.0;
+  }
+  out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl, layer, yield0};
   return out;
 }
 
