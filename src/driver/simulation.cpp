@@ -29,7 +29,7 @@ Mesh make_mesh_that_fits(const Scene& scene) {
                     scene.contact.ipopt.formulation == IpoptFormulation::Condensed &&
                     tangent_is_constant(scene.element.kinematics, scene.strip_material().any_plastic());
   if (const auto available = available_memory()) {
-    check_run_memory(scene.mesh, scene.newton.linear, *available,
+    check_run_memory(scene.strip_mesh_spec(), scene.newton.linear, *available,
                      held ? HeldFactors::WholeRun : HeldFactors::PerIncrement);
     if (available->address_space_limit) map_blas_buffers();
   }

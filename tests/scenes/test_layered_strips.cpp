@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <string>
 
 #include <fmt/format.h>
@@ -88,6 +89,8 @@ Difference difference(const StripModel& a, const StripModel& b) {
   }
   d.stress /= s_max;
   d.plastic_strain /= e_max;
+  std::cout << fmt::format("relative differences: displacement {:.3g}, stress {:.3g}, plastic strain {:.3g}\n",
+                           d.displacement, d.stress, d.plastic_strain);
   return d;
 }
 
