@@ -102,6 +102,7 @@ TEST_CASE("layered strips: bands of the strip's own material give the homogeneou
   const StripModel& h = homogeneous.model();
   Real eps_max = 0.0;
   for (const MaterialState& s : h.states()) eps_max = std::max(eps_max, s.eq_plastic_strain);
+  std::cout << fmt::format("homogeneous strip: largest equivalent plastic strain {:.3g}\n", eps_max);
   REQUIRE(eps_max > 1e-4);  // the comparison covers plastic flow
 
   SECTION("two [[layer]] blocks that repeat nothing of [material]") {
