@@ -175,4 +175,13 @@ void check_layers_fit(TomlSection& mesh_section, const Scene& scene) {
                                   sum, parts, sum));
 }
 
+void check_layers_have_density(TomlSection& dynamics_section, const Scene& scene) {
+  if (!scene.dynamics.strip_inertia) return;
+  for (std::size_t i = 0; i < scene.layers.size(); ++i)
+    if (!(scene.layers[i].material.density > 0.0))
+      dynamics_section.fail("strip_inertia", fmt::format("strip inertia needs every layer's density > 0 [t/mm^3]: "
+                                                         "layer[{}].density = {}; steel: 7.8e-9",
+                                                         i, scene.layers[i].material.density));
+}
+
 }  // namespace roller

@@ -19,4 +19,7 @@ void declare_layer_table(SceneTable& table);
 // Fails at mesh.height when the layers together are thicker than the strip (in [mesh]'s check).
 void check_layers_fit(TomlSection& mesh_section, const Scene& scene);
 
+// Fails at dynamics.strip_inertia when a layer has no density (in [dynamics]' check).
+void check_layers_have_density(TomlSection& dynamics_section, const Scene& scene);
+
 }  // namespace roller

@@ -1034,6 +1034,7 @@ std::vector<SceneTable> make_tables() {
     if (scene.dynamics.strip_inertia && !(scene.material.density > 0.0))
       s.fail("strip_inertia", fmt::format("strip inertia needs material.density > 0 [t/mm^3] (it is {}); steel: 7.8e-9",
                                           scene.material.density));
+    check_layers_have_density(s, scene);
   };
   add("restart").count = [](const Scene& s) -> std::size_t { return !s.initial_state.empty(); };
 

@@ -98,6 +98,8 @@ TEST_CASE("layers and yield profile: bad values name the file, the key and what 
              Contains("material.yield_profile") && Contains("expected [[depth, yield_stress], ...]"));
   CHECK_THAT(error_of("[mesh]\n[material]\nE = 2.1e5\nyield_profile = [[0.0, 1600.0]]\n"),
              Contains("material.yield_profile") && Contains("needs a plastic material"));
+  CHECK_THAT(error_of(kBase + "[[layer]]\nthickness = 0.5\ndensity = 0.0\n[dynamics]\nstrip_inertia = true\n"),
+             Contains("dynamics.strip_inertia = true") && Contains("layer[0].density = 0"));
   CHECK_THAT(error_of("[mesh]\nfollow_layers = 1\n[material]\nE = 2.1e5\n"), Contains("mesh.follow_layers = 1"));
 }
 
