@@ -123,12 +123,14 @@ void add_layer_keys(std::vector<SceneKey>& keys) {
   };
   keys.push_back(std::move(follow));
 
-  SceneKey thickness = make_key("layer", "thickness", "number", "required", "> 0",
+  SceneKey thickness = make_key("layer", "thickness", "number", "required", "1e-06 <= thickness <= 1e+09",
                                 "thickness of the band [mm]; the bands lie from the top surface down, in order");
   thickness.read = [](TomlSection& s, Scene& scene, std::size_t i) {
     const auto t = s.real("thickness");
     if (!t) s.fail("thickness", "each [[layer]] needs its thickness [mm] > 0 (the bands lie from the top down)");
-    if (!(*t > 0.0 && *t <= 1e9)) s.fail("thickness", "expected a thickness > 0 mm (and at most 1e9)");
+    // The bounds of every length of a scene (io/scene_keys.cpp): a thinner band is below round-off
+    // of the strip's coordinates.
+    if (!(*t >= 1e-6 && *t <= 1e9)) s.fail("thickness", "expected a thickness of 1e-6 to 1e9 mm");
     scene.layers[i].thickness = *t;
   };
   thickness.write = [](toml::table& t, const Scene& scene, std::size_t i) {

@@ -79,7 +79,7 @@ TEST_CASE("layers and yield profile: bad values name the file, the key and what 
   CHECK_THAT(error_of(kBase + "[[layer]]\nE = 3e5\n"),
              Contains("bad.toml") && Contains("layer[0].thickness") && Contains("needs its thickness"));
   CHECK_THAT(error_of(kBase + "[[layer]]\nthickness = -0.5\n"),
-             Contains("layer[0].thickness = -0.5") && Contains("expected a thickness > 0 mm"));
+             Contains("layer[0].thickness = -0.5") && Contains("expected a thickness of 1e-6 to 1e9 mm"));
   CHECK_THAT(error_of(kBase + "[[layer]]\nthickness = 0.5\nyeld_stress = 900.0\n"),
              Contains("layer[0].yeld_stress") && Contains("did you mean 'layer[0].yield_stress'"));
   CHECK_THAT(error_of(kBase + "[[layer]]\nthickness = 0.5\nnu = 0.5\n"),
