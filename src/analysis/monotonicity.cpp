@@ -213,7 +213,7 @@ std::string StripMonotonicity::brief_report() const {
 
 StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonotonicityOptions& options) {
   require(dt >= 0.0, "check_strip: dt must be >= 0 (0 = quasistatic)");
-  const MaterialParams& material = model.material();
+  const ElementMaterials& materials = model.materials();  // each element's own (layers, profile)
   const Mesh& mesh = model.mesh();
   OperatorOptions op;
   op.layout = options.layout;
@@ -228,20 +228,23 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
   require(options.mass_factor > 0.0, "check_strip: mass_factor must be > 0");
   // The mass term c M/dt^2 acts as a density c rho in (3.15)-(3.18) (docs/model.md, Time step
   // bound).
-  const Real rho = options.mass_factor * material.density;
 
   StripMonotonicity out;
   out.dt = dt;
   Real lambda_static_worst = kInfinity;
   Real h_worst = 0.0;
+  Real rho_worst = 0.0;
   // Without a plastic branch and an initial-stress term A is C at every point: its eigenvalue is
   // computed once (at 2.9e5 dofs the per-point eigenvalues were 0.4 s of a 0.9 s step). h, which
-  // only the mass term and the restoring time step need, is then computed only for them.
-  const bool uniform = !material.plastic && !op.initial_stress;
-  std::optional<Real> uniform_lambda;
-  const bool mass_term = dt > 0.0 && rho > 0.0;
+  // only the mass term and the restoring time step need, is then computed only for them. Each
+  // distinct material of a layered strip has its own.
+  const bool uniform = !materials.any_plastic() && !op.initial_stress;
+  std::vector<std::optional<Real>> uniform_lambda(materials.table.size());
   std::vector<Vec2> xe;
   for (Index e = 0; e < mesh.n_elements(); ++e) {
+    const MaterialParams& material = materials.of(e);
+    const Real rho = options.mass_factor * material.density;
+    const bool mass_term = dt > 0.0 && rho > 0.0;
     std::optional<Real> h_known;
     auto h_of_element = [&]() {
       if (!h_known) {
@@ -263,10 +266,11 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
       auto eigenvalue = [&](const Mat4& a) {
         return Eigen::SelfAdjointEigenSolver<Mat4>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
       };
-      if (uniform && !uniform_lambda) uniform_lambda = eigenvalue(operator_a(material, s, op));
+      std::optional<Real>& known = uniform_lambda[materials.index[e]];
+      if (uniform && !known) known = eigenvalue(operator_a(material, s, op));
       Real lambda_static = 0.0;
       if (uniform) {
-        lambda_static = *uniform_lambda;
+        lambda_static = *known;
       } else {
         // A point whose A - s I has a Cholesky factor, s = max(lambda_min so far, 0), is neither a
         // new minimum nor a loss of definiteness (its lambda = lambda_static + kappa exceeds s,
@@ -292,6 +296,7 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
         out.worst = {e, q};
         lambda_static_worst = lambda_static;
         h_worst = h_of_element();
+        rho_worst = rho;
       }
       if (!(lambda > 0.0)) {
         ++out.n_not_pd;
@@ -300,7 +305,7 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
       }
     }
   }
-  if (out.n_not_pd > 0) out.dt_restore_worst = restoring_time_step(rho, h_worst, lambda_static_worst);
+  if (out.n_not_pd > 0) out.dt_restore_worst = restoring_time_step(rho_worst, h_worst, lambda_static_worst);
   return out;
 }
 

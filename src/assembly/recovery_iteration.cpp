@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace roller {
 
@@ -20,10 +21,12 @@ Real multiplier_tolerance(const MaterialParams& m, Real stress_tolerance) {
 }  // namespace
 
 RecoveryIteration::RecoveryIteration(StripModel& strip, Real stress_tolerance)
-    : strip_(strip),
-      active_(strip.has_recovery()),
-      tolerance_(multiplier_tolerance(strip.material(), stress_tolerance)) {
+    : strip_(strip), active_(strip.has_recovery()) {
   if (!active_) return;
+  // The strictest of the strip's materials (layers may differ).
+  tolerance_ = std::numeric_limits<Real>::infinity();
+  for (const MaterialParams& m : strip.materials().table)
+    if (m.n_back_stresses() > 0) tolerance_ = std::min(tolerance_, multiplier_tolerance(m, stress_tolerance));
   const std::size_t n = strip.states().size();
   frozen_.assign(n, 0.0);
   strip_.freeze_recovery(frozen_);

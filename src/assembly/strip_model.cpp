@@ -23,15 +23,27 @@ Vec4 green_lagrange(const Mat2& f, bool finite) {
 }  // namespace
 
 StripModel::StripModel(Mesh mesh, MaterialParams material, ElementOptions options)
+    : StripModel(std::move(mesh), uniform_materials(material, 0), options) {}
+
+StripModel::StripModel(Mesh mesh, ElementMaterials materials, ElementOptions options)
     : mesh_(std::move(mesh)),
-      material_(material),
+      materials_(std::move(materials)),
       options_(options),
       n_points_(n_integration_points(mesh_.element_type)),
       reference_(mesh_.nodes),
       total_displacement_(VecX::Zero(mesh_.n_dofs())) {
+  // The homogeneous constructor leaves the index to fill here, where the mesh is known.
+  if (materials_.index.empty() && materials_.table.size() == 1)
+    materials_.index.assign(static_cast<std::size_t>(mesh_.n_elements()), 0);
+  ROLLER_ASSERT(static_cast<Index>(materials_.index.size()) == mesh_.n_elements() &&
+                    materials_.layer.size() == materials_.table.size(),
+                "one material index per element, one layer per material");
   std::string why;
-  if (!material_.is_valid(&why)) throw InputError(why);
-  committed_.assign(mesh_.n_elements() * n_points_, initial_state(material_));
+  for (const MaterialParams& m : materials_.table)
+    if (!m.is_valid(&why)) throw InputError(why);
+  committed_.resize(mesh_.n_elements() * n_points_);
+  for (Index e = 0; e < mesh_.n_elements(); ++e)
+    std::fill_n(committed_.begin() + e * n_points_, n_points_, initial_state(materials_.of(e)));
   check_not_inverted(reference_);
   set_dof_map(DofMap(std::vector<bool>(mesh_.n_dofs(), false)));
 }
@@ -180,7 +192,7 @@ StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, Spars
     in.committed = &committed_[e * n_points_];
     in.frozen_recovery = frozen_recovery_.empty() ? nullptr : &frozen_recovery_[e * n_points_];
     in.displacement = element_values(e, u);
-    evaluate_element(options_, material_, in, gradient != nullptr, hessian_free != nullptr, out);
+    evaluate_element(options_, materials_.of(e), in, gradient != nullptr, hessian_free != nullptr, out);
     energy += out.energy;
     for (int q = 0; q < n_points_; ++q) {
       if (trial) (*trial)[e * n_points_ + q] = out.points[q].trial;
@@ -306,7 +318,8 @@ SparseMatrix StripModel::mass_matrix(bool lumped) const {
   std::vector<Triplet> triplets;
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
     const auto& element = mesh_.elements[e];
-    const ElementMatrix me = element_mass(mesh_.element_type, point_geometry(e, reference_), material_.density, lumped);
+    const ElementMatrix me =
+        element_mass(mesh_.element_type, point_geometry(e, reference_), materials_.of(e).density, lumped);
     for (Index p = 0; p < me.rows(); ++p)
       for (Index q = 0; q < me.cols(); ++q)
         if (me(p, q) != 0.0)

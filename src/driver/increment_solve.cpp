@@ -34,7 +34,8 @@ bool IncrementSolve::solve_contact(const std::optional<RollerPotential>& potenti
   // only a little: its friction fixed point starts from the last pass's normal forces, not from
   // the previous increment's, and so needs no more linearisations than the move itself.
   if (solution_.contact.converged()) seed_normal_forces(candidates, solution_.candidates, solution_.contact.contact);
-  IncrementProblem problem(energy_, candidates, motion, scene_.material.youngs_modulus, scene_.material.poisson_ratio);
+  const MaterialParams surface = scene_.strip_material().surface();  // what the roller touches
+  IncrementProblem problem(energy_, candidates, motion, surface.youngs_modulus, surface.poisson_ratio);
   if (potential) problem.free_roller(*potential, 0.0);  // w measured from where `motion` puts the centre
   BackendResult result = backend_.solve(problem, x_);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the

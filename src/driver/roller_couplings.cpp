@@ -64,14 +64,14 @@ ForceControlSettings load_settings(const IncrementSolve& solve, const Vec2& larg
   const int k = axis == ForceAxis::Vertical ? 1 : 0;
   // Line contact is about as stiff as E* per unit length, normally and tangentially; later
   // increments use the last slopes.
-  s.stiffness_guess = stiffness(k) > 0.0 ? stiffness(k) : scene.material.plane_strain_modulus();
+  const Real e_star = scene.strip_material().surface().plane_strain_modulus();
+  s.stiffness_guess = stiffness(k) > 0.0 ? stiffness(k) : e_star;
   if (axis == ForceAxis::Vertical) {
     s.force_tolerance = 1e-6 * largest.y();
     s.max_offset_change = 1e3 * size;
   } else {
     const Real scale = std::max({largest.x(), largest.y(), solve.start().roller_force.norm()});
-    s.force_tolerance =
-        1e-6 * (scale > 0.0 ? scale : 1e-6 * scene.material.plane_strain_modulus() * solve.start().motion.radius);
+    s.force_tolerance = 1e-6 * (scale > 0.0 ? scale : 1e-6 * e_star * solve.start().motion.radius);
     // A roller that must move sideways by its radius within one increment to carry the force
     // is sliding, not held by friction.
     s.max_offset_change = std::min(solve.start().motion.radius, size);

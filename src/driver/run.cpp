@@ -61,7 +61,8 @@ std::optional<Real> p0_over_k(const Scene& scene) {
   for (const PathSegment& seg : scene.roller->path)
     if (seg.fy) load = std::max(load, *seg.fy);
   if (!(load > 0.0)) return std::nullopt;
-  const Real e_star = scene.material.plane_strain_modulus();
+  // As roller.path[].p0_over_k: Hertz on the surface's E*, k of [material].
+  const Real e_star = scene.strip_material().surface().plane_strain_modulus();
   const Real p0 = hertz_line_contact(load, scene.roller->radius, e_star).peak;
   return p0 / (scene.material.yield_stress / std::sqrt(3.0));
 }

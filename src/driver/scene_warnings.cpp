@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -35,7 +38,7 @@ Real surface_spacing_at(const Mesh& mesh, Real x) {
 // over sqrt(2): Hertz's width for that depth is about that); nullopt without either.
 std::optional<Real> expected_half_width(const Scene& scene) {
   const RollerSpec& roller = *scene.roller;
-  const Real e_star = scene.material.plane_strain_modulus();
+  const Real e_star = scene.strip_material().surface().plane_strain_modulus();  // what the roller touches
   Real force = 0.0, depth = 0.0, y = 0.0;
   for (const PathSegment& seg : roller.path) {
     if (seg.fy) force = std::max(force, *seg.fy);
@@ -52,12 +55,15 @@ std::optional<Real> expected_half_width(const Scene& scene) {
 std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
   std::vector<std::string> out;
   const std::string file = scene.file.string();
-  const MaterialParams& m = scene.material;
-  if (m.youngs_modulus < 1e3 && m.plastic && m.yield_stress > 10.0)
-    out.push_back(
-        fmt::format("{}: material.E = {:g} MPa with material.yield_stress = {:g} MPa: E looks like GPa; "
-                    "roller works in MPa (steel: E = 2.1e5)",
-                    file, m.youngs_modulus, m.yield_stress));
+  std::vector<std::pair<std::string, MaterialParams>> bands{{"material", scene.material}};
+  for (std::size_t i = 0; i < scene.layers.size(); ++i)
+    bands.emplace_back(fmt::format("layer[{}]", i), scene.layers[i].material);
+  for (const auto& [table, m] : bands)
+    if (m.youngs_modulus < 1e3 && m.plastic && m.yield_stress > 10.0)
+      out.push_back(
+          fmt::format("{}: {}.E = {:g} MPa with {}.yield_stress = {:g} MPa: E looks like GPa; "
+                      "roller works in MPa (steel: E = 2.1e5)",
+                      file, table, m.youngs_modulus, table, m.yield_stress));
   if (!scene.roller) return out;
   const Real x = given_start_centre(scene).x();
   const Real h = surface_spacing_at(mesh, x);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -25,18 +27,27 @@ Mesh make_mesh_that_fits(const Scene& scene) {
   // The condensed ipopt solve keeps a constant tangent's factors for the run.
   const bool held = scene.roller && scene.contact.backend == ContactBackendKind::Ipopt &&
                     scene.contact.ipopt.formulation == IpoptFormulation::Condensed &&
-                    tangent_is_constant(scene.element.kinematics, scene.material);
+                    tangent_is_constant(scene.element.kinematics, scene.strip_material().any_plastic());
   if (const auto available = available_memory()) {
-    check_run_memory(scene.mesh, scene.newton.linear, *available,
+    check_run_memory(scene.strip_mesh_spec(), scene.newton.linear, *available,
                      held ? HeldFactors::WholeRun : HeldFactors::PerIncrement);
     if (available->address_space_limit) map_blas_buffers();
   }
-  return make_strip_mesh(scene.mesh);
+  return make_strip_mesh(scene.strip_mesh_spec());
+}
+
+// The strip of the scene: each element of the mesh made of its centroid's layer.
+std::unique_ptr<StripModel> make_strip(const Scene& scene) {
+  Mesh mesh = make_mesh_that_fits(scene);
+  ElementMaterials materials = assign_materials(mesh, scene.strip_material());
+  return std::make_unique<StripModel>(std::move(mesh), std::move(materials), scene.element);
 }
 
 // A strip near incompressibility makes the tangent ill-conditioned, which smaller steps do not
 // cure: a failed step says so (the bulk modulus K over the shear modulus G).
-std::string incompressibility_hint(const MaterialParams& m) {
+std::string incompressibility_hint(const LayeredMaterial& strip) {
+  MaterialParams m = strip.base;
+  m.poisson_ratio = strip.max_poisson_ratio();  // of the layer closest to incompressible
   if (!(m.poisson_ratio > 0.499)) return "";
   return fmt::format(
       "; material.nu = {} makes the strip nearly incompressible (K/G = {:.3g}) and its tangent "
@@ -75,7 +86,7 @@ std::vector<NodeContactRecord> contact_records(const IncrementSolution& solution
 
 Simulation::Simulation(Scene scene)
     : scene_(std::move(scene)),
-      model_(std::make_unique<StripModel>(make_mesh_that_fits(scene_), scene_.material, scene_.element)),
+      model_(make_strip(scene_)),
       loads_(scene_, model_->mesh()),
       backend_(scene_.roller ? make_contact_backend(scene_.contact, scene_.newton) : nullptr),
       candidate_nodes_(contact_candidate_nodes(scene_, model_->mesh())),
@@ -267,7 +278,7 @@ Simulation::StepRecord Simulation::advance_step(int step) {
     if (res.cuts >= scene_.steps.max_cuts) {
       res.status = inc.status;  // how the last sub-increment ended: a budget ran out, or it failed
       res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}{}", step, res.cuts,
-                                ds, inc.message, incompressibility_hint(scene_.material));
+                                ds, inc.message, incompressibility_hint(scene_.strip_material()));
       if (before_return && s == step - 1) {  // nothing of the step committed: undo the return too
         state_ = std::move(*before_return);
       }

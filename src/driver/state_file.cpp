@@ -149,7 +149,7 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
   }
   j["material_states"] = to_list(states);
   // Back-stresses only for the kinematic laws: the files of the other laws keep their layout.
-  const int n_back = model_->material().n_back_stresses();
+  const int n_back = model_->materials().max_back_stresses();
   if (n_back > 0) {
     std::vector<Real> back;
     for (const MaterialState& s : model_->states())
@@ -220,7 +220,7 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
       states[k].plastic_work = p[5];
       states[k].yield_stress = p[6];
     }
-    read_back_stresses(j, model_->material().n_back_stresses(), strip_only, file, states);
+    read_back_stresses(j, model_->materials().max_back_stresses(), strip_only, file, states);
     try {
       model_->restore(std::move(reference), to_vec(j.at("total_displacement")), std::move(states));
     } catch (const InputError& e) {

@@ -25,7 +25,7 @@ VtuField field(std::string name, int n_components, Index n_items, std::vector<st
 // The kinematic laws' back-stresses as element averages: their sum "back_stress" (the centre of
 // the yield surface), and each one as "back_stress_<i>" when the law has several.
 std::vector<VtuField> back_stress_fields(const StripModel& model) {
-  const int n_back = model.material().n_back_stresses();
+  const int n_back = model.materials().max_back_stresses();
   if (n_back == 0) return {};
   const Index n_el = model.mesh().n_elements();
   const int n_q = model.points_per_element();
@@ -114,7 +114,16 @@ StripFields strip_fields(const StripModel& model, const VecX& step_increment) {
   }
 
   out.point_data = {displacement, stress_n, sqrt_i2_n, mises_n, eps_p_n, strain_n, strain_inc_n};
-  out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl};
+  // The strip's make-up (docs/model.md, Layered strips and hardness profiles): each element's band
+  // (0 = the top [[layer]], the number of layers = [material]) and initial yield stress (0 elastic).
+  VtuField layer = field("layer", 1, n_el);
+  VtuField yield0 = field("initial_yield_stress", 1, n_el);
+  for (Index e = 0; e < n_el; ++e) {
+    const MaterialParams& m = model.material(e);
+    layer.values[e] = model.materials().layer_of(e);
+    yield0.values[e] = m.plastic ? m.yield_stress : 0.0;
+  }
+  out.cell_data = {stress, strain, strain_inc, sqrt_i2, mises, eps_p, w_pl, layer, yield0};
   for (VtuField& f : back_stress_fields(model)) out.cell_data.push_back(std::move(f));
   return out;
 }

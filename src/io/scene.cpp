@@ -4,4 +4,11 @@ namespace roller {
 
 int Scene::total_steps() const { return steps.n_steps * passes.count; }
 
+StripMeshSpec Scene::strip_mesh_spec() const {
+  StripMeshSpec spec = mesh;
+  if (mesh_follows_layers)
+    for (const Real depth : strip_material().boundaries()) spec.pinned_y.push_back(mesh.height - depth);
+  return spec;
+}
+
 }  // namespace roller

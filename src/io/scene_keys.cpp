@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "layer_keys.hpp"
 #include "roller/analysis/hertz.hpp"
 
 namespace roller {
@@ -246,7 +247,7 @@ void read_load_as_pressure(TomlSection& s, Scene& scene, std::size_t i, const ch
   if (seg.fy || s.has("fy") || (std::string(key) == "p0_over_k" && s.has("p0")))
     s.fail(key, "give the segment's vertical force once: fy [N/mm], p0 [MPa] or p0_over_k");
   const MaterialParams& m = scene.material;
-  const Real e_star = m.plane_strain_modulus();
+  const Real e_star = scene.strip_material().surface().plane_strain_modulus();  // what the roller touches
   const Real radius = scene.roller->radius;
   Real p0 = *value;
   std::string how = fmt::format("p0 = {:g} MPa", p0);
@@ -587,7 +588,7 @@ bool plastic(const Scene& s) { return s.material.plastic; }
 
 std::vector<SceneKey> make_keys() {
   using Ref = std::size_t;  // block index of keys in arrays of tables
-  return {
+  std::vector<SceneKey> keys{
       // The root.
       key(
           "name", [](auto& s) -> auto& { return s.name; }, "name of the run, used for the output folder out/<name>")
@@ -729,7 +730,8 @@ std::vector<SceneKey> make_keys() {
           .when_absent("\"bbar\" if plastic, else \"standard\"",
                        [](Scene& s) {
                          // Full-integration Q4 locks under isochoric plastic flow: B-bar is the plastic default.
-                         s.element.q4 = s.material.plastic ? Q4Formulation::BBar : Q4Formulation::Standard;
+                         s.element.q4 =
+                             s.strip_material().any_plastic() ? Q4Formulation::BBar : Q4Formulation::Standard;
                        }),
 
       // [steps]
@@ -1051,6 +1053,8 @@ std::vector<SceneKey> make_keys() {
              "any further Ipopt option, passed through after roller's own settings (booleans become yes/no)",
              read_ipopt_options, write_ipopt_options),
   };
+  add_layer_keys(keys);  // [[layer]]: the [material] keys above, read into each layer
+  return keys;
 }
 
 // ---- the tables ------------------------------------------------------------------------------
@@ -1088,6 +1092,7 @@ std::vector<SceneTable> make_tables() {
                            {"tangent_modulus", s.has("kappa") ? "kappa" : "tangent_modulus"},
                            {"n_substeps", "substeps"}});
   };
+  declare_layer_table(add("layer", true));
 
   SceneTable& mesh = add("mesh");
   mesh.required = "a [mesh] table is required (element, length, height, nx, ny)";
@@ -1097,6 +1102,7 @@ std::vector<SceneTable> make_tables() {
       if (s.has(lines) && (lines[0] == 'x' ? scene.mesh.x_lines : scene.mesh.y_lines).empty())
         s.fail(lines, "expected at least two grid lines (or no key: nx/ny and grading)");
     if (!scene.mesh.is_valid(&why)) s.fail_invalid(why, {});
+    check_layers_fit(s, scene);
   };
 
   add("steps");
@@ -1119,6 +1125,7 @@ std::vector<SceneTable> make_tables() {
     if (scene.dynamics.strip_inertia && !(scene.material.density > 0.0))
       s.fail("strip_inertia", fmt::format("strip inertia needs material.density > 0 [t/mm^3] (it is {}); steel: 7.8e-9",
                                           scene.material.density));
+    check_layers_have_density(s, scene);
   };
   add("restart").count = [](const Scene& s) -> std::size_t { return !s.initial_state.empty(); };
 

@@ -393,7 +393,8 @@ std::map<std::string, std::vector<Index>> strip_node_sets(const Grid& grid) {
 
 Real strip_node_count(const StripMeshSpec& spec) {
   const Real columns = static_cast<Real>(intervals_along(spec.x_lines, spec.nx)) * spec.refine;
-  const Real rows = static_cast<Real>(intervals_along(spec.y_lines, spec.ny)) * spec.refine;
+  const Real rows =
+      static_cast<Real>(intervals_along(spec.y_lines, spec.ny) + static_cast<int>(spec.pinned_y.size())) * spec.refine;
   return (columns + 1.0) * (rows + 1.0);
 }
 
@@ -401,6 +402,31 @@ bool StripMeshSpec::is_valid(std::string* why) const {
   const std::string problem = first_problem(*this);
   if (why != nullptr) *why = problem;
   return problem.empty();
+}
+
+std::vector<Real> pin_lines(std::vector<Real> lines, const std::vector<Real>& pins) {
+  // Lines that sit on a pin stay where they are; the others may be moved onto one.
+  std::vector<bool> pinned(lines.size(), false);
+  pinned.front() = pinned.back() = true;
+  for (const Real pin : pins) {
+    if (!(pin > lines.front() && pin < lines.back())) continue;
+    // Lines k-1 < pin <= k.
+    const auto k = static_cast<std::size_t>(std::lower_bound(lines.begin(), lines.end(), pin) - lines.begin());
+    if (lines[k] == pin) {
+      pinned[k] = true;
+      continue;
+    }
+    const Real width = lines[k] - lines[k - 1];
+    const std::size_t nearest = pin - lines[k - 1] < lines[k] - pin ? k - 1 : k;
+    if (!pinned[nearest] && std::abs(lines[nearest] - pin) < 0.3 * width) {
+      lines[nearest] = pin;
+      pinned[nearest] = true;
+    } else {
+      lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(k), pin);
+      pinned.insert(pinned.begin() + static_cast<std::ptrdiff_t>(k), true);
+    }
+  }
+  return lines;
 }
 
 std::vector<Real> grid_lines(Real extent, int n, const Grading& grading) {
@@ -424,8 +450,8 @@ Mesh make_strip_mesh(const StripMeshSpec& spec) {
 
   const std::vector<Real> xs =
       refine_lines(base_lines(spec.x_lines, spec.length, spec.nx, spec.grading_x), spec.refine);
-  const std::vector<Real> ys =
-      refine_lines(base_lines(spec.y_lines, spec.height, spec.ny, spec.grading_y), spec.refine);
+  const std::vector<Real> ys = refine_lines(
+      pin_lines(base_lines(spec.y_lines, spec.height, spec.ny, spec.grading_y), spec.pinned_y), spec.refine);
   const Grid grid{static_cast<Index>(xs.size()) - 1, static_cast<Index>(ys.size()) - 1};
 
   Mesh mesh;

@@ -483,7 +483,7 @@ TEST_CASE("check_strip flags a large compressive initial stress and a small dt r
   StripMeshSpec spec = test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2);
   StripModel model(make_strip_mesh(spec), elastic_steel(), ElementOptions{Kinematics::Finite, Q4Formulation::Standard});
   model.set_dof_map(DofMap(std::vector<bool>(model.n_dofs(), true)));  // every node prescribed
-  const Real g = model.material().shear_modulus();
+  const Real g = model.material(0).shear_modulus();
   const auto squeeze = [](const Vec2& x) -> Vec2 { return -0.2 * x; };  // F = 0.8 I
 
   REQUIRE(impose_field(model, squeeze).converged());
@@ -559,7 +559,7 @@ TEST_CASE("check_strip: the Cholesky screen changes nothing against every point'
   };
   REQUIRE(impose_field(model, squeeze).converged());
   REQUIRE(impose_field(model, squeeze).converged());
-  const MaterialParams& m = model.material();
+  const MaterialParams& m = model.material(0);
   OperatorOptions op;
   op.initial_stress = true;
   const Real rho = 2.0 * m.density;

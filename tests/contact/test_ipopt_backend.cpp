@@ -59,7 +59,7 @@ struct Increment {
         problem(energy,
                 make_contact_candidates(model, model.mesh().node_set("top"), VecX::Zero(model.n_dofs()),
                                         VecX::Zero(model.n_dofs()), roller.end.centre, roller.radius, reach),
-                roller, model.material().youngs_modulus, model.material().poisson_ratio) {}
+                roller, model.material(0).youngs_modulus, model.material(0).poisson_ratio) {}
   IncrementEnergy energy;
   IncrementProblem problem;
 };

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "roller/assembly/dof_map.hpp"
+#include "roller/assembly/element_materials.hpp"
 #include "roller/fem/element_kernel.hpp"
 #include "roller/mesh/mesh.hpp"
 
@@ -20,22 +21,29 @@ struct StripEvaluation {
 // branch, a mesh that never moves (a linear elastic strip with small kinematics). K is then the
 // same matrix at every increment, which the condensed contact solve keeps factorised for the run
 // and the run-time monitor checks once.
-inline bool tangent_is_constant(Kinematics kinematics, const MaterialParams& material) {
-  return kinematics == Kinematics::Small && !material.plastic;
+inline bool tangent_is_constant(Kinematics kinematics, bool any_plastic) {
+  return kinematics == Kinematics::Small && !any_plastic;
 }
 
 class StripModel {
  public:
+  // A homogeneous strip of `material`.
   StripModel(Mesh mesh, MaterialParams material, ElementOptions options);
+  // A strip whose elements have their own materials (layers, a yield profile: assign_materials).
+  StripModel(Mesh mesh, ElementMaterials materials, ElementOptions options);
   StripModel(const StripModel&) = delete;
   StripModel& operator=(const StripModel&) = delete;
 
   const Mesh& mesh() const { return mesh_; }
-  const MaterialParams& material() const { return material_; }
+  // The material of element e, and the table of them all (one entry for a homogeneous strip).
+  const MaterialParams& material(Index e) const { return materials_.of(e); }
+  const ElementMaterials& materials() const { return materials_; }
   const ElementOptions& options() const { return options_; }
   Index n_dofs() const { return mesh_.n_dofs(); }
   // Whether the tangent cannot change with the state (tangent_is_constant below).
-  bool tangent_is_constant() const { return roller::tangent_is_constant(options_.kinematics, material_); }
+  bool tangent_is_constant() const {
+    return roller::tangent_is_constant(options_.kinematics, materials_.any_plastic());
+  }
 
   // Selects the free dofs and builds the sparsity pattern of the Hessian over them. Call again
   // whenever the set of constrained dofs changes.
@@ -63,7 +71,7 @@ class StripModel {
   // Armstrong-Frederick's recovery for the minimisers (docs/model.md, Hardening laws): whether the
   // law has a recovery term (no incremental potential), and evaluate() with each point's recovery
   // frozen at the given plastic multipliers (one per integration point; empty: the exact update).
-  bool has_recovery() const { return !material_.has_potential(); }
+  bool has_recovery() const { return materials_.any_recovery(); }
   void freeze_recovery(std::vector<Real> multipliers);
   // Each integration point's plastic multiplier (trial minus committed eq_plastic_strain) of the
   // increment u, with the recovery as it is frozen now.
@@ -91,7 +99,7 @@ class StripModel {
   // linearised strain over the initial mesh, so that it is the difference of two total_strain().
   std::vector<Vec4> increment_strain(Index e, const VecX& du) const;
 
-  // Mass matrix over all dofs (rho from the material); lumped = diagonal row-sum lumping.
+  // Mass matrix over all dofs (rho from each element's material); lumped = diagonal row-sum lumping.
   SparseMatrix mass_matrix(bool lumped) const;
 
   // Volume (per unit width) of the strip in the start-of-increment configuration.
@@ -115,7 +123,7 @@ class StripModel {
   void zero_hessian(SparseMatrix& h) const;
 
   Mesh mesh_;
-  MaterialParams material_;
+  ElementMaterials materials_;
   ElementOptions options_;
   int n_points_;
   std::vector<Vec2> reference_;

@@ -1,9 +1,10 @@
 #pragma once
 // Fields of the strip written per step (docs/scenes.md, Outputs): displacement at nodes; per
 // element the integration-point averages of stress, sqrt(I2), von Mises stress, total strain,
-// equivalent plastic strain and plastic work, and the strain of the step's increment (the
-// thesis's updated-Lagrangian strain, StripModel::increment_strain); stress and strains averaged
-// to the nodes (for smooth contour maps). Tensors have ParaView's six components XX, YY, ZZ, XY,
+// equivalent plastic strain and plastic work, the element's layer and initial yield stress, and
+// the strain of the step's increment (the thesis's updated-Lagrangian strain,
+// StripModel::increment_strain); stress and strains averaged to the nodes (for smooth contour
+// maps). Tensors have ParaView's six components XX, YY, ZZ, XY,
 // YZ, XZ (YZ = XZ = 0).
 #include <vector>
 

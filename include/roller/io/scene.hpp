@@ -12,6 +12,7 @@
 #include "roller/contact/roller.hpp"
 #include "roller/core/enum_names.hpp"
 #include "roller/fem/kinematics.hpp"
+#include "roller/material/layered_material.hpp"
 #include "roller/material/material_params.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
@@ -104,6 +105,11 @@ struct Scene {
   std::string title;
   StripMeshSpec mesh;
   MaterialParams material;
+  // [[layer]] bands from the top over [material], and [material] yield_profile
+  // (docs/model.md, Layered strips and hardness profiles); strip_material() combines them.
+  std::vector<MaterialLayer> layers;
+  YieldProfile yield_profile;
+  bool mesh_follows_layers = false;  // [mesh] follow_layers: grid lines on the layers' boundaries
   ElementOptions element;
   StepControl steps;
   NewtonOptions newton;
@@ -119,6 +125,10 @@ struct Scene {
   std::filesystem::path initial_state;
 
   int total_steps() const;  // steps of the whole run: steps.count times passes.count
+  // The strip's material by depth: [material], the layers and the profile.
+  LayeredMaterial strip_material() const { return LayeredMaterial{material, layers, yield_profile}; }
+  // [mesh] with the layers' boundaries pinned as grid lines when follow_layers is on.
+  StripMeshSpec strip_mesh_spec() const;
 };
 
 }  // namespace roller

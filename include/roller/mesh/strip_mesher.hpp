@@ -40,6 +40,10 @@ struct StripMeshSpec {
   // replace nx/grading along that axis; refinement subdivides every interval equally.
   std::vector<Real> x_lines;
   std::vector<Real> y_lines;
+  // Heights y [mm] the horizontal grid lines must include (layer boundaries, [mesh]
+  // follow_layers): before refinement, the line nearest to each is moved onto it when closer than
+  // 0.3 of its interval, else a line is added there (pin_lines).
+  std::vector<Real> pinned_y;
   Diagonal diagonal = Diagonal::Rising;
   int refine = 1;  // every interval is split into `refine` equal parts (>= 1)
 
@@ -52,6 +56,11 @@ Real strip_node_count(const StripMeshSpec& spec);
 
 // Builds the mesh with the numbering documented in mesh.hpp and the named node sets.
 Mesh make_strip_mesh(const StripMeshSpec& spec);
+
+// `lines` (strictly increasing, ends fixed) with every value of `pins` strictly inside them on a
+// line: an inner line within 0.3 of its neighbouring interval of a pin moves onto it, otherwise
+// the pin is added as a line; pins outside (first, last) are ignored.
+std::vector<Real> pin_lines(std::vector<Real> lines, const std::vector<Real>& pins);
 
 // Grid line coordinates along one axis (n intervals over [0, extent] with the grading), exposed
 // for tests and for scenes that inspect the spacing.
