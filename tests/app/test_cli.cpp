@@ -77,7 +77,8 @@ TEST_CASE("roller run: a step that cannot converge stops the run with code 1, co
   CHECK_THAT(r.output, Catch::Contains("step 1 failed"));
   CHECK(fs::exists(out / "step_0000.vtu"));
   CHECK_THAT(roller::test::read_text(out / "summary.json"), Catch::Contains("\"converged\": false"));
-  CHECK_THAT(roller::test::read_text(out / "solver.csv"), Catch::Contains("failed"));
+  // The one Newton iteration allowed ran out: a budget, not a breakdown (smaller steps may succeed).
+  CHECK_THAT(roller::test::read_text(out / "solver.csv"), Catch::Contains(",limit_reached\n"));
   fs::remove_all(out);
 }
 

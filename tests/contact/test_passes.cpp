@@ -162,7 +162,7 @@ TEST_CASE("passes: alternating passes run the path mirrored, horizontal forces r
 // checkpoint ends with the same bytes as the run that went through, with either backend (ipopt
 // iterates the frozen recovery, penalty runs the unsymmetric Newton; docs/model.md, Hardening laws).
 TEST_CASE("passes: an Armstrong-Frederick run resumes mid-pass to the same bytes, back-stresses and all",
-          "[contact][passes][hardening]") {
+          "[contact][passes][hardening][slow]") {
   for (const char* backend : {"ipopt", "penalty"}) {
     SECTION(backend) {
       test::TempDir dir("roller_passes_af");
