@@ -65,8 +65,8 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
       writer_(writer),
       out_dir_(out_dir),
       step_start_displacement_(model.total_displacement()),
-      series_(out_dir / "fields.pvd"),
-      roller_series_(out_dir / "roller.pvd") {
+      series_(out_dir / "fields.pvd") {
+  if (scene.roller) roller_series_.emplace(out_dir / "roller.pvd");
   const Simulation::StepRecord empty;
   solver_csv_ =
       open_table(out_dir / "solver.csv", names_of(solver_row(empty, MonitorReport{}, 0.0)), resume, steps_done);
@@ -87,7 +87,8 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
   if (resume) {
     for (int step = 0; step <= steps_done; ++step) {
       if (std::filesystem::exists(vtu_path(step))) series_.add(step * scene.steps.dt, vtu_path(step));
-      if (std::filesystem::exists(vtp_path(step))) roller_series_.add(step * scene.steps.dt, vtp_path(step));
+      if (roller_series_ && std::filesystem::exists(vtp_path(step)))
+        roller_series_->add(step * scene.steps.dt, vtp_path(step));
     }
   } else {
     write_fields(0, 1, {}, scene.roller ? std::optional<RollerPose>(start_pose) : std::nullopt);
@@ -133,7 +134,7 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
         if (pose) write_roller_vtp(vtp_path(step), pose->centre, scene_.roller->radius, pose->angle, info);
         const std::lock_guard<std::mutex> lock(series_mutex_);
         series_.add(time, vtu_path(step));
-        if (pose) roller_series_.add(time, vtp_path(step));
+        if (pose && roller_series_) roller_series_->add(time, vtp_path(step));
       });
 }
 

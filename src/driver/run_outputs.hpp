@@ -51,9 +51,9 @@ class RunOutputs {
   BackgroundWriter& writer_;
   std::filesystem::path out_dir_;
   std::unique_ptr<CsvTable> solver_csv_, contact_csv_, roller_csv_, passes_csv_, depth_csv_;
-  VecX step_start_displacement_;  // total displacement at the start of the step being written
-  PvdSeries series_;              // added to by the writer's jobs, one at a time (series_mutex_)
-  PvdSeries roller_series_;       // roller.pvd: the roller's circle at the same steps
+  VecX step_start_displacement_;            // total displacement at the start of the step being written
+  PvdSeries series_;                        // added to by the writer's jobs, one at a time (series_mutex_)
+  std::optional<PvdSeries> roller_series_;  // roller.pvd, with a roller: its circle at the same steps
   std::mutex series_mutex_;
 };
 
