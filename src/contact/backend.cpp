@@ -35,18 +35,21 @@ constexpr Real kRecoveryStressTolerance = 1e-6;
 
 BackendResult ContactBackend::solve_settling_recovery(IncrementProblem& problem, const VecX& x0) {
   RecoveryIteration recovery(problem.strip_model(), kRecoveryStressTolerance);
-  BackendResult r = do_solve(problem, x0);
-  SolveCounters counters = r.counters;
-  BackendDetails details = r.details;
-  while (r.converged() && !recovery.settled(problem.full_increment(r.x))) {
-    if (recovery.passes() >= RecoveryIteration::max_passes()) {
-      r.status = Termination::Failed;
-      r.message = recovery.failure();
-      break;
-    }
-    r = do_solve(problem, r.x);
+  BackendResult r;
+  SolveCounters counters;
+  BackendDetails details;
+  VecX start = x0;
+  const Termination end = recovery.iterate([&]() -> std::optional<VecX> {
+    r = do_solve(problem, start);
     counters += r.counters;
     details.add(r.details);
+    if (!r.converged()) return std::nullopt;
+    start = r.x;
+    return problem.full_increment(r.x);
+  });
+  if (end == Termination::LimitReached) {
+    r.status = end;
+    r.message = recovery.failure();
   }
   r.counters = counters;
   r.details = details;

@@ -20,16 +20,15 @@ IncrementSolution IncrementSolver::solve(IncrementEnergy& energy, const VecX& pr
     // Armstrong-Frederick's recovery has no potential: Newton minimises with it frozen, until the
     // frozen multipliers are the solution's (docs/model.md, Hardening laws).
     RecoveryIteration recovery(energy.model(), scene_.newton.residual_tolerance);
-    NewtonReport newton = newton_.minimise(energy, x, scene_.newton);
-    add_solve(report, newton);
-    while (newton.converged() && !recovery.settled(energy.full_increment(x))) {
-      if (recovery.passes() >= RecoveryIteration::max_passes()) {
-        report.status = Termination::LimitReached;
-        report.message = recovery.failure();
-        break;
-      }
-      newton = newton_.minimise(energy, x, scene_.newton);
+    const Termination end = recovery.iterate([&]() -> std::optional<VecX> {
+      const NewtonReport newton = newton_.minimise(energy, x, scene_.newton);
       add_solve(report, newton);
+      if (!newton.converged()) return std::nullopt;
+      return energy.full_increment(x);
+    });
+    if (end == Termination::LimitReached) {
+      report.status = end;
+      report.message = recovery.failure();
     }
     solution.u = energy.full_increment(x);
     return solution;

@@ -59,7 +59,7 @@ Real yield_slope_at(const MaterialParams& p, Real eq_plastic_strain) {
 // work hardening); Voce's part as Q d + Q/b e^(-b eps_p) expm1(-b d).
 Real plastic_work_increment(const MaterialParams& p, Real eq_plastic_strain, Real d) {
   Real w = p.yield_stress * d + p.isotropic_modulus() * (eq_plastic_strain * d + 0.5 * d * d);
-  if (p.voce_saturation != 0.0 && p.voce_rate != 0.0) {
+  if (p.has_voce()) {
     w += p.voce_saturation *
          (d + std::exp(-p.voce_rate * eq_plastic_strain) * std::expm1(-p.voce_rate * d) / p.voce_rate);
   }
@@ -188,11 +188,6 @@ Consistency consistency(const MaterialParams& p, const BackStressTerms& t, Real 
           3.0 * g + t.slope + yield_slope_at(p, eps_p + d) - coupling};
 }
 
-// The plastic multiplier d > 0 of a trial state outside the surface. Linear hardening (every
-// back-stress linear or frozen, no Voce term) has it in closed form; otherwise r(d) is strictly
-// decreasing (|sqrt(3/2) n:drift| <= sum C_i beta_i^2 while each back-stress stays within its
-// saturation sqrt(2/3) C_i/gamma_i) and Newton's method runs inside a bracket that bisection
-// keeps.
 // The plastic multiplier and the back-stress terms and consistency at it.
 struct PlasticSolution {
   Real d = 0.0;
@@ -200,11 +195,16 @@ struct PlasticSolution {
   Consistency consistency{0.0, 0.0};
 };
 
+// The plastic multiplier d > 0 of a trial state outside the surface. Linear hardening (every
+// back-stress linear or frozen, no Voce term) has it in closed form; otherwise r(d) is strictly
+// decreasing (|sqrt(3/2) n:drift| <= sum C_i beta_i^2 while each back-stress stays within its
+// saturation sqrt(2/3) C_i/gamma_i) and Newton's method runs inside a bracket that bisection
+// keeps.
 PlasticSolution plastic_multiplier(const MaterialParams& p, const MaterialState& committed, const BackStressSet& b,
                                    const Vec4& s_trial, const BackStressTerms& t0, std::optional<Real> frozen) {
   const Real eps_p = committed.eq_plastic_strain;
   const Consistency c0 = consistency(p, t0, eps_p, 0.0);
-  const bool linear = (frozen || p.has_potential()) && !(p.voce_saturation != 0.0 && p.voce_rate != 0.0);
+  const bool linear = (frozen || p.has_potential()) && !p.has_voce();
   // Linear: the terms do not depend on d, and neither does the stiffness (no Voce term).
   if (linear) return {c0.residual / c0.stiffness, t0, c0};
   Real lo = 0.0;
@@ -269,7 +269,7 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
   const Real theta_bar = 3.0 * g / stiffness - (1.0 - theta);
   u.stress = trial_stress - (1.0 - theta) * t.eta;
   u.tangent = consistent_tangent(p, n, theta, theta_bar);
-  if (!frozen && p.n_back_stresses() > 0 && !p.has_potential()) {
+  if (!frozen && !p.has_potential()) {
     const Vec4 a_perp = t.drift - contract(n, t.drift) * n;
     u.tangent -= (1.0 - theta) * std::sqrt(1.5) * 2.0 * g / stiffness * a_perp * n.transpose();
   }
@@ -291,10 +291,11 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
     kinematic_work += 0.5 * contract(d_eps_p, alpha + alpha_n);
     u.trial.back_stress[k] = alpha;
   }
-  u.trial.plastic_work += plastic_work_increment(p, eps_p, d) + kinematic_work;
+  const Real isotropic_work = plastic_work_increment(p, eps_p, d);
+  u.trial.plastic_work += isotropic_work + kinematic_work;
   u.trial.stress = u.stress;
   if (frozen || p.has_potential()) {
-    u.energy = plastic_work_increment(p, eps_p, d) + stored + elastic_energy_change(p, committed.stress, u.stress);
+    u.energy = isotropic_work + stored + elastic_energy_change(p, committed.stress, u.stress);
   } else {
     // Armstrong-Frederick's recovery has no potential: the trapezoidal work 1/2 (S_n + S):dE
     // stands in for the energy (a number to report, not an objective).

@@ -51,13 +51,6 @@ BackStressLaw MaterialParams::back_stress_law(int i) const {
   return {};
 }
 
-bool MaterialParams::hardening_is_linear() const {
-  if (voce_saturation != 0.0 && voce_rate != 0.0) return false;
-  for (int i = 0; i < n_back_stresses(); ++i)
-    if (back_stress_law(i).recovery != 0.0) return false;
-  return true;
-}
-
 bool MaterialParams::has_potential() const {
   for (int i = 0; i < n_back_stresses(); ++i)
     if (back_stress_law(i).recovery != 0.0) return false;

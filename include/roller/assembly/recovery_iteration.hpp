@@ -5,10 +5,12 @@
 // multiplier d* (a linear kinematic update with a potential), the increment is solved, d* is set
 // to the solution's multipliers d, and the increment is solved again until max |d - d*| is small.
 // At the fixed point the solution is the exact backward-Euler update's.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "roller/assembly/strip_model.hpp"
+#include "roller/solver/termination.hpp"
 
 namespace roller {
 
@@ -22,18 +24,28 @@ class RecoveryIteration {
   RecoveryIteration(const RecoveryIteration&) = delete;
   RecoveryIteration& operator=(const RecoveryIteration&) = delete;
 
-  bool active() const { return active_; }
-  // After a solve that ended at the increment u (all dofs): refreezes at u's multipliers and
-  // returns true when they moved so little that no back-stress moves by more than the tolerance.
-  // Always true when inactive.
-  bool settled(const VecX& u);
-  int passes() const { return passes_; }
-  Real last_change() const { return change_; }
-  // Why the iteration stopped unsettled after `max_passes()` solves, for the step's message.
+  // Calls `solve()` (the increment of all dofs it ended at, or nullopt when it failed), refreezing
+  // at each solution's multipliers, until they settle (Converged; one solve when inactive), a
+  // solve fails (Failed), or max_passes() solves ran (LimitReached: failure() says why).
+  template <class Solve>
+  Termination iterate(Solve solve) {
+    for (;;) {
+      const std::optional<VecX> u = solve();
+      if (!u) return Termination::Failed;
+      if (settled(*u)) return Termination::Converged;
+      if (passes_ >= max_passes()) return Termination::LimitReached;
+    }
+  }
+  // Why the iteration stopped unsettled after max_passes() solves, for the step's message.
   std::string failure() const;
   static constexpr int max_passes() { return 30; }
 
  private:
+  // After a solve that ended at the increment u (all dofs): refreezes at u's multipliers and
+  // returns true when they moved so little that no back-stress moves by more than the tolerance.
+  // Always true when inactive.
+  bool settled(const VecX& u);
+
   StripModel& strip_;
   bool active_ = false;
   Real tolerance_ = 0.0;  // on max |d - d*|

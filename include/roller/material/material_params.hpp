@@ -80,9 +80,8 @@ struct MaterialParams {
   // kMaxBackStresses; none when the material is elastic.
   int n_back_stresses() const;
   BackStressLaw back_stress_law(int i) const;
-  // True when every back-stress is linear (gamma = 0) and no Voce term: the return mapping's
-  // consistency condition is then linear in the plastic multiplier.
-  bool hardening_is_linear() const;
+  // True when the isotropic part has a Voce term (Q and b both non-zero).
+  bool has_voce() const { return voce_saturation != 0.0 && voce_rate != 0.0; }
   // True when the update has an incremental potential (no Armstrong-Frederick recovery term).
   bool has_potential() const;
 
