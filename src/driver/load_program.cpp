@@ -16,7 +16,7 @@ LoadProgram::LoadProgram(const Scene& scene, const Mesh& mesh) : n_dofs_(mesh.n_
     auto it = seen.find(dof);
     if (it != seen.end()) {
       const Ramp& o = it->second.first;
-      if (o.value != r.value || o.ramp_first != r.ramp_first || o.ramp_last != r.ramp_last || o.history != r.history)
+      if (o != r)
         throw InputError(fmt::format("{}: node {} {} is already prescribed differently by {}", context, dof / 2 + 1,
                                      dof % 2 ? "y" : "x", it->second.second));
       return;

@@ -423,8 +423,6 @@ void read_history(TomlSection& t, Real bound, Ramp& r) {
     r.history.push_back({*step, *value});
     last_step = *step;
   }
-  r.value = r.history.back()[1];
-  r.ramp_last = static_cast<int>(last_step);
 }
 
 // `bound`: the plausibility bound of |value| (a displacement or a force).
@@ -1136,11 +1134,11 @@ std::vector<SceneTable> make_tables() {
     if (!d.x && !d.y) s.fail("x", "a [[displacement]] block needs x and/or y");
     // As large as the strip: the elements between these nodes and the supports would be crushed
     // through or torn apart, which the solvers would report as a step too large.
-    if (d.x && !(std::abs(d.x->value) < scene.mesh.length))
+    if (d.x && !(d.x->peak() < scene.mesh.length))
       s.fail("x", fmt::format("|x| must be smaller than the strip's length mesh.length = {:g} mm (a displacement as "
                               "large as the strip crushes or tears it)",
                               scene.mesh.length));
-    if (d.y && !(std::abs(d.y->value) < scene.mesh.height))
+    if (d.y && !(d.y->peak() < scene.mesh.height))
       s.fail("y", fmt::format("|y| must be smaller than the strip's height mesh.height = {:g} mm (a displacement as "
                               "large as the strip crushes or tears it)",
                               scene.mesh.height));

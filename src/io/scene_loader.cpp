@@ -263,6 +263,12 @@ std::string NodeSelector::describe() const {
   return fmt::format("nodes [{}]", fmt::join(numbers, ", "));
 }
 
+Real Ramp::peak() const {
+  Real largest = std::abs(value);
+  for (const auto& point : history) largest = std::max(largest, std::abs(point[1]));
+  return largest;
+}
+
 Real Ramp::at_step(int step) const {
   if (!history.empty()) {
     Real s0 = 0.0, v0 = 0.0;

@@ -327,3 +327,26 @@ TEST_CASE("hardening laws' keys round-trip and appear in the resolved scene with
                       Catch::Contains("material.tangent_modulus"));
   }
 }
+
+TEST_CASE("a load history is piecewise linear through (0, 0), held after its last point, and checked",
+          "[io][scene][keys]") {
+  const std::string base =
+      "[mesh]\nheight = 1.0\n[steps]\ncount = 8\n[material]\nE = 2.1e5\n[[displacement]]\n"
+      "nodes = \"bottom\"\nx = 0.0\ny = 0.0\n[[displacement]]\nnodes = \"top\"\n";
+  const Scene scene = parse_scene(base + "y = { history = [[2, 0.1], [4, -0.1]] }\n", "history.toml");
+  const Ramp& y = *scene.displacements[1].y;
+  CHECK(y.at_step(1) == Approx(0.05));
+  CHECK(y.at_step(3) == Approx(0.0).margin(1e-15));
+  CHECK(y.at_step(4) == Approx(-0.1));
+  CHECK(y.at_step(8) == Approx(-0.1));
+  CHECK(y.peak() == Approx(0.1));
+  const std::string first = scene_to_toml(scene);
+  CHECK(scene_to_toml(parse_scene(first, "resolved.toml")) == first);
+  CHECK_THROWS_WITH(parse_scene(base + "y = { history = [[2, 0.1], [2, 0.2]] }\n", "h.toml"),
+                    Catch::Contains("history") && Catch::Contains("increasing"));
+  CHECK_THROWS_WITH(parse_scene(base + "y = { value = 0.1, history = [[2, 0.1]] }\n", "h.toml"),
+                    Catch::Contains("either history or value/ramp"));
+  // A point on the way as large as the strip is refused, not only the last one.
+  CHECK_THROWS_WITH(parse_scene(base + "y = { history = [[2, 1.5], [4, 0.1]] }\n", "h.toml"),
+                    Catch::Contains("mesh.height"));
+}

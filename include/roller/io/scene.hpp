@@ -52,6 +52,11 @@ struct Ramp {
   int ramp_last = 1;
   std::vector<std::array<Real, 2>> history;  // (step, value), steps increasing
   Real at_step(int step) const;              // cumulative value at the end of `step` (steps are 1-based)
+  Real peak() const;                         // the largest |value| the ramp or the history reaches
+  bool operator==(const Ramp& o) const {
+    return value == o.value && ramp_first == o.ramp_first && ramp_last == o.ramp_last && history == o.history;
+  }
+  bool operator!=(const Ramp& o) const { return !(*this == o); }
 };
 
 // Prescribed displacement of the selected nodes in x and/or y (a component that is absent is
