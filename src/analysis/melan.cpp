@@ -10,7 +10,6 @@
 #include <IpTNLP.hpp>
 
 #include "roller/core/error.hpp"
-#include "roller/solver/dense_kkt_solver.hpp"
 
 namespace roller {
 
@@ -200,10 +199,10 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> melan_application() {
   app->Options()->SetNumericValue("bound_relax_factor", 0.0);  // no constraint violation at the limit
   app->Options()->SetStringValue("mu_strategy", "monotone");
   app->Options()->SetIntegerValue("max_iter", 500);
-  // Tens of constraints on at most six unknowns: the dense KKT solver, without MUMPS's fixed cost
-  // per call (solver/dense_kkt_solver.hpp).
-  dense_kkt::register_dense_kkt_solver();
-  app->Options()->SetStringValue("linear_solver", "ma27");
+  // MUMPS, not the dense KKT solver (solver/dense_kkt_solver.hpp) the contact's small NLPs use: on
+  // rows whose constraints nearly repeat each other (a nearly symmetric load) the dense one stops
+  // Ipopt in its restoration phase just short of the optimum, and the search prunes rows so that
+  // MUMPS's fixed cost per call does not show (docs/benchmarks.md, Melan's bound).
   if (app->Initialize("") != Ipopt::Solve_Succeeded) throw NumericalError("Melan's bound: Ipopt did not start");
   return app;
 }
@@ -227,8 +226,7 @@ std::vector<std::size_t> starting_points(const RowForms& forms) {
 }
 
 // Whether point i's constraint repeats one of `active` (a symmetric load gives the points at x and
-// -x the same form): a repeated constraint makes the KKT matrix singular, which stops Ipopt
-// before the optimum with the dense solver.
+// -x the same form): a repeated constraint makes the constraints' Jacobian rank-deficient.
 bool repeats(const RowForms& forms, const std::vector<std::size_t>& active, std::size_t i) {
   const RowMatrix& h = forms.points[i];
   return std::any_of(active.begin(), active.end(),
@@ -256,10 +254,11 @@ MelanRowLimit melan_row_limit(const MelanRow& row, ShakedownBound bound) {
   out.first_yield = row_first_yield(row);
   if (!std::isfinite(out.first_yield)) {  // no stress along the row
     out.load_factor = std::numeric_limits<Real>::infinity();
-    out.capped = true;
+    out.status = MelanRowStatus::Unlimited;
     return out;
   }
   const Real cap = kMelanCapOverFirstYield * out.first_yield;
+  if (!(row.back_stress_bound > 0.0)) bound = ShakedownBound::Elastic;  // no back-stress to shift by
   const RowForms forms(row, bound);
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = melan_application();
   // Constraint generation: solve over a working set of points, add the points the solution
@@ -291,7 +290,7 @@ MelanRowLimit melan_row_limit(const MelanRow& row, ShakedownBound bound) {
                                        row.depth));
   }
   out.load_factor = v[0];
-  out.capped = out.load_factor >= cap * (1.0 - 1e-6);
+  if (out.load_factor >= cap * (1.0 - 1e-6)) out.status = MelanRowStatus::Unlimited;
   out.residual_stress = forms.residual_stress(v);
   out.back_stress = forms.back_stress_at(v);
   std::size_t critical = 0;
@@ -299,17 +298,32 @@ MelanRowLimit melan_row_limit(const MelanRow& row, ShakedownBound bound) {
   for (std::size_t i = 0; i < forms.points.size(); ++i)
     if (const Real g = v.dot(forms.points[i] * v); g > most) most = g, critical = i;
   out.critical_x = row.x[critical];
+  out.critical_yield_stress = row.yield_stress[critical];
   return out;
 }
 
-MelanLimit melan_limit(const std::vector<MelanRow>& rows, ShakedownBound bound) {
+MelanLimit melan_limit(const std::vector<MelanRow>& rows, ShakedownBound bound, MelanSearch search) {
   MelanLimit out;
   out.bound = bound;
-  for (const MelanRow& row : rows) {
-    out.rows.push_back(melan_row_limit(row, bound));
-    const Index i = static_cast<Index>(out.rows.size()) - 1;
-    if (!out.rows.back().capped && (out.critical_row < 0 || out.rows[i].load_factor < out.load_factor()))
-      out.critical_row = i;
+  out.rows.resize(rows.size());
+  std::vector<std::size_t> order(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    order[i] = i;
+    out.rows[i].depth = rows[i].depth;
+    out.rows[i].first_yield = row_first_yield(rows[i]);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return out.rows[a].first_yield < out.rows[b].first_yield; });
+  for (const std::size_t i : order) {
+    if (search == MelanSearch::StrictestRow && out.critical_row >= 0 &&
+        out.rows[i].first_yield >= out.load_factor()) {
+      out.rows[i].status = MelanRowStatus::NotLimiting;
+      continue;
+    }
+    out.rows[i] = melan_row_limit(rows[i], bound);
+    if (out.rows[i].status == MelanRowStatus::Solved &&
+        (out.critical_row < 0 || out.rows[i].load_factor < out.load_factor()))
+      out.critical_row = static_cast<Index>(i);
   }
   return out;
 }

@@ -15,6 +15,9 @@ Command add_monotonicity_command(CLI::App& app);
 // roller scene-keys: every scene-file key with its type, default, allowed values and meaning.
 Command add_scene_keys_command(CLI::App& app);
 
+// roller shakedown-limit SCENE: Melan's bound from one elastic solution (docs/model.md).
+Command add_shakedown_limit_command(CLI::App& app);
+
 // roller output-columns: every CSV table's columns with their units.
 Command add_output_columns_command(CLI::App& app);
 

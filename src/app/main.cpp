@@ -132,6 +132,7 @@ int main(int argc, char** argv) {
   const roller::app::Command monotonicity = roller::app::add_monotonicity_command(app);
   const roller::app::Command scene_keys = roller::app::add_scene_keys_command(app);
   const roller::app::Command output_columns = roller::app::add_output_columns_command(app);
+  const roller::app::Command shakedown_limit = roller::app::add_shakedown_limit_command(app);
 
   try {
     app.parse(argc, argv);
@@ -145,6 +146,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("monotonicity")) return monotonicity();
     if (app.got_subcommand("scene-keys")) return scene_keys();
     if (app.got_subcommand("output-columns")) return output_columns();
+    if (app.got_subcommand("shakedown-limit")) return shakedown_limit();
   } catch (const roller::InputError& e) {
     std::cerr << "roller: input error: " << e.what() << "\n";
     return 2;

@@ -96,11 +96,31 @@ TEST_CASE("Melan's bound: a stress a shift cancels does not limit; a row without
     row.yield_stress.push_back(250.0);
   }
   const MelanRowLimit r = melan_row_limit(row, ShakedownBound::Elastic);
-  CHECK(r.capped);
+  CHECK(r.status == MelanRowStatus::Unlimited);
   CHECK(r.first_yield == Approx(250.0 / 300.0));
   MelanRow empty = row;
   for (Vec4& s : empty.stress) s.setZero();
   const MelanLimit both = melan_limit({row, empty}, ShakedownBound::Elastic);
   CHECK(both.critical_row == -1);
-  CHECK(both.rows[1].capped);
+  CHECK(both.rows[1].status == MelanRowStatus::Unlimited);
+}
+
+TEST_CASE("Melan's bound: the strictest row found without solving every row", "[melan]") {
+  std::vector<MelanRow> rows;
+  for (int j = 0; j <= 25; ++j) rows.push_back(mcewen_row(0.04 * j, 0.2));
+  const MelanLimit fast = melan_limit(rows, ShakedownBound::Elastic, MelanSearch::StrictestRow);
+  const MelanLimit all = melan_limit(rows, ShakedownBound::Elastic, MelanSearch::EveryRow);
+  CHECK(fast.critical_row == all.critical_row);
+  CHECK(fast.load_factor() == all.load_factor());
+  int skipped = 0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    REQUIRE(all.rows[i].status == MelanRowStatus::Solved);
+    CHECK(all.rows[i].load_factor >= all.load_factor());
+    CHECK(all.rows[i].load_factor >= all.rows[i].first_yield * (1.0 - 1e-9));  // no shift is a shift
+    if (fast.rows[i].status == MelanRowStatus::NotLimiting) {
+      ++skipped;
+      CHECK(fast.rows[i].first_yield >= fast.load_factor());
+    }
+  }
+  CHECK(skipped > 0);
 }

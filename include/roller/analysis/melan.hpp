@@ -51,14 +51,30 @@ struct MelanRow {
 // whose stress cycle a shift cancels (a uniform stress along it) has no finite limit.
 constexpr Real kMelanCapOverFirstYield = 100.0;
 
+// What became of a row.
+enum class MelanRowStatus {
+  Solved,       // load_factor is the row's limit
+  Unlimited,    // no stress along it, or a shift cancels its cycle (the cap was reached)
+  NotLimiting,  // not solved: its first yield lies above a limit found in another row, and its own
+                // limit cannot lie below its first yield (MelanSearch::StrictestRow)
+};
+template <>
+struct EnumNames<MelanRowStatus> {
+  static constexpr std::array<std::pair<MelanRowStatus, const char*>, 3> names{
+      {{MelanRowStatus::Solved, "solved"},
+       {MelanRowStatus::Unlimited, "unlimited"},
+       {MelanRowStatus::NotLimiting, "not_limiting"}}};
+};
+
 struct MelanRowLimit {
   Real depth = 0.0;
-  Real load_factor = 0.0;   // lambda at the limit (the cap when the row does not limit)
+  MelanRowStatus status = MelanRowStatus::Solved;
+  Real load_factor = 0.0;   // lambda at the limit (Solved)
   Real first_yield = 0.0;   // min sigma_y,i / sigma_vm(sigma_i): the row's first yield
-  bool capped = false;      // the cap was reached: the row does not limit the load
   Vec4 residual_stress = Vec4::Zero();  // rho at the limit [xx, yy, zz, xy] (MPa; yy and xy are 0)
   Vec4 back_stress = Vec4::Zero();      // alpha at the limit (ShakedownBound::Kinematic)
   Real critical_x = 0.0;    // the point of the row whose constraint is most active
+  Real critical_yield_stress = 0.0;  // its initial yield stress [MPa]
   int iterations = 0;       // Ipopt's
 };
 
@@ -70,9 +86,14 @@ struct MelanLimit {
   Real first_yield() const;         // the smallest first-yield factor over the rows
 };
 
+// Which rows to solve: only as many as the strip's limit needs (rows in the order of their first
+// yield, until the next one's first yield lies above the smallest limit so far), or every row
+// (the limit by depth).
+enum class MelanSearch { StrictestRow, EveryRow };
+
 // One row. Throws NumericalError when Ipopt fails on it (the message names the depth).
 MelanRowLimit melan_row_limit(const MelanRow& row, ShakedownBound bound);
-// Every row; the rows without stress are skipped (limit: the cap, capped).
-MelanLimit melan_limit(const std::vector<MelanRow>& rows, ShakedownBound bound);
+MelanLimit melan_limit(const std::vector<MelanRow>& rows, ShakedownBound bound,
+                       MelanSearch search = MelanSearch::StrictestRow);
 
 }  // namespace roller

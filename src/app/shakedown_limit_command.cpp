@@ -1,0 +1,148 @@
+// roller shakedown-limit SCENE: Melan's bound of the scene's strip, roller and traction from one
+// elastic solution (docs/model.md, "Melan's bound"; docs/tutorial.md shows a session).
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "roller/core/error.hpp"
+#include "roller/driver/shakedown_limit.hpp"
+#include "roller/io/atomic_file.hpp"
+#include "roller/io/scene_loader.hpp"
+
+namespace roller::app {
+
+namespace {
+
+struct ShakedownLimitArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  int refine = 0;
+  std::optional<Real> traction;
+  std::string csv, json;
+};
+
+const char* where(Real depth, Real half_width) { return depth <= 0.05 * half_width ? "at the surface" : "below it"; }
+
+std::string bound_line(const char* name, const ShakedownLimitResult& r, const MelanLimit& b) {
+  if (b.critical_row < 0) return fmt::format("  {:<26} none: no row limits the load\n", name);
+  const MelanRowLimit& c = b.rows[b.critical_row];
+  return fmt::format("  {:<26} p0/k = {:.4g}  at depth {:.3g} mm ({:.3g} a, {}), x = {:.4g} mm; load factor {:.4g}\n",
+                     name, r.p0_over_k(b), c.depth, c.depth / r.load.half_width,
+                     where(c.depth, r.load.half_width), c.critical_x, b.load_factor());
+}
+
+void print_result(const Scene& scene, const ShakedownLimitResult& r) {
+  const ShakedownLoad& l = r.load;
+  std::cout << fmt::format(
+      "roller: shakedown limit of '{}': Hertz a = {:.4g} mm, p0 = {:.5g} MPa at P = {:.6g} N/mm (computed peak "
+      "pressure {:.5g} MPa); traction q = {:.3g} p\n",
+      scene.name, l.half_width, l.hertz_peak, l.load, l.computed_peak, l.traction);
+  const Real k = r.elastic.critical_row < 0 ? 0.0 : r.elastic.rows[r.elastic.critical_row].critical_yield_stress;
+  std::cout << fmt::format("  {:<26} p0/k = {:.4g}  (k = sigma_y/sqrt(3) = {:.5g} MPa)\n", "this scene's load",
+                           r.scene_p0_over_k(r.elastic), k / std::sqrt(3.0));
+  std::cout << fmt::format("  {:<26} p0/k = {:.4g}\n", "first yield", r.elastic.first_yield() * r.scene_p0_over_k(r.elastic));
+  std::cout << bound_line("elastic shakedown limit", r, r.elastic);
+  if (r.kinematic) std::cout << bound_line("kinematic hardening limit", r, *r.kinematic);
+  // With p0 = sqrt(P E*/(pi R)) the load scales with the square of the factor (a grows with it).
+  std::cout << fmt::format("  the scene's P at the elastic shakedown limit (Hertz scaling, P ~ p0^2): {:.6g} N/mm\n",
+                           l.load * r.elastic.load_factor() * r.elastic.load_factor());
+}
+
+nlohmann::json bound_json(const ShakedownLimitResult& r, const MelanLimit& b) {
+  nlohmann::json j{{"bound", enum_name(b.bound)}, {"load_factor", b.load_factor()}, {"p0_over_k", r.p0_over_k(b)}};
+  if (b.critical_row >= 0) {
+    const MelanRowLimit& c = b.rows[b.critical_row];
+    j["depth"] = c.depth;
+    j["depth_over_a"] = c.depth / r.load.half_width;
+    j["x"] = c.critical_x;
+    j["yield_stress"] = c.critical_yield_stress;
+  }
+  return j;
+}
+
+void write_json(const std::string& path, const ShakedownLimitResult& r) {
+  const ShakedownLoad& l = r.load;
+  nlohmann::json j{{"load", {{"P", l.load}, {"a", l.half_width}, {"p0", l.hertz_peak}, {"computed_peak", l.computed_peak},
+                             {"traction", l.traction}, {"press_steps", l.press_steps}}},
+                   {"scene_p0_over_k", r.scene_p0_over_k(r.elastic)},
+                   {"first_yield_p0_over_k", r.elastic.first_yield() * r.scene_p0_over_k(r.elastic)},
+                   {"elastic", bound_json(r, r.elastic)}};
+  if (r.kinematic) j["kinematic"] = bound_json(r, *r.kinematic);
+  write_file_atomically(path, j.dump(2) + "\n", "the shakedown limit's JSON");
+}
+
+// One line per depth: each row's limits as p0/k (with that row's own k) and its residual state.
+void write_csv(const std::string& path, const ShakedownLimitResult& r) {
+  std::string text =
+      "depth_mm,depth_over_a,first_yield_p0_over_k,elastic_p0_over_k,kinematic_p0_over_k,rho_xx,rho_zz,alpha_xx,"
+      "alpha_yy,alpha_zz,alpha_xy\n";
+  const auto p0k = [&](const MelanRowLimit& row, Real factor) {
+    switch (row.status) {
+      case MelanRowStatus::Solved:
+        return fmt::format("{:.6g}", factor * r.load.hertz_peak * std::sqrt(3.0) / row.critical_yield_stress);
+      case MelanRowStatus::Unlimited: return std::string("inf");
+      case MelanRowStatus::NotLimiting: return std::string();
+    }
+    return std::string();
+  };
+  for (std::size_t i = 0; i < r.elastic.rows.size(); ++i) {
+    const MelanRowLimit& e = r.elastic.rows[i];
+    const MelanRowLimit* k = r.kinematic ? &r.kinematic->rows[i] : nullptr;
+    const Real yield = e.critical_yield_stress;
+    const std::string fy = yield > 0.0 ? fmt::format("{:.6g}", e.first_yield * r.load.hertz_peak * std::sqrt(3.0) / yield)
+                                       : std::string("inf");
+    const Vec4 alpha = k ? k->back_stress : Vec4::Zero();
+    text += fmt::format("{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", e.depth,
+                        e.depth / r.load.half_width, fy, p0k(e, e.load_factor), k ? p0k(*k, k->load_factor) : "",
+                        e.residual_stress[0], e.residual_stress[2], alpha[0], alpha[1], alpha[2], alpha[3]);
+  }
+  write_file_atomically(path, text, "the shakedown limit's CSV");
+}
+
+}  // namespace
+
+Command add_shakedown_limit_command(CLI::App& app) {
+  auto args = std::make_shared<ShakedownLimitArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "shakedown-limit",
+      "Melan's shakedown limit of a scene's strip, roller and traction from one elastic solution (docs/model.md)");
+  cmd->add_option("scene", args->scene, "scene file (TOML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--set", args->sets, "override a scene value, e.g. --set contact.friction=0.2")
+      ->type_name("KEY=VALUE");
+  cmd->add_option("--refine", args->refine, "mesh refinement factor (overrides mesh.refine)")->check(CLI::Range(1, 64));
+  cmd->add_option("--traction", args->traction,
+                  "traction coefficient q/p (default: the friction coefficient when the roller slides, 0 when it rolls)")
+      ->check(CLI::Range(0.0, 10.0));
+  cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file");
+  cmd->add_option("--json", args->json, "write the limits to this JSON file");
+  return [args] {
+    std::vector<SceneOverride> overrides;
+    for (const auto& s : args->sets) overrides.push_back(parse_override(s));
+    if (args->refine > 0) overrides.push_back({"mesh.refine", std::to_string(args->refine)});
+    const Scene scene = load_scene(args->scene, overrides);
+    ShakedownLimitSettings settings;
+    settings.traction = args->traction;
+    if (!args->csv.empty()) settings.search = MelanSearch::EveryRow;
+    settings.progress = &std::cout;
+    ShakedownLimitResult result;
+    try {
+      result = compute_shakedown_limit(scene, settings);
+    } catch (const NumericalError& e) {
+      std::cerr << "roller: shakedown-limit failed: " << e.what() << "\n";
+      return 1;
+    }
+    print_result(scene, result);
+    if (!args->csv.empty()) write_csv(args->csv, result);
+    if (!args->json.empty()) write_json(args->json, result);
+    return 0;
+  };
+}
+
+}  // namespace roller::app
