@@ -36,3 +36,21 @@ def test_limits():
     assert shakedown_limit(0.0) == pytest.approx(4.0, abs=2e-3)
     assert shakedown_limit(0.5) == pytest.approx(2.0, abs=2e-3)
     assert shakedown_limit(0.2) < shakedown_limit(0.1)
+    # Johnson's 3.56, 3.20, 2.89 (Contact Mechanics, ch. 9) to the digits he gives.
+    for mu, limit in ((0.1, 3.56), (0.2, 3.20), (0.3, 2.89)):
+        assert shakedown_limit(mu) == pytest.approx(limit, rel=5e-3)
+
+
+def test_equilibrium():
+    """The stresses satisfy equilibrium inside the solid (central differences; McEwen's tau_xz has
+    the opposite sign of the x-z frame's, hence the minus signs). The traction's sigma_z once had
+    the wrong sign, which the surface values and the frictionless limits do not see."""
+    h = 1e-5
+    for mu in (0.0, 0.3):
+        for x, z in ((0.3, 0.4), (-1.2, 0.5), (1.5, 0.8), (0.0, 1.3)):
+            dsx_dx = (mcewen(x + h, z, mu)[0] - mcewen(x - h, z, mu)[0]) / (2 * h)
+            dt_dz = (mcewen(x, z + h, mu)[2] - mcewen(x, z - h, mu)[2]) / (2 * h)
+            dt_dx = (mcewen(x + h, z, mu)[2] - mcewen(x - h, z, mu)[2]) / (2 * h)
+            dsz_dz = (mcewen(x, z + h, mu)[1] - mcewen(x, z - h, mu)[1]) / (2 * h)
+            assert dsx_dx - dt_dz == pytest.approx(0.0, abs=1e-6)
+            assert dsz_dz - dt_dx == pytest.approx(0.0, abs=1e-6)

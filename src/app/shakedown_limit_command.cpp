@@ -30,28 +30,30 @@ struct ShakedownLimitArgs {
 
 const char* where(Real depth, Real half_width) { return depth <= 0.05 * half_width ? "at the surface" : "below it"; }
 
+// A limit as its load factor, the p0 it puts on the scene and p0/k with the k where it is reached.
 std::string bound_line(const char* name, const ShakedownLimitResult& r, const MelanLimit& b) {
-  if (b.critical_row < 0) return fmt::format("  {:<26} none: no row limits the load\n", name);
+  if (b.critical_row < 0) return fmt::format("  {:<26} none: no depth limits the load\n", name);
   const MelanRowLimit& c = b.rows[b.critical_row];
-  return fmt::format("  {:<26} p0/k = {:.4g}  at depth {:.3g} mm ({:.3g} a, {}), x = {:.4g} mm; load factor {:.4g}\n",
-                     name, r.p0_over_k(b), c.depth, c.depth / r.load.half_width,
-                     where(c.depth, r.load.half_width), c.critical_x, b.load_factor());
+  return fmt::format(
+      "  {:<26} load factor {:.4g}: p0 = {:.5g} MPa, p0/k = {:.4g} (k = {:.4g} MPa there), at depth {:.3g} mm "
+      "({:.3g} a, {}), x = {:.4g} mm\n",
+      name, b.load_factor(), b.load_factor() * r.load.hertz_peak, r.p0_over_k(b),
+      c.critical_yield_stress / std::sqrt(3.0), c.depth, c.depth / r.load.half_width, where(c.depth, r.load.half_width),
+      c.critical_x);
 }
 
 void print_result(const Scene& scene, const ShakedownLimitResult& r) {
   const ShakedownLoad& l = r.load;
   std::cout << fmt::format(
-      "roller: shakedown limit of '{}': Hertz a = {:.4g} mm, p0 = {:.5g} MPa at P = {:.6g} N/mm (computed peak "
-      "pressure {:.5g} MPa); traction q = {:.3g} p\n",
-      scene.name, l.half_width, l.hertz_peak, l.load, l.computed_peak, l.traction);
-  const Real k = r.elastic.critical_row < 0 ? 0.0 : r.elastic.rows[r.elastic.critical_row].critical_yield_stress;
-  std::cout << fmt::format("  {:<26} p0/k = {:.4g}  (k = sigma_y/sqrt(3) = {:.5g} MPa)\n", "this scene's load",
-                           r.scene_p0_over_k(r.elastic), k / std::sqrt(3.0));
-  std::cout << fmt::format("  {:<26} p0/k = {:.4g}\n", "first yield", r.elastic.first_yield() * r.scene_p0_over_k(r.elastic));
+      "roller: shakedown limit of '{}' (load factor 1: the scene's load P = {:.6g} N/mm, Hertz a = {:.4g} mm, "
+      "p0 = {:.5g} MPa; computed peak pressure {:.5g} MPa; traction q = {:.3g} p)\n",
+      scene.name, l.load, l.half_width, l.hertz_peak, l.computed_peak, l.traction);
+  std::cout << fmt::format("  {:<26} load factor {:.4g}: p0 = {:.5g} MPa\n", "first yield", r.elastic.first_yield(),
+                           r.elastic.first_yield() * l.hertz_peak);
   std::cout << bound_line("elastic shakedown limit", r, r.elastic);
   if (r.kinematic) std::cout << bound_line("kinematic hardening limit", r, *r.kinematic);
   // With p0 = sqrt(P E*/(pi R)) the load scales with the square of the factor (a grows with it).
-  std::cout << fmt::format("  the scene's P at the elastic shakedown limit (Hertz scaling, P ~ p0^2): {:.6g} N/mm\n",
+  std::cout << fmt::format("  the load P at the elastic shakedown limit (Hertz: P ~ p0^2): {:.6g} N/mm\n",
                            l.load * r.elastic.load_factor() * r.elastic.load_factor());
 }
 

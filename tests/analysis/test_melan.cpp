@@ -124,3 +124,15 @@ TEST_CASE("Melan's bound: the strictest row found without solving every row", "[
   }
   CHECK(skipped > 0);
 }
+
+TEST_CASE("McEwen's stresses of the tests satisfy equilibrium (central differences)", "[melan]") {
+  // McEwen's tau_xz has the opposite sign of the x-z frame's (z into the solid).
+  const Real h = 1e-5;
+  for (const Real mu : {0.0, 0.3})
+    for (const auto& [x, z] : std::vector<std::pair<Real, Real>>{{0.3, 0.4}, {-1.2, 0.5}, {1.5, 0.8}}) {
+      const auto s = [&](Real dx, Real dz) { return test::mcewen_stress(x + dx, z + dz, mu, kNu); };
+      const Vec4 dx = (s(h, 0) - s(-h, 0)) / (2 * h), dz = (s(0, h) - s(0, -h)) / (2 * h);
+      CHECK(dx[0] - dz[3] == Approx(0.0).margin(1e-6));
+      CHECK(dz[1] - dx[3] == Approx(0.0).margin(1e-6));
+    }
+}

@@ -19,7 +19,7 @@ inline Vec4 mcewen_stress(Real x, Real z, Real mu, Real nu) {
   Real sz = -m * (1.0 - (z * z + n * n) / d);
   Real t = n * (m * m - z * z) / d;
   sx += -mu * (n * (2.0 - (z * z - m * m) / d) - 2.0 * x);
-  sz += -mu * n * (m * m - z * z) / d;
+  sz += mu * n * (m * m - z * z) / d;
   t += -mu * (m * (1.0 + (z * z + n * n) / d) - 2.0 * z);
   return Vec4(sx, sz, nu * (sx + sz), t);
 }

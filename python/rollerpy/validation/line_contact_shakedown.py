@@ -20,7 +20,7 @@ def mcewen(x, z, mu):
     sz = -m * (1.0 - (z * z + n * n) / d)
     t = n * (m * m - z * z) / d
     sx += -mu * (n * (2.0 - (z * z - m * m) / d) - 2.0 * x)
-    sz += -mu * n * (m * m - z * z) / d
+    sz += mu * n * (m * m - z * z) / d
     t += -mu * (m * (1.0 + (z * z + n * n) / d) - 2.0 * z)
     return sx, sz, t
 

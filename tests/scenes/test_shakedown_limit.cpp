@@ -1,0 +1,109 @@
+// Melan's bound of a shipped scene from its elastic press (roller shakedown-limit; docs/validation.md,
+// "Melan's bound"): the deep strip of problems/shakedown_p45.toml (47a above a bonded base) against
+// Johnson's limits of the half-plane, the back-stress bound against the same theorem on McEwen's
+// stresses, the surface limit 1/mu as the mesh is refined, and the scene errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "roller/core/error.hpp"
+#include "roller/driver/shakedown_limit.hpp"
+#include "roller/io/scene_loader.hpp"
+#include "../support/mcewen.hpp"
+
+using namespace roller;
+using Catch::Contains;
+
+namespace {
+
+Scene shipped(const std::string& name, const std::vector<SceneOverride>& overrides = {}) {
+  return load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml", overrides);
+}
+
+ShakedownLimitResult limit_of(const Scene& scene, Real traction) {
+  ShakedownLimitSettings s;
+  s.traction = traction;
+  return compute_shakedown_limit(scene, s);
+}
+
+// The back-stress bound of the half-plane, from McEwen's stresses (k = 1, rows every 0.01 a).
+Real mcewen_kinematic_limit(Real mu) {
+  std::vector<MelanRow> rows;
+  for (int j = 20; j <= 70; ++j) {
+    MelanRow row;
+    row.depth = 0.01 * j;
+    for (int i = 0; i <= 800; ++i) {
+      row.x.push_back(-4.0 + 0.01 * i);
+      row.stress.push_back(test::mcewen_stress(row.x.back(), row.depth, mu, 0.3));
+      row.yield_stress.push_back(std::sqrt(3.0));
+    }
+    rows.push_back(row);
+  }
+  return melan_limit(rows, ShakedownBound::Kinematic).load_factor();
+}
+
+}  // namespace
+
+TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with sliding traction", "[scenes][melan]") {
+  const auto [mu, johnson] = GENERATE(table<Real, Real>({{0.0, 4.00}, {0.1, 3.56}, {0.2, 3.20}, {0.3, 2.89}}));
+  const ShakedownLimitResult r = limit_of(shipped("shakedown_p45"), mu);
+  const MelanRowLimit& c = r.elastic.rows[r.elastic.critical_row];
+  std::cout << fmt::format("p45, q = {} p: p0/k = {:.4f} (Johnson {:.2f}) at {:.3f} a; first yield {:.3f}\n", mu,
+                           r.p0_over_k(r.elastic), johnson, c.depth / r.load.half_width,
+                           r.elastic.first_yield() * r.scene_p0_over_k(r.elastic));
+  CHECK(r.scene_p0_over_k(r.elastic) == Approx(4.5).epsilon(1e-4));  // the scene's own load
+  CHECK(r.p0_over_k(r.elastic) == Approx(johnson).epsilon(0.01));
+  CHECK(c.depth / r.load.half_width == Approx(0.5).margin(0.2));  // below the surface, near 0.5 a
+  CHECK_FALSE(r.kinematic);  // perfectly plastic: no back-stress bound
+}
+
+TEST_CASE("shakedown-limit with kinematic hardening: the back-stress bound of the half-plane", "[scenes][melan]") {
+  const Real mu = 0.2;
+  const ShakedownLimitResult r = limit_of(shipped("shakedown_kinematic_p45"), mu);
+  REQUIRE(r.kinematic);
+  const Real half_plane = mcewen_kinematic_limit(mu);
+  std::cout << fmt::format("kinematic p45, q = {} p: elastic {:.4f}, kinematic {:.4f}; half-plane {:.4f}\n", mu,
+                           r.p0_over_k(r.elastic), r.p0_over_k(*r.kinematic), half_plane);
+  CHECK(r.p0_over_k(*r.kinematic) == Approx(half_plane).epsilon(0.01));
+  CHECK(r.p0_over_k(*r.kinematic) > 1.1 * r.p0_over_k(r.elastic));
+}
+
+TEST_CASE("shakedown-limit under a strong traction: at the surface, falling to 1/mu as the mesh is refined",
+          "[scenes][melan][slow]") {
+  const Real mu = 0.5;
+  Real previous = 1e300;
+  for (const int refine : {1, 2}) {
+    const ShakedownLimitResult r = limit_of(shipped("shakedown_p45", {{"mesh.refine", std::to_string(refine)}}), mu);
+    const MelanRowLimit& c = r.elastic.rows[r.elastic.critical_row];
+    std::cout << fmt::format("refine {}: p0/k = {:.4f} at {:.4f} a (1/mu = {})\n", refine, r.p0_over_k(r.elastic),
+                             c.depth / r.load.half_width, 1.0 / mu);
+    CHECK(c.depth / r.load.half_width < 0.06);  // the top row of elements
+    CHECK(r.p0_over_k(r.elastic) > 1.0 / mu);   // the top row's centroid lies below the surface...
+    CHECK(r.p0_over_k(r.elastic) < previous);   // ...and comes closer with the mesh
+    previous = r.p0_over_k(r.elastic);
+  }
+  CHECK(previous == Approx(1.0 / mu).epsilon(0.05));
+}
+
+TEST_CASE("shakedown-limit: scenes it cannot take are input errors naming the cause", "[scenes][melan]") {
+  const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml";
+  SECTION("a roller that only presses") {
+    const Scene s = load_scene(file, {{"roller.path", "[{ steps = [1, 21], fy = 7249.8 }]"}});
+    CHECK_THROWS_WITH(limit_of(s, 0.0), Contains("needs a segment that rolls or slides"));
+  }
+  SECTION("an elastic strip") {
+    Scene s = load_scene(file);
+    s.material.plastic = false;
+    CHECK_THROWS_WITH(compute_shakedown_limit(s, {}), Contains("the strip is elastic"));
+  }
+  SECTION("rolling with creep and no traction given") {
+    const Scene s = load_scene(
+        file, {{"roller.path", "[{ steps = [1, 3], fy = 7249.8 }, { steps = [4, 19], dx = 16.0, fy = 7249.8, "
+                               "slip = 0.01 }, { steps = [20, 21], dy = 0.3 }]"}});
+    CHECK_THROWS_WITH(compute_shakedown_limit(s, {}), Contains("--traction"));
+  }
+}
