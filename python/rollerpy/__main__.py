@@ -16,6 +16,7 @@ COMMANDS = {
     "plot-shakedown-map": ("rollerpy.plots.shakedown_map", "the shakedown map of a study.csv"),
     "shakedown-map": ("rollerpy.validation.shakedown_map", "run the shakedown-map study and draw the map"),
     "shakedown": ("rollerpy.validation.shakedown", "repeated rolling against Johnson's shakedown results"),
+    "melan-check": ("rollerpy.validation.melan_check", "transient passes 5 % below and above Melan's limit"),
     "make-shakedown-scenes": ("rollerpy.validation.make_shakedown_scenes", "write problems/shakedown_pXX.toml"),
     "carter": ("rollerpy.validation.carter", "steady rolling with creep against Carter's theory"),
     "cattaneo-mindlin": ("rollerpy.validation.cattaneo_mindlin", "Cattaneo's stick zone under prescribed forces"),

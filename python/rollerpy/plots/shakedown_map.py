@@ -5,16 +5,24 @@ traction coefficient mu (contact.friction) and load p0/k (passes.p0_over_k), mar
 shakedown limit over it (rollerpy.validation.line_contact_shakedown) and the surface limit 1/mu; prints a
 Markdown table of the points against that limit.
 
-usage: ./rollerpy plot-shakedown-map STUDY_CSV [--out MAP.png]
+With --melan SCENE, also the limit `roller shakedown-limit` computes for the scene's own strip
+(Melan's bound from its elastic press, q = mu p; docs/model.md) at mu = 0, 0.05, ..., 0.4: the
+line the finite strip and mesh give beside the half-plane's.
+
+usage: ./rollerpy plot-shakedown-map STUDY_CSV [--out MAP.png] [--melan SCENE] [--roller build/roller]
 Default --out: shakedown_map.png beside the CSV.
 """
+import json
 import os
+import subprocess
 import sys
+import tempfile
 
 import numpy as np
 
 from ..command import parser
 from ..outputs import read_rows
+from ..paths import DEFAULT_ROLLER
 from ..validation.line_contact_shakedown import shakedown_limit
 from . import plt
 
@@ -24,10 +32,25 @@ STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
          "undetermined": ("D", "0.5", "undetermined")}
 
 
+def melan_line(roller, scene, mus):
+    """p0/k of Melan's bound of `scene` at each traction coefficient (roller shakedown-limit)."""
+    limits = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for mu in mus:
+            out = os.path.join(tmp, "limit.json")
+            subprocess.run([roller, "shakedown-limit", scene, "--traction", repr(float(mu)), "--json", out],
+                           check=True, stdout=subprocess.DEVNULL)
+            with open(out) as f:
+                limits.append(json.load(f)["elastic"]["p0_over_k"])
+    return limits
+
+
 def main(argv=None):
     ap = parser("plot-shakedown-map", __doc__)
     ap.add_argument("csv")
     ap.add_argument("--out")
+    ap.add_argument("--melan", metavar="SCENE", help="draw roller shakedown-limit's line for this scene")
+    ap.add_argument("--roller", default=DEFAULT_ROLLER)
     args = ap.parse_args(argv)
     rows = read_rows(args.csv)
     if not rows:
@@ -36,6 +59,12 @@ def main(argv=None):
     mus = np.linspace(0.0, 0.5, 51)
     ax.plot(mus, [shakedown_limit(m) for m in mus], "k-", label="Johnson: shakedown limit (Melan)")
     ax.plot(mus[mus > 0.15], 1.0 / mus[mus > 0.15], "k:", label="surface limit 1/μ")
+    melan = {}
+    if args.melan:
+        melan_mus = np.linspace(0.0, 0.4, 9)
+        melan = dict(zip(melan_mus, melan_line(args.roller, args.melan, melan_mus)))
+        ax.plot(list(melan), list(melan.values()), "C0.--", ms=7,
+                label="roller shakedown-limit: Melan on %s" % os.path.basename(args.melan))
     seen = set()
     for r in rows:
         mu = float(r["contact.friction"])
@@ -59,6 +88,9 @@ def main(argv=None):
     fig.tight_layout()
     # The table: each point against Johnson's limit at its mu.
     limits = {}
+    if melan:
+        print("Melan's bound of %s (roller shakedown-limit): %s" % (
+            args.melan, ", ".join("%.3f at μ = %.2f" % (v, m) for m, v in melan.items())))
     print("| p0/k | μ | Johnson's limit | expected | verdict | status | run [s] |")
     print("|---:|---:|---:|---|---|---|---:|")
     for r in rows:
