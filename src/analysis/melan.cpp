@@ -139,8 +139,8 @@ class MelanRowNlp : public Ipopt::TNLP {
       }
     return true;
   }
-  bool eval_h(IIndex n, const Number*, bool, Number obj_factor, IIndex m, const Number* lambda, bool, IIndex, IIndex* rows,
-              IIndex* cols, Number* values) override {
+  bool eval_h(IIndex n, const Number*, bool, Number obj_factor, IIndex m, const Number* lambda, bool, IIndex,
+              IIndex* rows, IIndex* cols, Number* values) override {
     RowMatrix h = RowMatrix::Zero(n, n);
     for (IIndex j = 1; j < n; ++j) h(j, j) = obj_factor * kShiftPull;
     if (values)
@@ -285,9 +285,10 @@ MelanRowLimit melan_row_limit(const MelanRow& row, ShakedownBound bound) {
     for (std::size_t k = 0; k < violated.size() && added < kAddedPerRound; ++k)
       if (!repeats(forms, active, violated[k].second)) active.push_back(violated[k].second), ++added;
     if (added == 0)
-      throw NumericalError(fmt::format("Melan's bound at depth {:.4g} mm: Ipopt's solution violates constraints "
-                                       "it was given",
-                                       row.depth));
+      throw NumericalError(
+          fmt::format("Melan's bound at depth {:.4g} mm: Ipopt's solution violates constraints "
+                      "it was given",
+                      row.depth));
   }
   out.load_factor = v[0];
   if (out.load_factor >= cap * (1.0 - 1e-6)) out.status = MelanRowStatus::Unlimited;
@@ -315,8 +316,7 @@ MelanLimit melan_limit(const std::vector<MelanRow>& rows, ShakedownBound bound, 
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return out.rows[a].first_yield < out.rows[b].first_yield; });
   for (const std::size_t i : order) {
-    if (search == MelanSearch::StrictestRow && out.critical_row >= 0 &&
-        out.rows[i].first_yield >= out.load_factor()) {
+    if (search == MelanSearch::StrictestRow && out.critical_row >= 0 && out.rows[i].first_yield >= out.load_factor()) {
       out.rows[i].status = MelanRowStatus::NotLimiting;
       continue;
     }

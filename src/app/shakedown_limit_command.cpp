@@ -71,8 +71,13 @@ nlohmann::json bound_json(const ShakedownLimitResult& r, const MelanLimit& b) {
 
 void write_json(const std::string& path, const ShakedownLimitResult& r) {
   const ShakedownLoad& l = r.load;
-  nlohmann::json j{{"load", {{"P", l.load}, {"a", l.half_width}, {"p0", l.hertz_peak}, {"computed_peak", l.computed_peak},
-                             {"traction", l.traction}, {"press_steps", l.press_steps}}},
+  nlohmann::json j{{"load",
+                    {{"P", l.load},
+                     {"a", l.half_width},
+                     {"p0", l.hertz_peak},
+                     {"computed_peak", l.computed_peak},
+                     {"traction", l.traction},
+                     {"press_steps", l.press_steps}}},
                    {"scene_p0_over_k", r.scene_p0_over_k(r.elastic)},
                    {"first_yield_p0_over_k", r.elastic.first_yield() * r.scene_p0_over_k(r.elastic)},
                    {"elastic", bound_json(r, r.elastic)}};
@@ -98,8 +103,9 @@ void write_csv(const std::string& path, const ShakedownLimitResult& r) {
     const MelanRowLimit& e = r.elastic.rows[i];
     const MelanRowLimit* k = r.kinematic ? &r.kinematic->rows[i] : nullptr;
     const Real yield = e.critical_yield_stress;
-    const std::string fy = yield > 0.0 ? fmt::format("{:.6g}", e.first_yield * r.load.hertz_peak * std::sqrt(3.0) / yield)
-                                       : std::string("inf");
+    const std::string fy = yield > 0.0
+                               ? fmt::format("{:.6g}", e.first_yield * r.load.hertz_peak * std::sqrt(3.0) / yield)
+                               : std::string("inf");
     const Vec4 alpha = k ? k->back_stress : Vec4::Zero();
     text += fmt::format("{:.6g},{:.6g},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n", e.depth,
                         e.depth / r.load.half_width, fy, p0k(e, e.load_factor), k ? p0k(*k, k->load_factor) : "",
@@ -119,8 +125,9 @@ Command add_shakedown_limit_command(CLI::App& app) {
   cmd->add_option("--set", args->sets, "override a scene value, e.g. --set contact.friction=0.2")
       ->type_name("KEY=VALUE");
   cmd->add_option("--refine", args->refine, "mesh refinement factor (overrides mesh.refine)")->check(CLI::Range(1, 64));
-  cmd->add_option("--traction", args->traction,
-                  "traction coefficient q/p (default: the friction coefficient when the roller slides, 0 when it rolls)")
+  cmd->add_option(
+         "--traction", args->traction,
+         "traction coefficient q/p (default: the friction coefficient when the roller slides, 0 when it rolls)")
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file");
   cmd->add_option("--json", args->json, "write the limits to this JSON file");

@@ -25,13 +25,15 @@ const PathSegment& travel_segment(const Scene& scene) {
     return std::abs(a.dx) < std::abs(b.dx);
   });
   if (it == path.end() || it->dx == 0.0)
-    throw InputError(fmt::format("{}: roller.path: shakedown-limit needs a segment that rolls or slides the roller "
-                                 "along the strip (dx != 0); none has one",
-                                 scene.file.string()));
+    throw InputError(
+        fmt::format("{}: roller.path: shakedown-limit needs a segment that rolls or slides the roller "
+                    "along the strip (dx != 0); none has one",
+                    scene.file.string()));
   if (it->first_step <= 1)
-    throw InputError(fmt::format("{}: roller.path: the segment with dx = {} starts at step 1; shakedown-limit "
-                                 "needs the press before it (the steps that bring the roller to its load)",
-                                 scene.file.string(), it->dx));
+    throw InputError(
+        fmt::format("{}: roller.path: the segment with dx = {} starts at step 1; shakedown-limit "
+                    "needs the press before it (the steps that bring the roller to its load)",
+                    scene.file.string(), it->dx));
   return *it;
 }
 
@@ -40,11 +42,11 @@ Real traction_of(const Scene& scene, const PathSegment& travel, const ShakedownL
   const Real slip = std::min(travel.slip_start, travel.slip_end);
   if (std::max(travel.slip_start, travel.slip_end) == 0.0) return 0.0;  // free rolling: no tangential load
   if (slip >= 1.0) return friction_in_step(*scene.roller, travel.first_step, scene.contact.friction);
-  throw InputError(fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}..{}); "
-                               "shakedown-limit takes full sliding (q = mu p) or free rolling (q = 0): give the "
-                               "traction q/p with --traction",
-                               scene.file.string(), travel.first_step, travel.last_step, travel.slip_start,
-                               travel.slip_end));
+  throw InputError(
+      fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}..{}); "
+                  "shakedown-limit takes full sliding (q = mu p) or free rolling (q = 0): give the "
+                  "traction q/p with --traction",
+                  scene.file.string(), travel.first_step, travel.last_step, travel.slip_start, travel.slip_end));
 }
 
 // The scene's press with a linear elastic, small-strain strip and no friction.
@@ -106,7 +108,8 @@ std::vector<MelanRow> depth_rows(const StripModel& elastic, const ElementMateria
     stress /= elastic.points_per_element();
     const MaterialParams& m = plastic.of(e);
     MelanRow& row = rows[std::llround((top - centroid.y()) * 1e6)];
-    row.back_stress_bound = row.x.empty() ? back_stress_bound(m) : std::min(row.back_stress_bound, back_stress_bound(m));
+    row.back_stress_bound =
+        row.x.empty() ? back_stress_bound(m) : std::min(row.back_stress_bound, back_stress_bound(m));
     row.depth = top - centroid.y();
     row.x.push_back(centroid.x());
     row.stress.push_back(stress);
@@ -126,7 +129,8 @@ ShakedownLoad press_load(const Scene& scene, const Simulation& sim, int press_st
   load.half_width = h.half_width;
   load.hertz_peak = h.peak;
   for (const NodeContactRecord& c : sim.state().contact)
-    if (c.tributary_length > 0.0) load.computed_peak = std::max(load.computed_peak, std::abs(c.force.y()) / c.tributary_length);
+    if (c.tributary_length > 0.0)
+      load.computed_peak = std::max(load.computed_peak, std::abs(c.force.y()) / c.tributary_length);
   load.traction = traction;
   load.travel_sign = sign;
   return load;
@@ -157,8 +161,8 @@ ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const Shakedown
   for (int step = 1; step <= press_steps; ++step) {
     const Simulation::StepRecord r = sim.advance_step(step);
     if (!r.converged())
-      throw NumericalError(fmt::format("shakedown-limit: the elastic press did not converge at step {}: {}", step,
-                                       r.message));
+      throw NumericalError(
+          fmt::format("shakedown-limit: the elastic press did not converge at step {}: {}", step, r.message));
   }
   if (traction != 0.0) add_traction(sim.model(), sim.state().contact, traction * (travel.dx > 0.0 ? 1.0 : -1.0));
   ShakedownLimitResult out;
@@ -171,7 +175,8 @@ ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const Shakedown
   const ElementMaterials plastic = assign_materials(sim.model().mesh(), scene.strip_material());
   const std::vector<MelanRow> rows = depth_rows(sim.model(), plastic, out.top);
   out.elastic = melan_limit(rows, ShakedownBound::Elastic, settings.search);
-  const bool kinematic = std::any_of(rows.begin(), rows.end(), [](const MelanRow& r) { return r.back_stress_bound > 0.0; });
+  const bool kinematic =
+      std::any_of(rows.begin(), rows.end(), [](const MelanRow& r) { return r.back_stress_bound > 0.0; });
   if (kinematic) out.kinematic = melan_limit(rows, ShakedownBound::Kinematic, settings.search);
   return out;
 }

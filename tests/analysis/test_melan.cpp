@@ -8,8 +8,8 @@
 
 #include <fmt/format.h>
 
-#include "roller/analysis/melan.hpp"
 #include "../support/mcewen.hpp"
+#include "roller/analysis/melan.hpp"
 
 using namespace roller;
 
@@ -40,10 +40,9 @@ std::vector<MelanRow> mcewen_rows(Real mu) {
 
 }  // namespace
 
-TEST_CASE("Melan's bound of a Hertz line contact: Johnson's limits without and with sliding traction",
-          "[melan]") {
-  const auto [mu, johnson, depth] = GENERATE(table<Real, Real, Real>(
-      {{0.0, 4.00, 0.50}, {0.1, 3.56, 0.45}, {0.2, 3.20, 0.41}, {0.3, 2.89, 0.36}}));
+TEST_CASE("Melan's bound of a Hertz line contact: Johnson's limits without and with sliding traction", "[melan]") {
+  const auto [mu, johnson, depth] =
+      GENERATE(table<Real, Real, Real>({{0.0, 4.00, 0.50}, {0.1, 3.56, 0.45}, {0.2, 3.20, 0.41}, {0.3, 2.89, 0.36}}));
   const MelanLimit limit = melan_limit(mcewen_rows(mu), ShakedownBound::Elastic);
   const MelanRowLimit& critical = limit.rows[limit.critical_row];
   std::cout << fmt::format("mu = {}: p0/k = {:.4f} (Johnson {:.2f}) at depth {:.2f} a, first yield {:.3f}\n", mu,

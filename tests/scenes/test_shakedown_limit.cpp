@@ -10,10 +10,10 @@
 
 #include <fmt/format.h>
 
+#include "../support/mcewen.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/shakedown_limit.hpp"
 #include "roller/io/scene_loader.hpp"
-#include "../support/mcewen.hpp"
 
 using namespace roller;
 using Catch::Contains;
@@ -58,7 +58,7 @@ TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with 
   CHECK(r.scene_p0_over_k(r.elastic) == Approx(4.5).epsilon(1e-4));  // the scene's own load
   CHECK(r.p0_over_k(r.elastic) == Approx(johnson).epsilon(0.01));
   CHECK(c.depth / r.load.half_width == Approx(0.5).margin(0.2));  // below the surface, near 0.5 a
-  CHECK_FALSE(r.kinematic);  // perfectly plastic: no back-stress bound
+  CHECK_FALSE(r.kinematic);                                       // perfectly plastic: no back-stress bound
 }
 
 TEST_CASE("shakedown-limit with kinematic hardening: the back-stress bound of the half-plane", "[scenes][melan]") {
@@ -101,9 +101,9 @@ TEST_CASE("shakedown-limit: scenes it cannot take are input errors naming the ca
     CHECK_THROWS_WITH(compute_shakedown_limit(s, {}), Contains("the strip is elastic"));
   }
   SECTION("rolling with creep and no traction given") {
-    const Scene s = load_scene(
-        file, {{"roller.path", "[{ steps = [1, 3], fy = 7249.8 }, { steps = [4, 19], dx = 16.0, fy = 7249.8, "
-                               "slip = 0.01 }, { steps = [20, 21], dy = 0.3 }]"}});
+    const Scene s = load_scene(file, {{"roller.path",
+                                       "[{ steps = [1, 3], fy = 7249.8 }, { steps = [4, 19], dx = 16.0, fy = 7249.8, "
+                                       "slip = 0.01 }, { steps = [20, 21], dy = 0.3 }]"}});
     CHECK_THROWS_WITH(compute_shakedown_limit(s, {}), Contains("--traction"));
   }
 }

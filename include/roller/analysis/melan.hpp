@@ -38,10 +38,10 @@ struct EnumNames<ShakedownBound> {
 
 // The integration points at one depth: the stress history of a point at that depth.
 struct MelanRow {
-  Real depth = 0.0;                 // below the strip's top [mm]
-  std::vector<Real> x;              // position of each point along the row [mm]
-  std::vector<Vec4> stress;         // elastic stress [xx, yy, zz, xy] at each point at load factor 1 [MPa]
-  std::vector<Real> yield_stress;   // initial yield stress of each point [MPa]
+  Real depth = 0.0;                // below the strip's top [mm]
+  std::vector<Real> x;             // position of each point along the row [mm]
+  std::vector<Vec4> stress;        // elastic stress [xx, yy, zz, xy] at each point at load factor 1 [MPa]
+  std::vector<Real> yield_stress;  // initial yield stress of each point [MPa]
   // The largest von Mises measure the back-stress can reach (sum of C/gamma of a saturating law);
   // infinity for linear kinematic hardening. Only ShakedownBound::Kinematic reads it.
   Real back_stress_bound = std::numeric_limits<Real>::infinity();
@@ -69,13 +69,13 @@ struct EnumNames<MelanRowStatus> {
 struct MelanRowLimit {
   Real depth = 0.0;
   MelanRowStatus status = MelanRowStatus::Solved;
-  Real load_factor = 0.0;   // lambda at the limit (Solved)
-  Real first_yield = 0.0;   // min sigma_y,i / sigma_vm(sigma_i): the row's first yield
+  Real load_factor = 0.0;               // lambda at the limit (Solved)
+  Real first_yield = 0.0;               // min sigma_y,i / sigma_vm(sigma_i): the row's first yield
   Vec4 residual_stress = Vec4::Zero();  // rho at the limit [xx, yy, zz, xy] (MPa; yy and xy are 0)
   Vec4 back_stress = Vec4::Zero();      // alpha at the limit (ShakedownBound::Kinematic)
-  Real critical_x = 0.0;    // the point of the row whose constraint is most active
-  Real critical_yield_stress = 0.0;  // its initial yield stress [MPa]
-  int iterations = 0;       // Ipopt's
+  Real critical_x = 0.0;                // the point of the row whose constraint is most active
+  Real critical_yield_stress = 0.0;     // its initial yield stress [MPa]
+  int iterations = 0;                   // Ipopt's
 };
 
 struct MelanLimit {
@@ -83,7 +83,7 @@ struct MelanLimit {
   std::vector<MelanRowLimit> rows;  // in the order given
   Index critical_row = -1;          // the row with the smallest limit
   Real load_factor() const { return critical_row < 0 ? 0.0 : rows[critical_row].load_factor; }
-  Real first_yield() const;         // the smallest first-yield factor over the rows
+  Real first_yield() const;  // the smallest first-yield factor over the rows
 };
 
 // Which rows to solve: only as many as the strip's limit needs (rows in the order of their first

@@ -66,8 +66,8 @@ def main(argv=None):
     with open(limit_file) as f:
         limit = json.load(f)
     factor = limit["elastic"]["load_factor"]
-    print("melan-check: %s: Melan's limit at load factor %.4f (p0/k = %.4f)" % (name, factor,
-                                                                                 limit["elastic"]["p0_over_k"]))
+    p0k = limit["elastic"]["p0_over_k"]
+    print("melan-check: %s: Melan's limit at load factor %.4f (p0/k = %.4f)" % (name, factor, p0k))
     rows, agree = [], True
     for side, fraction, expected in (("below", 1.0 - args.margin, True), ("above", 1.0 + args.margin, False)):
         # The scene's load at `fraction` of the limit: the yield stresses over fraction * factor.
