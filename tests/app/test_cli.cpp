@@ -204,3 +204,42 @@ TEST_CASE("a state file that cannot be written ends the run with exit code 2, it
   CHECK(fs::exists(out / "step_0001.vtu"));  // the step done before is on disk
   fs::remove_all(out);
 }
+
+TEST_CASE("roller shakedown-limit prints the limit and writes it by depth; bad input exits with code 2", "[app]") {
+  const fs::path csv = fs::temp_directory_path() / ("roller_cli_limit_" + std::to_string(::getpid()) + ".csv");
+  const fs::path json = fs::temp_directory_path() / ("roller_cli_limit_" + std::to_string(::getpid()) + ".json");
+  const Run r = run_roller("shakedown-limit problems/shakedown_thin_strip.toml --csv " + csv.string() + " --json " +
+                           json.string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("elastic shakedown limit") && Catch::Contains("p0/k = "));
+  const auto limit = nlohmann::json::parse(roller::test::read_text(json));
+  const double p0k = limit["elastic"]["p0_over_k"].get<double>();
+  CHECK(p0k > limit["first_yield_p0_over_k"].get<double>());
+  // The CSV's rows, every depth solved: the strictest of them is the limit the JSON gives.
+  std::istringstream rows(roller::test::read_text(csv));
+  std::string line;
+  std::getline(rows, line);
+  CHECK_THAT(line, Catch::StartsWith("depth_mm,depth_over_a,first_yield_p0_over_k,elastic_p0_over_k"));
+  double smallest = 1e300;
+  int n = 0;
+  while (std::getline(rows, line)) {
+    std::istringstream cells(line);
+    std::string cell;
+    for (int c = 0; c < 4; ++c) std::getline(cells, cell, ',');
+    REQUIRE_FALSE(cell.empty());  // every row solved
+    if (cell != "inf") smallest = std::min(smallest, std::stod(cell));
+    ++n;
+  }
+  CHECK(n > 30);
+  CHECK(smallest == Approx(p0k).epsilon(1e-5));
+  fs::remove(csv);
+  fs::remove(json);
+
+  const Run no_roller = run_roller("shakedown-limit problems/block_compression.toml");
+  CHECK(no_roller.exit_code == 2);
+  CHECK_THAT(no_roller.output, Catch::Contains("block_compression.toml") && Catch::Contains("[roller]"));
+  const Run bad_traction = run_roller("shakedown-limit problems/shakedown_p45.toml --traction -0.1");
+  CHECK(bad_traction.exit_code == 2);
+  CHECK_THAT(bad_traction.output, Catch::Contains("--traction"));
+}
