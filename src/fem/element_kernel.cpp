@@ -82,6 +82,42 @@ void add_trace_hessian(const Gradients<N>& grad, Real w, Tangent<N>& k) {
   add_geometric<N>(grad, Mat2::Identity(), w, k);
 }
 
+// Each point's strain of the increment u and its Jacobian dE/du, with B-bar's average of the
+// volumetric strain applied (Q4 only): what the material update sees. Returns the element's
+// volume (the sum of the weights).
+template <int N>
+Real strains_and_jacobians(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
+                           const Dofs<N>& u, std::array<Gradients<N>, 4>& grad, std::array<Vec4, 4>& strain,
+                           std::array<StrainJacobian<N>, 4>& jac) {
+  const std::size_t n_points = geometry.size();
+  const bool finite = options.kinematics == Kinematics::Finite;
+  Real volume = 0.0;
+  for (std::size_t q = 0; q < n_points; ++q) {
+    grad[q] = geometry[q].gradients;
+    strain_and_jacobian<N>(grad[q], u, finite, strain[q], jac[q]);
+    volume += geometry[q].weight;
+  }
+  if (type != ElementType::Q4 || options.q4 != Q4Formulation::BBar) return volume;
+  // B-bar: replace each point's volumetric strain by the element average.
+  const Vec4 m(1.0, 1.0, 1.0, 0.0);
+  Real trace_avg = 0.0;
+  RowJacobian<N> trace_jac_avg = RowJacobian<N>::Zero();
+  for (std::size_t q = 0; q < n_points; ++q) {
+    const Real w = geometry[q].weight;
+    trace_avg += w * (strain[q](0) + strain[q](1));
+    trace_jac_avg += w * (jac[q].row(0) + jac[q].row(1));
+  }
+  trace_avg /= volume;
+  trace_jac_avg /= volume;
+  for (std::size_t q = 0; q < n_points; ++q) {
+    const Real tr = strain[q](0) + strain[q](1);
+    strain[q] += (trace_avg - tr) / 3.0 * m;
+    const RowJacobian<N> dtr = jac[q].row(0) + jac[q].row(1);
+    jac[q] += m * ((trace_jac_avg - dtr) / 3.0);
+  }
+  return volume;
+}
+
 template <int N>
 void evaluate(const ElementOptions& options, const MaterialParams& material, const ElementInput& in, bool want_residual,
               bool want_tangent, ElementOutput& out) {
@@ -94,32 +130,7 @@ void evaluate(const ElementOptions& options, const MaterialParams& material, con
   std::array<Gradients<N>, 4> grad;
   std::array<Vec4, 4> strain;
   std::array<StrainJacobian<N>, 4> jac;
-  for (std::size_t q = 0; q < n_points; ++q) {
-    grad[q] = geometry[q].gradients;
-    strain_and_jacobian<N>(grad[q], u, finite, strain[q], jac[q]);
-  }
-
-  // B-bar: replace each point's volumetric strain by the element average.
-  const Vec4 m(1.0, 1.0, 1.0, 0.0);
-  Real volume = 0.0;
-  if (bbar) {
-    Real trace_avg = 0.0;
-    RowJacobian<N> trace_jac_avg = RowJacobian<N>::Zero();
-    for (std::size_t q = 0; q < n_points; ++q) {
-      const Real w = geometry[q].weight;
-      volume += w;
-      trace_avg += w * (strain[q](0) + strain[q](1));
-      trace_jac_avg += w * (jac[q].row(0) + jac[q].row(1));
-    }
-    trace_avg /= volume;
-    trace_jac_avg /= volume;
-    for (std::size_t q = 0; q < n_points; ++q) {
-      const Real tr = strain[q](0) + strain[q](1);
-      strain[q] += (trace_avg - tr) / 3.0 * m;
-      const RowJacobian<N> dtr = jac[q].row(0) + jac[q].row(1);
-      jac[q] += m * ((trace_jac_avg - dtr) / 3.0);
-    }
-  }
+  const Real volume = strains_and_jacobians<N>(options, in.type, geometry, u, grad, strain, jac);
 
   out.energy = 0.0;
   out.any_yielded = false;
@@ -172,6 +183,46 @@ void evaluate_element(const ElementOptions& options, const MaterialParams& mater
     evaluate<4>(options, material, in, want_residual, want_tangent, out);
   else
     evaluate<3>(options, material, in, want_residual, want_tangent, out);
+}
+
+namespace {
+
+template <int N>
+std::vector<Vec4> strains_of(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
+                             const ElementVector& displacement) {
+  std::array<Gradients<N>, 4> grad;
+  std::array<Vec4, 4> strain;
+  std::array<StrainJacobian<N>, 4> jac;
+  strains_and_jacobians<N>(options, type, geometry, Dofs<N>(displacement), grad, strain, jac);
+  return std::vector<Vec4>(strain.begin(), strain.begin() + static_cast<std::ptrdiff_t>(geometry.size()));
+}
+
+template <int N>
+ElementVector forces_of(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
+                        const Vec4* stresses) {
+  std::array<Gradients<N>, 4> grad;
+  std::array<Vec4, 4> strain;
+  std::array<StrainJacobian<N>, 4> jac;
+  strains_and_jacobians<N>(options, type, geometry, Dofs<N>::Zero(), grad, strain, jac);
+  Dofs<N> f = Dofs<N>::Zero();
+  for (std::size_t q = 0; q < geometry.size(); ++q) f.noalias() += geometry[q].weight * jac[q].transpose() * stresses[q];
+  return f;
+}
+
+}  // namespace
+
+std::vector<Vec4> element_strains(const ElementOptions& options, ElementType type,
+                                  const std::vector<PointGeometry>& geometry, const ElementVector& displacement) {
+  ROLLER_ASSERT(options.kinematics == Kinematics::Small, "element_strains is for small kinematics");
+  return type == ElementType::Q4 ? strains_of<4>(options, type, geometry, displacement)
+                                 : strains_of<3>(options, type, geometry, displacement);
+}
+
+ElementVector element_forces(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
+                             const Vec4* stresses) {
+  ROLLER_ASSERT(options.kinematics == Kinematics::Small, "element_forces is for small kinematics");
+  return type == ElementType::Q4 ? forces_of<4>(options, type, geometry, stresses)
+                                 : forces_of<3>(options, type, geometry, stresses);
 }
 
 std::vector<Mat2> deformation_gradients(const std::vector<PointGeometry>& geometry, const ElementVector& displacement) {

@@ -47,6 +47,15 @@ struct ElementOutput {
 void evaluate_element(const ElementOptions& options, const MaterialParams& material, const ElementInput& in,
                       bool want_residual, bool want_tangent, ElementOutput& out);
 
+// The two halves of evaluate_element without a material, small kinematics only (the stationary
+// pass sweeps the material along rows of points between them; docs/model.md, Stationary pass):
+// the strain of the displacement at each integration point as the material update sees it (B-bar
+// applied), and the element's nodal forces sum_q w_q B_q^T sigma_q of stresses at its points.
+std::vector<Vec4> element_strains(const ElementOptions& options, ElementType type,
+                                  const std::vector<PointGeometry>& geometry, const ElementVector& displacement);
+ElementVector element_forces(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
+                             const Vec4* stresses);
+
 // Deformation gradient F = I + du/dX of the increment at each integration point, used to push
 // the converged stress forward (finite kinematics).
 std::vector<Mat2> deformation_gradients(const std::vector<PointGeometry>& geometry, const ElementVector& displacement);

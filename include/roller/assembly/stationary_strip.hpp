@@ -1,0 +1,64 @@
+#pragma once
+// The strip seen from a roller that rolls steadily along it (docs/model.md, "Stationary pass";
+// Dang Van & Maitournam, J. Mech. Phys. Solids 41 (1993)): the mesh stays under the roller and the
+// material flows through it, so a point's state is the constitutive law integrated along its
+// streamline, the row of integration points at its depth, from upstream. Small kinematics.
+//
+// Three pieces, each pure: the strains of a displacement at every integration point; the sweep of
+// the material along every streamline from the upstream states; the nodal forces of the states.
+#include <vector>
+
+#include "roller/assembly/element_materials.hpp"
+#include "roller/fem/element_kernel.hpp"
+#include "roller/material/material_state.hpp"
+#include "roller/mesh/mesh.hpp"
+
+namespace roller {
+
+// The integration points at one depth, in the order the material meets them.
+struct Streamline {
+  Real y = 0.0;                // of its points in the mesh [mm]
+  std::vector<Index> points;   // flat indices e * points_per_element + q, upstream first
+};
+
+// What one sweep gave besides the states.
+struct SweepReport {
+  Index n_yielded = 0;  // points that yield on their way
+};
+
+class StationaryStrip {
+ public:
+  // `travel`: +1 when the roller moves towards +x over the strip (the material then flows towards
+  // -x under it), -1 the other way. Throws InputError when the points do not form straight rows
+  // (a T3 mesh with alternating diagonals).
+  StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options, Real travel);
+
+  const std::vector<Streamline>& streamlines() const { return streamlines_; }
+  Index n_points() const { return static_cast<Index>(geometry_.size()) * points_per_element_; }
+  int points_per_element() const { return points_per_element_; }
+  const Vec2& point_position(Index p) const { return positions_[p]; }
+
+  // The strain of the displacement u (all dofs, from the upstream configuration) at every point.
+  std::vector<Vec4> strains(const VecX& u) const;
+  // Each streamline's states from its upstream state (one per streamline, in streamlines()' order):
+  // the return mapping from point to point with the strain between them.
+  std::vector<MaterialState> sweep(const std::vector<Vec4>& strains, const std::vector<MaterialState>& upstream,
+                                   SweepReport* report = nullptr) const;
+  // Nodal forces sum w B^T sigma of the states' stresses (all dofs).
+  VecX forces(const std::vector<MaterialState>& states) const;
+  // The states of a strip in which every streamline holds its upstream state.
+  std::vector<MaterialState> spread(const std::vector<MaterialState>& upstream) const;
+  // Each streamline's virgin state (initial_state of its material).
+  std::vector<MaterialState> virgin_upstream() const;
+
+ private:
+  const Mesh& mesh_;
+  const ElementMaterials& materials_;
+  ElementOptions options_;
+  int points_per_element_;
+  std::vector<std::vector<PointGeometry>> geometry_;  // per element, in the initial mesh
+  std::vector<Vec2> positions_;                        // per point
+  std::vector<Streamline> streamlines_;
+};
+
+}  // namespace roller

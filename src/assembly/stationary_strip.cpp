@@ -1,0 +1,128 @@
+#include "roller/assembly/stationary_strip.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "roller/core/error.hpp"
+#include "roller/material/j2_plasticity.hpp"
+
+namespace roller {
+
+namespace {
+
+// Points closer in y than this fraction of the strip's smallest element height share a row.
+constexpr Real kRowTolerance = 1e-6;
+
+Real smallest_height(const Mesh& mesh) {
+  Real h = std::numeric_limits<Real>::infinity();
+  for (const auto& element : mesh.elements) {
+    Real lo = std::numeric_limits<Real>::infinity(), hi = -lo;
+    for (const Index a : element) lo = std::min(lo, mesh.nodes[a].y()), hi = std::max(hi, mesh.nodes[a].y());
+    h = std::min(h, hi - lo);
+  }
+  return h;
+}
+
+}  // namespace
+
+StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options,
+                                 Real travel)
+    : mesh_(mesh), materials_(materials), options_(options), points_per_element_(n_integration_points(mesh.element_type)) {
+  ROLLER_ASSERT(options.kinematics == Kinematics::Small, "the stationary strip is small-strain");
+  geometry_.resize(mesh.n_elements());
+  positions_.resize(mesh.n_elements() * points_per_element_);
+  std::vector<Vec2> xe;
+  for (Index e = 0; e < mesh.n_elements(); ++e) {
+    xe.clear();
+    for (const Index a : mesh.elements[e]) xe.push_back(mesh.nodes[a]);
+    element_geometry(mesh.element_type, xe, e, geometry_[e]);
+    for (int q = 0; q < points_per_element_; ++q) {
+      Vec2 p = Vec2::Zero();
+      for (std::size_t a = 0; a < xe.size(); ++a) p += geometry_[e][q].shape[static_cast<Index>(a)] * xe[a];
+      positions_[e * points_per_element_ + q] = p;
+    }
+  }
+  // Rows by y; upstream first: the material flows against the roller's travel.
+  const Real tolerance = kRowTolerance * smallest_height(mesh);
+  std::map<long long, Streamline> rows;
+  for (Index p = 0; p < n_points(); ++p) {
+    Streamline& s = rows[std::llround(positions_[p].y() / tolerance)];
+    s.y = positions_[p].y();
+    s.points.push_back(p);
+  }
+  for (auto& [key, s] : rows) {
+    std::sort(s.points.begin(), s.points.end(),
+              [&](Index a, Index b) { return travel * positions_[a].x() > travel * positions_[b].x(); });
+    for (std::size_t i = 1; i < s.points.size(); ++i)
+      if (positions_[s.points[i]].x() == positions_[s.points[i - 1]].x())
+        throw InputError(fmt::format("the stationary pass needs straight rows of integration points; element {} "
+                                     "shares a row position with another (use Q4 or T3 with one diagonal direction)",
+                                     s.points[i] / points_per_element_ + 1));
+    streamlines_.push_back(std::move(s));
+  }
+}
+
+std::vector<Vec4> StationaryStrip::strains(const VecX& u) const {
+  std::vector<Vec4> out(n_points());
+  for (Index e = 0; e < mesh_.n_elements(); ++e) {
+    const auto& element = mesh_.elements[e];
+    ElementVector ue(2 * element.size());
+    for (std::size_t a = 0; a < element.size(); ++a) ue.segment<2>(2 * a) = u.segment<2>(2 * element[a]);
+    const std::vector<Vec4> eps = element_strains(options_, mesh_.element_type, geometry_[e], ue);
+    std::copy(eps.begin(), eps.end(), out.begin() + e * points_per_element_);
+  }
+  return out;
+}
+
+std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strains,
+                                                  const std::vector<MaterialState>& upstream,
+                                                  SweepReport* report) const {
+  ROLLER_ASSERT(upstream.size() == streamlines_.size(), "one upstream state per streamline");
+  std::vector<MaterialState> out(n_points());
+  Index yielded = 0;
+  for (std::size_t s = 0; s < streamlines_.size(); ++s) {
+    MaterialState state = upstream[s];
+    Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
+    for (const Index p : streamlines_[s].points) {
+      const MaterialUpdate update =
+          update_material(materials_.of(p / points_per_element_), strains[p] - previous, state);
+      state = update.trial;
+      yielded += update.yielded ? 1 : 0;
+      previous = strains[p];
+      out[p] = state;
+    }
+  }
+  if (report) report->n_yielded = yielded;
+  return out;
+}
+
+VecX StationaryStrip::forces(const std::vector<MaterialState>& states) const {
+  VecX f = VecX::Zero(mesh_.n_dofs());
+  std::array<Vec4, 4> stress;
+  for (Index e = 0; e < mesh_.n_elements(); ++e) {
+    for (int q = 0; q < points_per_element_; ++q) stress[q] = states[e * points_per_element_ + q].stress;
+    const ElementVector fe = element_forces(options_, mesh_.element_type, geometry_[e], stress.data());
+    const auto& element = mesh_.elements[e];
+    for (std::size_t a = 0; a < element.size(); ++a) f.segment<2>(2 * element[a]) += fe.segment<2>(2 * a);
+  }
+  return f;
+}
+
+std::vector<MaterialState> StationaryStrip::spread(const std::vector<MaterialState>& upstream) const {
+  std::vector<MaterialState> out(n_points());
+  for (std::size_t s = 0; s < streamlines_.size(); ++s)
+    for (const Index p : streamlines_[s].points) out[p] = upstream[s];
+  return out;
+}
+
+std::vector<MaterialState> StationaryStrip::virgin_upstream() const {
+  std::vector<MaterialState> out;
+  for (const Streamline& s : streamlines_)
+    out.push_back(initial_state(materials_.of(s.points.front() / points_per_element_)));
+  return out;
+}
+
+}  // namespace roller
