@@ -30,7 +30,10 @@ Real smallest_height(const Mesh& mesh) {
 
 StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options,
                                  Real travel)
-    : mesh_(mesh), materials_(materials), options_(options), points_per_element_(n_integration_points(mesh.element_type)) {
+    : mesh_(mesh),
+      materials_(materials),
+      options_(options),
+      points_per_element_(n_integration_points(mesh.element_type)) {
   ROLLER_ASSERT(options.kinematics == Kinematics::Small, "the stationary strip is small-strain");
   geometry_.resize(mesh.n_elements());
   positions_.resize(mesh.n_elements() * points_per_element_);
@@ -58,9 +61,10 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
               [&](Index a, Index b) { return travel * positions_[a].x() > travel * positions_[b].x(); });
     for (std::size_t i = 1; i < s.points.size(); ++i)
       if (positions_[s.points[i]].x() == positions_[s.points[i - 1]].x())
-        throw InputError(fmt::format("the stationary pass needs straight rows of integration points; element {} "
-                                     "shares a row position with another (use Q4 or T3 with one diagonal direction)",
-                                     s.points[i] / points_per_element_ + 1));
+        throw InputError(
+            fmt::format("the stationary pass needs straight rows of integration points; element {} "
+                        "shares a row position with another (use Q4 or T3 with one diagonal direction)",
+                        s.points[i] / points_per_element_ + 1));
     streamlines_.push_back(std::move(s));
   }
 }

@@ -12,42 +12,12 @@
 #include "roller/assembly/element_materials.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
+#include "roller/driver/steady_load.hpp"
 #include "roller/solver/sparse_solver.hpp"
 
 namespace roller {
 
 namespace {
-
-// The segment the roller rolls or slides along (the largest |dx|), and the steps before it.
-const PathSegment& travel_segment(const Scene& scene) {
-  const auto& path = scene.roller->path;
-  const auto it = std::max_element(path.begin(), path.end(), [](const PathSegment& a, const PathSegment& b) {
-    return std::abs(a.dx) < std::abs(b.dx);
-  });
-  if (it == path.end() || it->dx == 0.0)
-    throw InputError(
-        fmt::format("{}: roller.path: shakedown-limit needs a segment that rolls or slides the roller "
-                    "along the strip (dx != 0); none has one",
-                    scene.file.string()));
-  if (it->first_step <= 1)
-    throw InputError(
-        fmt::format("{}: roller.path: the segment with dx = {} starts at step 1; shakedown-limit "
-                    "needs the press before it (the steps that bring the roller to its load)",
-                    scene.file.string(), it->dx));
-  return *it;
-}
-
-Real traction_of(const Scene& scene, const PathSegment& travel, const ShakedownLimitSettings& s) {
-  if (s.traction) return *s.traction;
-  const Real slip = std::min(travel.slip_start, travel.slip_end);
-  if (std::max(travel.slip_start, travel.slip_end) == 0.0) return 0.0;  // free rolling: no tangential load
-  if (slip >= 1.0) return friction_in_step(*scene.roller, travel.first_step, scene.contact.friction);
-  throw InputError(
-      fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}..{}); "
-                  "shakedown-limit takes full sliding (q = mu p) or free rolling (q = 0): give the "
-                  "traction q/p with --traction",
-                  scene.file.string(), travel.first_step, travel.last_step, travel.slip_start, travel.slip_end));
-}
 
 // The scene's press with a linear elastic, small-strain strip and no friction.
 Scene elastic_press_scene(const Scene& scene, int press_steps) {
@@ -150,12 +120,12 @@ Real ShakedownLimitResult::scene_p0_over_k(const MelanLimit& bound) const {
 
 ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const ShakedownLimitSettings& settings) {
   if (!scene.roller) throw InputError(fmt::format("{}: shakedown-limit needs a [roller]", scene.file.string()));
+  const SteadyLoad steady = steady_load(scene, settings.traction);
   if (!scene.strip_material().any_plastic())
     throw InputError(fmt::format("{}: [material]: the strip is elastic (no yield_stress): it has no shakedown limit",
                                  scene.file.string()));
-  const PathSegment& travel = travel_segment(scene);
-  const Real traction = traction_of(scene, travel, settings);
-  const int press_steps = travel.first_step - 1;
+  const Real traction = steady.traction;
+  const int press_steps = steady.press_steps;
   const auto start = std::chrono::steady_clock::now();
   Simulation sim(elastic_press_scene(scene, press_steps));
   for (int step = 1; step <= press_steps; ++step) {
@@ -164,9 +134,9 @@ ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const Shakedown
       throw NumericalError(
           fmt::format("shakedown-limit: the elastic press did not converge at step {}: {}", step, r.message));
   }
-  if (traction != 0.0) add_traction(sim.model(), sim.state().contact, traction * (travel.dx > 0.0 ? 1.0 : -1.0));
+  if (traction != 0.0) add_traction(sim.model(), sim.state().contact, traction * steady.travel_sign);
   ShakedownLimitResult out;
-  out.load = press_load(scene, sim, press_steps, traction, travel.dx > 0.0 ? 1.0 : -1.0);
+  out.load = press_load(scene, sim, press_steps, traction, steady.travel_sign);
   out.top = mesh_top(sim.model().mesh());
   if (settings.progress)
     *settings.progress << fmt::format(

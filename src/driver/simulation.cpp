@@ -17,6 +17,7 @@
 #include "roller/io/scene_loader.hpp"
 #include "roller/solver/blas_buffers.hpp"
 #include "roller_start.hpp"
+#include "stationary_passes.hpp"
 
 namespace roller {
 
@@ -244,7 +245,11 @@ void Simulation::record_state(StepRecord& res) const {
   res.roller = r;
 }
 
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+
 Simulation::StepRecord Simulation::advance_step(int step) {
+  if (scene_.passes.method == PassMethod::Stationary) return advance_stationary(step);
   StepRecord res;
   res.step = step;
   res.pass = program_.pass_of_step(step);

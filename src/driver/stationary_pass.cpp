@@ -52,8 +52,8 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
     }
     if (k == settings.max_iterations) {
       out.status = Termination::LimitReached;
-      out.message = fmt::format("the stationary iteration reached {} iterations at |r|/F = {:.3g} (tolerance {:g})",
-                                k, out.residual, settings.tolerance);
+      out.message = fmt::format("the stationary iteration reached {} iterations at |r|/F = {:.3g} (tolerance {:g})", k,
+                                out.residual, settings.tolerance);
       return out;
     }
     const VecX step = elastic.solve(r);

@@ -188,8 +188,8 @@ void evaluate_element(const ElementOptions& options, const MaterialParams& mater
 namespace {
 
 template <int N>
-std::vector<Vec4> strains_of(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
-                             const ElementVector& displacement) {
+std::vector<Vec4> strains_of(const ElementOptions& options, ElementType type,
+                             const std::vector<PointGeometry>& geometry, const ElementVector& displacement) {
   std::array<Gradients<N>, 4> grad;
   std::array<Vec4, 4> strain;
   std::array<StrainJacobian<N>, 4> jac;
@@ -205,7 +205,8 @@ ElementVector forces_of(const ElementOptions& options, ElementType type, const s
   std::array<StrainJacobian<N>, 4> jac;
   strains_and_jacobians<N>(options, type, geometry, Dofs<N>::Zero(), grad, strain, jac);
   Dofs<N> f = Dofs<N>::Zero();
-  for (std::size_t q = 0; q < geometry.size(); ++q) f.noalias() += geometry[q].weight * jac[q].transpose() * stresses[q];
+  for (std::size_t q = 0; q < geometry.size(); ++q)
+    f.noalias() += geometry[q].weight * jac[q].transpose() * stresses[q];
   return f;
 }
 
@@ -218,8 +219,8 @@ std::vector<Vec4> element_strains(const ElementOptions& options, ElementType typ
                                  : strains_of<3>(options, type, geometry, displacement);
 }
 
-ElementVector element_forces(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
-                             const Vec4* stresses) {
+ElementVector element_forces(const ElementOptions& options, ElementType type,
+                             const std::vector<PointGeometry>& geometry, const Vec4* stresses) {
   ROLLER_ASSERT(options.kinematics == Kinematics::Small, "element_forces is for small kinematics");
   return type == ElementType::Q4 ? forces_of<4>(options, type, geometry, stresses)
                                  : forces_of<3>(options, type, geometry, stresses);

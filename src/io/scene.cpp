@@ -2,7 +2,9 @@
 
 namespace roller {
 
-int Scene::total_steps() const { return steps.n_steps * passes.count; }
+int Scene::total_steps() const {
+  return passes.method == PassMethod::Stationary ? passes.count : steps.n_steps * passes.count;
+}
 
 StripMeshSpec Scene::strip_mesh_spec() const {
   StripMeshSpec spec = mesh;

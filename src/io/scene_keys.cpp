@@ -750,6 +750,10 @@ std::vector<SceneKey> make_keys() {
       key(
           "passes.direction", [](auto& s) -> auto& { return s.passes.direction; },
           "same: every pass from the same start; alternate: every second pass back, the path mirrored in x"),
+      key(
+          "passes.method", [](auto& s) -> auto& { return s.passes.method; },
+          "transient: each pass marched over the steps; stationary: each pass solved as the steady state in the "
+          "roller's frame, one step a pass (small strain, quasi-static; docs/model.md)"),
 
       // [newton]
       key(
@@ -777,9 +781,12 @@ std::vector<SceneKey> make_keys() {
       key(
           "output.every", [](auto& s) -> auto& { return s.output.every; },
           "write fields every N steps (the last step always)", at_least(1))
-          .when_absent("1; steps.count (every pass's end) with [passes]",
+          .when_absent("1; steps.count (every pass's end) with transient [passes]",
                        // Long multi-pass studies would otherwise fill the disk with every step.
-                       [](Scene& s) { s.output.every = s.passes.count > 1 ? s.steps.n_steps : 1; }),
+                       [](Scene& s) {
+                         const bool marched = s.passes.method == PassMethod::Transient;
+                         s.output.every = s.passes.count > 1 && marched ? s.steps.n_steps : 1;
+                       }),
       key(
           "output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
       key(
@@ -1078,6 +1085,8 @@ std::vector<SceneTable> make_tables() {
              "characters (it names the output folder out/<name>)");
     if (scene.passes.count > 1 && !scene.roller)
       s.fail("passes", "repeated passes need a [roller] whose [[roller.path]] describes one pass");
+    if (scene.passes.method == PassMethod::Stationary && !scene.roller)
+      s.fail("passes", "the stationary method needs a [roller] and its [[roller.path]]");
   };
 
   SceneTable& material = add("material");
@@ -1108,6 +1117,11 @@ std::vector<SceneTable> make_tables() {
   passes.check = [](TomlSection& s, Scene& scene, Ref) {
     if (scene.total_steps() > 1e7)
       s.fail("count", fmt::format("count x steps.count = {} steps: at most 1e7", scene.total_steps()));
+    if (scene.passes.method != PassMethod::Stationary) return;
+    if (scene.element.kinematics != Kinematics::Small)
+      s.fail("method", "the stationary method is small-strain: set kinematics = \"small\" (or method = \"transient\")");
+    if (scene.dynamics.strip_inertia)
+      s.fail("method", "the stationary method is quasi-static: set dynamics.strip_inertia = false");
   };
   passes.count = [](const Scene& s) -> std::size_t { return s.passes.count > 1; };
   add("newton").check = [](TomlSection& s, Scene& scene, Ref) {

@@ -87,7 +87,7 @@ TEST_CASE("Melan's bound with a back-stress: never below the elastic limit, and 
   CHECK(loose == Approx(kinematic).epsilon(1e-4));
 }
 
-TEST_CASE("Melan's bound: a stress a shift cancels does not limit; a row without stress is skipped", "[melan]") {
+TEST_CASE("Melan's bound: a stress a shift cancels does not limit, a row without stress is skipped", "[melan]") {
   MelanRow row;
   for (int i = 0; i < 5; ++i) {
     row.x.push_back(i);

@@ -205,7 +205,7 @@ TEST_CASE("a state file that cannot be written ends the run with exit code 2, it
   fs::remove_all(out);
 }
 
-TEST_CASE("roller shakedown-limit prints the limit and writes it by depth; bad input exits with code 2", "[app]") {
+TEST_CASE("roller shakedown-limit prints the limit and writes it by depth, bad input exits with code 2", "[app]") {
   const fs::path csv = fs::temp_directory_path() / ("roller_cli_limit_" + std::to_string(::getpid()) + ".csv");
   const fs::path json = fs::temp_directory_path() / ("roller_cli_limit_" + std::to_string(::getpid()) + ".json");
   const Run r = run_roller("shakedown-limit problems/shakedown_thin_strip.toml --csv " + csv.string() + " --json " +

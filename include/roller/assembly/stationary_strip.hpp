@@ -17,8 +17,8 @@ namespace roller {
 
 // The integration points at one depth, in the order the material meets them.
 struct Streamline {
-  Real y = 0.0;                // of its points in the mesh [mm]
-  std::vector<Index> points;   // flat indices e * points_per_element + q, upstream first
+  Real y = 0.0;               // of its points in the mesh [mm]
+  std::vector<Index> points;  // flat indices e * points_per_element + q, upstream first
 };
 
 // What one sweep gave besides the states.
@@ -57,7 +57,7 @@ class StationaryStrip {
   ElementOptions options_;
   int points_per_element_;
   std::vector<std::vector<PointGeometry>> geometry_;  // per element, in the initial mesh
-  std::vector<Vec2> positions_;                        // per point
+  std::vector<Vec2> positions_;                       // per point
   std::vector<Streamline> streamlines_;
 };
 

@@ -28,6 +28,7 @@ namespace roller {
 class RunOutputs;        // driver/run_outputs.hpp
 class StepMonitor;       // driver/step_monitor.hpp
 class BackgroundWriter;  // io/background_writer.hpp
+class StationaryPasses;  // driver/stationary_passes.hpp
 
 struct RunOptions {
   std::filesystem::path out_dir = "out";
@@ -80,6 +81,8 @@ class Simulation {
  public:
   // Builds the mesh and the load program, validating the scene against the mesh (InputError).
   explicit Simulation(Scene scene);
+  ~Simulation();
+  Simulation(Simulation&&) noexcept;
 
   RunSummary run(const RunOptions& options);
 
@@ -156,6 +159,8 @@ class Simulation {
   StepRecord advance_step(int step);
 
  private:
+  // advance_step of the stationary method: step = pass (stationary_step.cpp).
+  StepRecord advance_stationary(int step);
   // Before the first step of pass `pass` > 1: the roller, clear of the strip, returns to the
   // pass's start; a message (and nothing changed) when it is not clear.
   std::string return_for_pass(int pass);
@@ -186,6 +191,7 @@ class Simulation {
   IncrementSolver solver_;
   RunState state_;  // everything a later step reads but the strip and the dynamics (run_state.hpp)
   DynamicsState dynamics_;
+  std::unique_ptr<StationaryPasses> stationary_;  // the stationary method's set-up, built at its first pass
 };
 
 }  // namespace roller

@@ -53,8 +53,8 @@ void evaluate_element(const ElementOptions& options, const MaterialParams& mater
 // applied), and the element's nodal forces sum_q w_q B_q^T sigma_q of stresses at its points.
 std::vector<Vec4> element_strains(const ElementOptions& options, ElementType type,
                                   const std::vector<PointGeometry>& geometry, const ElementVector& displacement);
-ElementVector element_forces(const ElementOptions& options, ElementType type, const std::vector<PointGeometry>& geometry,
-                             const Vec4* stresses);
+ElementVector element_forces(const ElementOptions& options, ElementType type,
+                             const std::vector<PointGeometry>& geometry, const Vec4* stresses);
 
 // Deformation gradient F = I + du/dX of the increment at each integration point, used to push
 // the converged stress forward (finite kinematics).

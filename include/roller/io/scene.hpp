@@ -28,9 +28,19 @@ struct EnumNames<PassDirection> {
       {{PassDirection::Same, "same"}, {PassDirection::Alternate, "alternate"}}};
 };
 
+// How a pass is computed: marched increment by increment over the scene's steps, or solved at
+// once as the steady state in the roller's frame (docs/model.md, Stationary pass), one step a pass.
+enum class PassMethod { Transient, Stationary };
+template <>
+struct EnumNames<PassMethod> {
+  static constexpr std::array<std::pair<PassMethod, const char*>, 2> names{
+      {{PassMethod::Transient, "transient"}, {PassMethod::Stationary, "stationary"}}};
+};
+
 struct PassSpec {
   int count = 1;  // passes in the run
   PassDirection direction = PassDirection::Same;
+  PassMethod method = PassMethod::Transient;
 };
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
@@ -129,7 +139,8 @@ struct Scene {
   // start afresh): [restart] from = "...", resolved against the scene file's folder.
   std::filesystem::path initial_state;
 
-  int total_steps() const;  // steps of the whole run: steps.count times passes.count
+  // Steps of the whole run: steps.count times passes.count; one a pass with the stationary method.
+  int total_steps() const;
   // The strip's material by depth: [material], the layers and the profile.
   LayeredMaterial strip_material() const { return LayeredMaterial{material, layers, yield_profile}; }
   // [mesh] with the layers' boundaries pinned as grid lines when follow_layers is on.

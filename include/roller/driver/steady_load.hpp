@@ -1,0 +1,26 @@
+#pragma once
+// What a steady pass of the scene's roller carries, for the solves that take the pass as a whole
+// (roller shakedown-limit, the stationary pass; docs/model.md): the segment of [[roller.path]]
+// along which the roller rolls or slides (the one with the largest |dx|), the steps of the press
+// before it, its vertical force and the tangential traction q/p.
+#include <optional>
+
+#include "roller/io/scene.hpp"
+
+namespace roller {
+
+struct SteadyLoad {
+  const PathSegment* travel = nullptr;
+  int press_steps = 0;          // steps before the travel segment
+  std::optional<Real> force;    // the travel segment's fy [N/mm]: absent when it prescribes the height
+  Real traction = 0.0;          // q/p along the travel: the friction coefficient when it slides
+  Real travel_sign = 1.0;       // +1: the roller moves towards +x over the strip
+};
+
+// `traction`: q/p given by the user; absent: mu of the travel segment when it slides (slip = 1 at
+// both ends), 0 when it rolls freely (slip = 0). Throws InputError naming the scene when there is
+// no roller, no segment with dx != 0, no press before it, or a creep (0 < slip < 1) without a
+// traction given.
+SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
+
+}  // namespace roller

@@ -1,0 +1,121 @@
+#include "stationary_passes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+
+#include <fmt/format.h>
+
+#include "roller/core/error.hpp"
+#include "roller/driver/steady_load.hpp"
+#include "roller_start.hpp"
+
+namespace roller {
+
+namespace {
+
+ElementMaterials elastic_copy(ElementMaterials m) {
+  for (MaterialParams& p : m.table) p.plastic = false;
+  return m;
+}
+
+// The travel segment's force, or an InputError: the stationary pass carries a prescribed load.
+Real travel_force(const Scene& scene, const SteadyLoad& load) {
+  if (!load.force)
+    throw InputError(fmt::format("{}: passes.method = \"stationary\" needs the force of the segment over steps {}-{} "
+                                 "(fy, or p0 / p0_over_k): the stationary pass carries the Hertz pressure of it",
+                                 scene.file.string(), load.travel->first_step, load.travel->last_step));
+  return std::abs(*load.force);
+}
+
+// Where the contact sits in the roller's frame: the middle of the travel segment.
+Real contact_centre(const Scene& scene, const SteadyLoad& load) {
+  const Real mid = load.travel->first_step - 1 + 0.5 * (load.travel->last_step - load.travel->first_step + 1);
+  return roller_pose(*scene.roller, given_start_centre(scene), mid).centre.x();
+}
+
+}  // namespace
+
+StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
+    : roller_y_(given_start_centre(scene).y()),
+      travel_(steady_load(scene, std::nullopt).travel_sign),
+      strip_(model.mesh(), model.materials(), model.options(), travel_),
+      elastic_materials_(elastic_copy(model.materials())),
+      elastic_strip_(model.mesh(), elastic_materials_, model.options(), travel_) {
+  const SteadyLoad steady = steady_load(scene, std::nullopt);
+  const Mesh& mesh = model.mesh();
+  hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius,
+                              scene.strip_material().surface().plane_strain_modulus());
+  centre_x_ = contact_centre(scene, steady);
+  // Half-way between the contact's trailing edge and the strip's downstream end.
+  Real x_min = mesh.nodes.front().x(), x_max = x_min;
+  for (const Vec2& p : mesh.nodes) x_min = std::min(x_min, p.x()), x_max = std::max(x_max, p.x());
+  const Real downstream_end = travel_ > 0.0 ? x_min : x_max;
+  extraction_x_ = 0.5 * (centre_x_ - travel_ * hertz_.half_width + downstream_end);
+  for (const Streamline& s : strip_.streamlines())
+    extraction_.push_back(*std::min_element(s.points.begin(), s.points.end(), [&](Index a, Index b) {
+      return std::abs(strip_.point_position(a).x() - extraction_x_) < std::abs(strip_.point_position(b).x() - extraction_x_);
+    }));
+
+  // The Hertz pressure (and q = traction p along the travel) as the work-equivalent nodal forces.
+  std::vector<Index> top = mesh.node_set("contact");
+  std::sort(top.begin(), top.end(), [&](Index a, Index b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
+  std::vector<Real> x;
+  for (const Index a : top) x.push_back(mesh.nodes[a].x() - centre_x_);
+  const std::vector<Real> f = hertz_nodal_forces(hertz_, x);
+  load_ = VecX::Zero(mesh.n_dofs());
+  for (std::size_t i = 0; i < top.size(); ++i) {
+    if (f[i] == 0.0) continue;
+    const Vec2 force(travel_ * steady.traction * f[i], -f[i]);
+    load_.segment<2>(2 * top[i]) = force;
+    NodeContactRecord c;
+    c.node = top[i];
+    c.position = mesh.nodes[top[i]];
+    c.contact.normal_force = f[i];
+    c.contact.tangential_force = steady.traction * f[i];
+    c.contact.status = steady.traction > 0.0 ? ContactStatus::Slip : ContactStatus::Stick;
+    c.tributary_length = 0.5 * ((i + 1 < top.size() ? x[i + 1] : x[i]) - (i > 0 ? x[i - 1] : x[i]));
+    c.force = force;
+    contact_.push_back(c);
+  }
+  elastic_twin_ = std::make_unique<StripModel>(model.mesh(), elastic_materials_, model.options());
+  elastic_twin_->set_dof_map(model.dof_map());
+  SparseMatrix k;
+  elastic_twin_->evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
+  if (!solver_.factorize(k)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
+  elastic_ = solve_stationary_pass(elastic_strip_, model.dof_map(), solver_, load_, elastic_strip_.virgin_upstream(),
+                                   StationarySettings{});
+}
+
+RollerPose StationaryPasses::roller_pose() const {
+  RollerPose pose;
+  pose.centre = Vec2(centre_x_, roller_y_);
+  return pose;
+}
+
+std::vector<MaterialState> StationaryPasses::upstream_of(const StripModel& strip) const {
+  std::vector<MaterialState> out;
+  for (const Index p : extraction_) out.push_back(strip.states()[p]);
+  return out;
+}
+
+StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostream* progress) const {
+  StationarySettings settings;
+  settings.progress = progress;
+  Pass out;
+  out.solve = solve_stationary_pass(strip_, strip.dof_map(), solver_, load_, upstream_of(strip), settings);
+  if (!out.solve.converged()) return out;
+  // The state leaving the pass, the roller's elastic field taken off (it lifts): every point of a
+  // streamline holds it.
+  std::vector<MaterialState> leaving;
+  for (const Index p : extraction_) {
+    MaterialState s = out.solve.states[p];
+    s.stress -= elastic_.states[p].stress;
+    leaving.push_back(s);
+  }
+  out.residual = strip_.spread(leaving);
+  out.permanent_displacement = out.solve.displacement - elastic_.displacement;
+  return out;
+}
+
+}  // namespace roller

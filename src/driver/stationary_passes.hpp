@@ -1,0 +1,65 @@
+#pragma once
+// The stationary method's passes for the step loop (docs/model.md, Stationary pass): one step is
+// one pass, solved as the steady state in the roller's frame under the Hertz pressure of the
+// travel segment's force (and q = mu p when it slides). Built once a run: the streamlines, the
+// elastic stiffness factorised once for every pass, the load, and the load's elastic field, which
+// unloads the state leaving a pass (the roller lifted).
+//
+// The strip between passes is the residual strip: every point holds the residual state of its
+// streamline as it leaves the pass, read at the extraction column (downstream, half-way between
+// the contact and the strip's end, where the roller's field is subtracted and the free end's is
+// small), and the displacement is the sum of the passes' permanent displacements. So the next
+// pass's upstream state, the pass metrics (measure_pass) and the state files are the transient
+// method's.
+#include <iosfwd>
+#include <memory>
+#include <vector>
+
+#include "roller/analysis/hertz.hpp"
+#include "roller/assembly/stationary_strip.hpp"
+#include "roller/assembly/strip_model.hpp"
+#include "roller/driver/run_state.hpp"
+#include "roller/driver/stationary_pass.hpp"
+#include "roller/io/scene.hpp"
+
+namespace roller {
+
+class StationaryPasses {
+ public:
+  // Throws InputError when the scene's travel segment prescribes no force (fy) or its mesh has no
+  // straight rows of points.
+  StationaryPasses(const Scene& scene, const StripModel& model);
+
+  struct Pass {
+    StationaryPassResult solve;
+    std::vector<MaterialState> residual;  // the residual strip's states (every point)
+    VecX permanent_displacement;          // u - u_elastic of the pass (all dofs)
+  };
+  // The pass from the residual strip `strip` (or the initial state before the first pass).
+  Pass run(const StripModel& strip, std::ostream* progress) const;
+
+  const HertzSolution& hertz() const { return hertz_; }
+  Real centre_x() const { return centre_x_; }
+  Real extraction_x() const { return extraction_x_; }
+  // The load as contact records of the top nodes (contact.csv), and the roller's pose over it.
+  const std::vector<NodeContactRecord>& contact() const { return contact_; }
+  RollerPose roller_pose() const;
+
+ private:
+  std::vector<MaterialState> upstream_of(const StripModel& strip) const;
+
+  Real roller_y_ = 0.0;  // the centre's height at the start (the pose written beside the load)
+  HertzSolution hertz_;
+  Real centre_x_ = 0.0, extraction_x_ = 0.0, travel_ = 1.0;
+  StationaryStrip strip_;
+  ElementMaterials elastic_materials_;
+  StationaryStrip elastic_strip_;
+  std::unique_ptr<StripModel> elastic_twin_;  // assembles K_e
+  mutable SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
+  VecX load_;
+  StationaryPassResult elastic_;         // the load's elastic field
+  std::vector<Index> extraction_;        // per streamline: its point at the extraction column
+  std::vector<NodeContactRecord> contact_;
+};
+
+}  // namespace roller

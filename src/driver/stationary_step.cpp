@@ -1,0 +1,52 @@
+// Simulation::advance_step of the stationary method: one step is one pass (stationary_passes.hpp).
+#include <fmt/format.h>
+
+#include "roller/analysis/pass_metrics.hpp"
+#include "roller/driver/simulation.hpp"
+#include "stationary_passes.hpp"
+
+namespace roller {
+
+Simulation::StepRecord Simulation::advance_stationary(int step) {
+  if (!stationary_) stationary_ = std::make_unique<StationaryPasses>(scene_, *model_);
+  const StationaryPasses& passes = *stationary_;
+  StepRecord res;
+  res.step = step;
+  res.pass = step;
+  res.time = step * scene_.steps.dt;
+  const PassBaseline baseline = PassBaseline::of(*model_);
+  const StationaryPasses::Pass pass = passes.run(*model_, nullptr);
+  res.counters.iterations = pass.solve.iterations;
+  res.counters.factorizations = step == 1 ? 1 : 0;  // K_e, once for the run
+  res.n_yielded = pass.solve.n_yielded;
+  res.status = pass.solve.status;
+  state_.pose = passes.roller_pose();
+  state_.contact = passes.contact();
+  if (!pass.solve.converged()) {
+    res.message = fmt::format("pass {}: {}", step, pass.solve.message);
+    record_state(res);
+    return res;
+  }
+  model_->restore(model_->reference_coordinates(), model_->total_displacement() + pass.permanent_displacement,
+                  pass.residual);
+  ++state_.steps_done;
+  // The pass's record over the residual strip, which is uniform along x: measured at the
+  // extraction column as the transient method measures the middle of its track.
+  PassTrack track;
+  const Real a = passes.hertz().half_width;
+  track.touched = true;
+  track.x_min = passes.extraction_x() - 2.0 * a;
+  track.x_max = passes.extraction_x() + 2.0 * a;
+  track.half_width = a;
+  track.peak_pressure = passes.hertz().peak;
+  StepRecord::PassEnd end;
+  end.record = measure_pass(step, *model_, scene_.mesh.height, track, baseline);
+  end.profile_x = passes.extraction_x();
+  end.profile = depth_profile(*model_, scene_.mesh.height, end.profile_x);
+  state_.pass_records.push_back(end.record);
+  if (scene_.passes.count > 1) res.pass_end = end;
+  record_state(res);
+  return res;
+}
+
+}  // namespace roller
