@@ -4,20 +4,50 @@
 #include <cmath>
 #include <ostream>
 
+#include <Eigen/QR>
 #include <fmt/format.h>
 
 namespace roller {
 
 namespace {
 
-// Aitken's weight from two successive corrections (Irons & Tuck), kept within [1/8, 8]: beyond
-// that a secant over two nearly equal corrections is noise.
-Real aitken_weight(Real previous, const VecX& d_old, const VecX& d_new) {
-  const VecX change = d_new - d_old;
-  const Real denominator = change.squaredNorm();
-  if (!(denominator > 0.0)) return previous;
-  return std::clamp(-previous * d_old.dot(change) / denominator, 0.125, 8.0);
-}
+constexpr int kAndersonDepth = 20;
+
+// Anderson's mixing of the last corrections (Walker & Ni, SIAM J. Numer. Anal. 49 (2011)): the
+// fixed point u = u + K_e^-1 r(u) accelerated by the least-squares combination of the last
+// `depth` corrections; the history restarts when the least-squares problem degenerates.
+class Anderson {
+ public:
+  explicit Anderson(int depth) : depth_(depth) {}
+  // The next iterate from the iterate u (free dofs) and its correction g = K_e^-1 r(u).
+  VecX next(const VecX& u, const VecX& g) {
+    if (last_u_.size() == u.size()) {
+      du_.push_back(u - last_u_);
+      dg_.push_back(g - last_g_);
+      if (static_cast<int>(du_.size()) > depth_) du_.erase(du_.begin()), dg_.erase(dg_.begin());
+    }
+    last_u_ = u;
+    last_g_ = g;
+    if (du_.empty()) return u + g;
+    Eigen::MatrixXd dg(g.size(), static_cast<Eigen::Index>(dg_.size()));
+    for (std::size_t j = 0; j < dg_.size(); ++j) dg.col(static_cast<Eigen::Index>(j)) = dg_[j];
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(dg);
+    if (qr.rank() < dg.cols()) {  // a correction repeats the others: start the history again
+      du_.clear();
+      dg_.clear();
+      return u + g;
+    }
+    const Eigen::VectorXd gamma = qr.solve(g);
+    VecX out = u + g;
+    for (std::size_t j = 0; j < du_.size(); ++j) out -= gamma[static_cast<Eigen::Index>(j)] * (du_[j] + dg_[j]);
+    return out;
+  }
+
+ private:
+  int depth_;
+  VecX last_u_, last_g_;
+  std::vector<VecX> du_, dg_;
+};
 
 }  // namespace
 
@@ -28,8 +58,7 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
   const VecX carried = strip.forces(strip.spread(upstream));  // f(sigma_upstream)
   const Real reference = std::max(external.cwiseAbs().maxCoeff(), 1e-300);
   out.displacement = VecX::Zero(external.size());
-  VecX previous_step;
-  Real omega = 1.0;
+  Anderson anderson(kAndersonDepth);
   for (int k = 0;; ++k) {
     out.strains = strip.strains(out.displacement);
     SweepReport report;
@@ -44,8 +73,8 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
       return out;
     }
     if (settings.progress && (k % settings.report_every == 0))
-      *settings.progress << fmt::format("  stationary iteration {:5d}  |r|/F {:.3e}  omega {:.3f}  yielded {}\n", k,
-                                        out.residual, omega, out.n_yielded);
+      *settings.progress << fmt::format("  stationary iteration {:5d}  |r|/F {:.3e}  yielded {}\n", k, out.residual,
+                                        out.n_yielded);
     if (out.residual <= settings.tolerance) {
       out.status = Termination::Converged;
       return out;
@@ -56,12 +85,8 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
                                 out.residual, settings.tolerance);
       return out;
     }
-    const VecX step = elastic.solve(r);
-    if (previous_step.size() == step.size()) omega = aitken_weight(omega, previous_step, step);
-    previous_step = step;
-    VecX full = VecX::Zero(external.size());
-    dofs.scatter_free(omega * step, full);
-    out.displacement += full;
+    const VecX u = dofs.restrict_to_free(out.displacement);
+    dofs.scatter_free(anderson.next(u, elastic.solve(r)), out.displacement);
   }
 }
 

@@ -3,9 +3,9 @@
 // the displacement u (from the upstream configuration) for which the states swept along the
 // streamlines carry the load. Each iteration is an initial-stress correction with the elastic
 // stiffness, factorised once for every pass:
-//   r(u) = f_ext + f(sigma_upstream) - f(sigma(u)),   du = K_e^-1 r,   u += omega du
-// with Aitken's weight omega (Irons & Tuck's secant on successive corrections). The upstream
-// term makes an unloaded strip keep its upstream state (r = 0 at u = 0).
+//   r(u) = f_ext + f(sigma_upstream) - f(sigma(u)),   g = K_e^-1 r
+// and the fixed point u = u + g accelerated by Anderson's mixing of the last 20 corrections. The
+// upstream term makes an unloaded strip keep its upstream state (r = 0 at u = 0).
 #include <iosfwd>
 #include <string>
 #include <vector>
