@@ -4,8 +4,8 @@
 #include <cmath>
 #include <ostream>
 
-#include <Eigen/QR>
 #include <fmt/format.h>
+#include <Eigen/QR>
 
 namespace roller {
 

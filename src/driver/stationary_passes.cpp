@@ -22,9 +22,10 @@ ElementMaterials elastic_copy(ElementMaterials m) {
 // The travel segment's force, or an InputError: the stationary pass carries a prescribed load.
 Real travel_force(const Scene& scene, const SteadyLoad& load) {
   if (!load.force)
-    throw InputError(fmt::format("{}: passes.method = \"stationary\" needs the force of the segment over steps {}-{} "
-                                 "(fy, or p0 / p0_over_k): the stationary pass carries the Hertz pressure of it",
-                                 scene.file.string(), load.travel->first_step, load.travel->last_step));
+    throw InputError(
+        fmt::format("{}: passes.method = \"stationary\" needs the force of the segment over steps {}-{} "
+                    "(fy, or p0 / p0_over_k): the stationary pass carries the Hertz pressure of it",
+                    scene.file.string(), load.travel->first_step, load.travel->last_step));
   return std::abs(*load.force);
 }
 
@@ -54,7 +55,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
   extraction_x_ = 0.5 * (centre_x_ - travel_ * hertz_.half_width + downstream_end);
   for (const Streamline& s : strip_.streamlines())
     extraction_.push_back(*std::min_element(s.points.begin(), s.points.end(), [&](Index a, Index b) {
-      return std::abs(strip_.point_position(a).x() - extraction_x_) < std::abs(strip_.point_position(b).x() - extraction_x_);
+      return std::abs(strip_.point_position(a).x() - extraction_x_) <
+             std::abs(strip_.point_position(b).x() - extraction_x_);
     }));
 
   // The Hertz pressure (and q = traction p along the travel) as the work-equivalent nodal forces.

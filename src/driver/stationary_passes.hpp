@@ -57,8 +57,8 @@ class StationaryPasses {
   std::unique_ptr<StripModel> elastic_twin_;  // assembles K_e
   mutable SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   VecX load_;
-  StationaryPassResult elastic_;         // the load's elastic field
-  std::vector<Index> extraction_;        // per streamline: its point at the extraction column
+  StationaryPassResult elastic_;   // the load's elastic field
+  std::vector<Index> extraction_;  // per streamline: its point at the extraction column
   std::vector<NodeContactRecord> contact_;
 };
 

@@ -16,13 +16,15 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
     return std::abs(a.dx) < std::abs(b.dx);
   });
   if (it == path.end() || it->dx == 0.0)
-    throw InputError(fmt::format("{}: roller.path: a steady pass needs a segment that rolls or slides the roller "
-                                 "along the strip (dx != 0); none has one",
-                                 scene.file.string()));
+    throw InputError(
+        fmt::format("{}: roller.path: a steady pass needs a segment that rolls or slides the roller "
+                    "along the strip (dx != 0); none has one",
+                    scene.file.string()));
   if (it->first_step <= 1)
-    throw InputError(fmt::format("{}: roller.path: the segment with dx = {} starts at step 1; a steady pass "
-                                 "needs the press before it (the steps that bring the roller to its load)",
-                                 scene.file.string(), it->dx));
+    throw InputError(
+        fmt::format("{}: roller.path: the segment with dx = {} starts at step 1; a steady pass "
+                    "needs the press before it (the steps that bring the roller to its load)",
+                    scene.file.string(), it->dx));
   SteadyLoad load;
   load.travel = &*it;
   load.press_steps = it->first_step - 1;
@@ -35,10 +37,11 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
   } else if (std::min(it->slip_start, it->slip_end) >= 1.0) {
     load.traction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
   } else {
-    throw InputError(fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}..{}); a "
-                                 "steady pass takes full sliding (q = mu p) or free rolling (q = 0): give the "
-                                 "traction q/p (shakedown-limit --traction)",
-                                 scene.file.string(), it->first_step, it->last_step, it->slip_start, it->slip_end));
+    throw InputError(
+        fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}..{}); a "
+                    "steady pass takes full sliding (q = mu p) or free rolling (q = 0): give the "
+                    "traction q/p (shakedown-limit --traction)",
+                    scene.file.string(), it->first_step, it->last_step, it->slip_start, it->slip_end));
   }
   return load;
 }

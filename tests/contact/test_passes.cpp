@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "../support/resume_copy.hpp"
 #include "../support/run_roller.hpp"
 #include "../support/run_scene.hpp"
 #include "../support/temp_files.hpp"
@@ -26,16 +27,6 @@ const std::string kPass =
     "{steps=[7,8], dy=0.3}]";
 
 SceneOverride override_of(const std::string& text) { return parse_override(text); }
-
-// The run `run` (a roller command line ending in "--out ") as if killed after step `step`: a copy
-// of its finished folder `whole` in `split`, with that step's state as the checkpoint, continued
-// with --resume (which drops the rows after the step and recomputes them).
-test::Run resume_copy(const std::string& run, const fs::path& whole, const fs::path& split, int step) {
-  fs::copy(whole, split);
-  fs::copy_file(whole / fmt::format("state_{:04d}.cbor", step), split / "checkpoint.cbor",
-                fs::copy_options::overwrite_existing);
-  return test::run_roller(run + split.string() + " --resume");
-}
 
 // The largest |value| of a column of a CSV file with a header row.
 Real column_peak(const std::string& csv, const std::string& column) {
@@ -123,7 +114,7 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   CHECK(summary["passes"].contains("p0_over_k") == false);  // depth-controlled: no load to measure
 
   // The run as if killed after step 12 (mid-pass 2).
-  const test::Run resumed = resume_copy(run, whole, split, 12);
+  const test::Run resumed = test::resume_copy(run, whole, split, 12);
   INFO(resumed.output);
   REQUIRE(resumed.exit_code == 0);
   CHECK_THAT(resumed.output, Catch::Contains("resuming after step 12"));
@@ -211,7 +202,7 @@ TEST_CASE("passes: an Armstrong-Frederick run resumes mid-pass to the same bytes
       // The back-stresses reach the outputs: non-zero columns under the track, a VTU tensor.
       CHECK(column_peak(test::read_text(whole / "residual_depth.csv"), "back_xx") > 0.0);
       CHECK_THAT(test::read_text(whole / "step_0016.vtu"), Catch::Contains("Name=\"back_stress_1\""));
-      const test::Run resumed = resume_copy(run, whole, split, 12);
+      const test::Run resumed = test::resume_copy(run, whole, split, 12);
       INFO(resumed.output);
       REQUIRE(resumed.exit_code == 0);
       for (const char* f : {"passes.csv", "residual_depth.csv", "roller.csv", "contact.csv", "step_0016.vtu"})

@@ -11,10 +11,10 @@ namespace roller {
 
 struct SteadyLoad {
   const PathSegment* travel = nullptr;
-  int press_steps = 0;          // steps before the travel segment
-  std::optional<Real> force;    // the travel segment's fy [N/mm]: absent when it prescribes the height
-  Real traction = 0.0;          // q/p along the travel: the friction coefficient when it slides
-  Real travel_sign = 1.0;       // +1: the roller moves towards +x over the strip
+  int press_steps = 0;        // steps before the travel segment
+  std::optional<Real> force;  // the travel segment's fy [N/mm]: absent when it prescribes the height
+  Real traction = 0.0;        // q/p along the travel: the friction coefficient when it slides
+  Real travel_sign = 1.0;     // +1: the roller moves towards +x over the strip
 };
 
 // `traction`: q/p given by the user; absent: mu of the travel segment when it slides (slip = 1 at

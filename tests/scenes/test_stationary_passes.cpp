@@ -1,0 +1,83 @@
+// The stationary method on the shakedown scenes (docs/validation.md, "Stationary passes"): the
+// transient method's verdicts, an elastic strip left without residual stress, a run resumed after
+// a pass to the same bytes, and the scenes it refuses.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "../support/resume_copy.hpp"
+#include "../support/run_scene.hpp"
+#include "../support/temp_files.hpp"
+#include "roller/core/error.hpp"
+
+using namespace roller;
+namespace fs = std::filesystem;
+
+namespace {
+
+const SceneOverride kStationary{"passes.method", "\"stationary\""};
+
+}  // namespace
+
+TEST_CASE("stationary passes: the transient method's verdicts below and above the shakedown limit",
+          "[scenes][stationary][slow]") {
+  // Transient (docs/validation.md, Shakedown): elastic shakedown at p0/k = 3.7, ratchetting at 4.5.
+  const auto [scene, verdict] = GENERATE(table<std::string, ShakedownVerdict>(
+      {{"shakedown_p37", ShakedownVerdict::ElasticShakedown}, {"shakedown_p45", ShakedownVerdict::Ratchetting}}));
+  const Simulation sim = test::run_scene(scene, {kStationary});
+  const auto& passes = sim.state().pass_records;
+  REQUIRE(passes.size() == 5);
+  CHECK(classify_passes(passes).verdict == verdict);
+  CHECK(passes.front().mean_plastic_increment > 0.0);
+  CHECK(sim.state().steps_done == 5);  // one step a pass
+}
+
+TEST_CASE("stationary passes: an elastic strip is left without residual stress or plastic strain",
+          "[scenes][stationary]") {
+  // p0/k = 3.0 stays below first yield (3.07): the state leaving a pass is the load's elastic
+  // field, which the unloading takes off exactly.
+  const Simulation sim = test::run_scene("shakedown_p30", {kStationary, {"passes.count", "2"}});
+  Real peak = 0.0, plastic = 0.0;
+  for (const MaterialState& s : sim.model().states()) {
+    peak = std::max(peak, s.stress.cwiseAbs().maxCoeff());
+    plastic = std::max(plastic, s.eq_plastic_strain);
+  }
+  CHECK(plastic == 0.0);
+  CHECK(peak <= 1e-8 * 2307.7);  // p0: roundoff of the two solves
+  CHECK(sim.state().pass_records.back().mean_plastic_increment == 0.0);
+}
+
+TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", "[scenes][stationary]") {
+  test::TempDir dir("roller_stationary");
+  const fs::path whole = dir.path() / "whole", split = dir.path() / "split";
+  const std::string run =
+      "run problems/shakedown_p37.toml --set 'passes.method=\"stationary\"' --set passes.count=3 --set "
+      "output.save_states=[2] --out ";
+  const test::Run r = test::run_roller(run + whole.string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const test::Run resumed = test::resume_copy(run, whole, split, 2);
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  for (const char* f : {"passes.csv", "residual_depth.csv", "step_0003.vtu"})
+    CHECK(test::read_text(split / f) == test::read_text(whole / f));
+  const auto a = nlohmann::json::parse(test::read_text(whole / "summary.json"));
+  const auto b = nlohmann::json::parse(test::read_text(split / "summary.json"));
+  CHECK(a["passes"] == b["passes"]);
+}
+
+TEST_CASE("stationary passes: scenes it cannot take are input errors naming the key", "[scenes][stationary]") {
+  const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml";
+  CHECK_THROWS_WITH(load_scene(file, {kStationary, {"kinematics", "\"finite\""}}),
+                    Catch::Contains("passes.method") && Catch::Contains("small-strain"));
+  SECTION("a travel segment that prescribes the height, not the force") {
+    Simulation sim(load_scene(file, {kStationary,
+                                     {"roller.path", "[{ steps = [1, 3], dy = -0.02 }, { steps = [4, 19], dx = 16.0 }, "
+                                                     "{ steps = [20, 21], dy = 0.3 }]"}}));
+    CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("fy"));
+  }
+}
