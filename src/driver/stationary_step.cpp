@@ -20,6 +20,9 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   res.counters.factorizations = step == 1 ? 1 : 0;  // K_e, once for the run
   res.n_yielded = pass.solve.n_yielded;
   res.status = pass.solve.status;
+  res.last.status = pass.solve.status;
+  res.last.residual = pass.solve.residual;  // |r|/F of the stationary iteration
+  res.last.counters = res.counters;
   state_.pose = passes.roller_pose();
   state_.contact = passes.contact();
   if (!pass.solve.converged()) {

@@ -76,8 +76,9 @@ TEST_CASE("stationary passes: scenes it cannot take are input errors naming the 
                     Catch::Contains("passes.method") && Catch::Contains("small-strain"));
   SECTION("a travel segment that prescribes the height, not the force") {
     Simulation sim(load_scene(file, {kStationary,
-                                     {"roller.path", "[{ steps = [1, 3], dy = -0.02 }, { steps = [4, 19], dx = 16.0 }, "
-                                                     "{ steps = [20, 21], dy = 0.3 }]"}}));
+                                     {"roller.path",
+                                      "[{ steps = [1, 3], dy = -0.02 }, { steps = [4, 19], dx = 16.0 }, "
+                                      "{ steps = [20, 21], dy = 0.3 }]"}}));
     CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("fy"));
   }
 }
