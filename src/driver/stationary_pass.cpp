@@ -51,22 +51,29 @@ class Anderson {
 
 }  // namespace
 
-StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs, SparseSolver& elastic,
-                                           const VecX& external, const std::vector<MaterialState>& upstream,
+StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs,
+                                           StationaryCorrection& correction, const std::vector<MaterialState>& upstream,
                                            const StationarySettings& settings) {
   StationaryPassResult out;
   const VecX carried = strip.forces(strip.spread(upstream));  // f(sigma_upstream)
-  const Real reference = std::max(external.cwiseAbs().maxCoeff(), 1e-300);
-  out.displacement = VecX::Zero(external.size());
+  out.displacement = VecX::Zero(carried.size());
   Anderson anderson(kAndersonDepth);
   for (int k = 0;; ++k) {
     out.strains = strip.strains(out.displacement);
     SweepReport report;
     out.states = strip.sweep(out.strains, upstream, &report);
     out.n_yielded = report.n_yielded;
-    const VecX r = dofs.restrict_to_free(external + carried - strip.forces(out.states));
-    out.residual = r.cwiseAbs().maxCoeff() / reference;
+    const VecX r = dofs.restrict_to_free(carried - strip.forces(out.states));
+    const StationaryCorrection::Result c = correction.correct(out.displacement, out.states, r);
     out.iterations = k;
+    if (c.du.size() == 0) {
+      out.status = Termination::Failed;
+      out.message = fmt::format("the stationary iteration's correction {} failed: {}", k, c.message);
+      return out;
+    }
+    out.load = c.load;
+    const Real reference = std::max(c.load.cwiseAbs().maxCoeff(), 1e-300);
+    out.residual = (r + dofs.restrict_to_free(c.load)).cwiseAbs().maxCoeff() / reference;
     if (!std::isfinite(out.residual)) {
       out.status = Termination::Failed;
       out.message = fmt::format("the stationary iteration diverged (residual not finite after {} iterations)", k);
@@ -85,8 +92,7 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
                                 out.residual, settings.tolerance);
       return out;
     }
-    const VecX u = dofs.restrict_to_free(out.displacement);
-    dofs.scatter_free(anderson.next(u, elastic.solve(r)), out.displacement);
+    dofs.scatter_free(anderson.next(dofs.restrict_to_free(out.displacement), c.du), out.displacement);
   }
 }
 

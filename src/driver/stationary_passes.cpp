@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
+#include "roller/driver/simulation.hpp"
 #include "roller/driver/steady_load.hpp"
 #include "roller_start.hpp"
 
@@ -36,6 +37,57 @@ Real contact_centre(const Scene& scene, const SteadyLoad& load) {
 }
 
 }  // namespace
+
+// The roller's contact solved with the elastic stiffness: an elastic twin of the strip (its own
+// Simulation: the scene made linear elastic and frictionless, the roller over the contact's centre
+// under the travel force), restored at every iteration to the iterate u with the stresses
+// sigma(u) - sigma_upstream, so that its incremental energy is 1/2 du K_e du - r.du; one
+// force-controlled increment gives du and the contact forces. The twin's tangent is constant, so
+// the condensed interior-point backend keeps its factors from one iteration to the next.
+class RollerContactCorrection : public StationaryCorrection {
+ public:
+  RollerContactCorrection(const Scene& scene, Real centre_x, Real force) {
+    Scene twin = scene;
+    twin.material.plastic = false;
+    for (MaterialLayer& layer : twin.layers) layer.material.plastic = false;
+    twin.element.kinematics = Kinematics::Small;
+    twin.dynamics = DynamicsOptions{};
+    twin.contact.friction = 0.0;
+    twin.passes = PassSpec{};
+    twin.steps.n_steps = 1;
+    twin.output.monitor = false;
+    twin.initial_state.clear();
+    twin.roller->start_centre = Vec2(centre_x, scene.mesh.height + scene.roller->radius);
+    PathSegment press;
+    press.first_step = press.last_step = 1;
+    press.fy = force;
+    press.friction = 0.0;
+    twin.roller->path = {press};
+    twin_ = std::make_unique<Simulation>(std::move(twin));
+  }
+  void set_upstream(std::vector<MaterialState> spread) { upstream_ = std::move(spread); }
+  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX&) override {
+    StripModel& strip = twin_->model();
+    std::vector<MaterialState> stresses(states.size());
+    for (std::size_t p = 0; p < states.size(); ++p) stresses[p].stress = states[p].stress - upstream_[p].stress;
+    strip.restore(strip.mesh().nodes, u, std::move(stresses));
+    const IncrementReport inc = twin_->advance(0.0, 1.0);
+    if (!inc.converged()) return {VecX(), VecX(), inc.message};
+    Result out;
+    out.du = strip.dof_map().restrict_to_free(strip.total_displacement() - u);
+    out.load = VecX::Zero(u.size());
+    for (const NodeContactRecord& c : twin_->state().contact) out.load.segment<2>(2 * c.node) += c.force;
+    return out;
+  }
+  const std::vector<NodeContactRecord>& contact() const { return twin_->state().contact; }
+  RollerPose pose() const { return twin_->state().pose; }
+
+ private:
+  std::unique_ptr<Simulation> twin_;
+  std::vector<MaterialState> upstream_;
+};
+
+StationaryPasses::~StationaryPasses() = default;
 
 StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
     : roller_y_(given_start_centre(scene).y()),
@@ -85,11 +137,19 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
   SparseMatrix k;
   elastic_twin_->evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
   if (!solver_.factorize(k)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
-  elastic_ = solve_stationary_pass(elastic_strip_, model.dof_map(), solver_, load_, elastic_strip_.virgin_upstream(),
-                                   StationarySettings{});
+  hertz_correction_ = std::make_unique<PrescribedLoadCorrection>(model.dof_map(), solver_, load_);
+  if (scene.passes.stationary_contact == StationaryContact::Roller) {
+    if (steady.traction != 0.0)
+      throw InputError(
+          fmt::format("{}: passes.stationary_contact = \"roller\" carries no tangential traction yet (the "
+                      "travel segment slides: q = {} p); set passes.stationary_contact = \"hertz\"",
+                      scene.file.string(), steady.traction));
+    roller_correction_ = std::make_unique<RollerContactCorrection>(scene, centre_x_, hertz_.load);
+  }
 }
 
 RollerPose StationaryPasses::roller_pose() const {
+  if (pose_) return *pose_;
   RollerPose pose;
   pose.centre = Vec2(centre_x_, roller_y_);
   return pose;
@@ -101,22 +161,35 @@ std::vector<MaterialState> StationaryPasses::upstream_of(const StripModel& strip
   return out;
 }
 
-StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostream* progress) const {
+StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostream* progress) {
   StationarySettings settings;
   settings.progress = progress;
   Pass out;
-  out.solve = solve_stationary_pass(strip_, strip.dof_map(), solver_, load_, upstream_of(strip), settings);
+  const std::vector<MaterialState> upstream = upstream_of(strip);
+  StationaryCorrection* correction = hertz_correction_.get();
+  if (roller_correction_) {
+    roller_correction_->set_upstream(strip_.spread(upstream));
+    correction = roller_correction_.get();
+  }
+  out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings);
   if (!out.solve.converged()) return out;
-  // The state leaving the pass, the roller's elastic field taken off (it lifts): every point of a
-  // streamline holds it.
+  if (roller_correction_) {
+    contact_ = roller_correction_->contact();
+    pose_ = roller_correction_->pose();
+  }
+  // The roller lifts: the elastic response to the load the pass carried comes off. The state
+  // leaving the pass, unloaded, is then every point's of its streamline.
+  PrescribedLoadCorrection lift(strip.dof_map(), solver_, out.solve.load);
+  const StationaryPassResult unloading = solve_stationary_pass(elastic_strip_, strip.dof_map(), lift,
+                                                               elastic_strip_.virgin_upstream(), StationarySettings{});
   std::vector<MaterialState> leaving;
   for (const Index p : extraction_) {
     MaterialState s = out.solve.states[p];
-    s.stress -= elastic_.states[p].stress;
+    s.stress -= unloading.states[p].stress;
     leaving.push_back(s);
   }
   out.residual = strip_.spread(leaving);
-  out.permanent_displacement = out.solve.displacement - elastic_.displacement;
+  out.permanent_displacement = out.solve.displacement - unloading.displacement;
   return out;
 }
 

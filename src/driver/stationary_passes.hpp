@@ -13,6 +13,7 @@
 // method's.
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "roller/analysis/hertz.hpp"
@@ -24,11 +25,14 @@
 
 namespace roller {
 
+class RollerContactCorrection;  // stationary_passes.cpp
+
 class StationaryPasses {
  public:
   // Throws InputError when the scene's travel segment prescribes no force (fy) or its mesh has no
   // straight rows of points.
   StationaryPasses(const Scene& scene, const StripModel& model);
+  ~StationaryPasses();
 
   struct Pass {
     StationaryPassResult solve;
@@ -36,12 +40,13 @@ class StationaryPasses {
     VecX permanent_displacement;          // u - u_elastic of the pass (all dofs)
   };
   // The pass from the residual strip `strip` (or the initial state before the first pass).
-  Pass run(const StripModel& strip, std::ostream* progress) const;
+  Pass run(const StripModel& strip, std::ostream* progress);
 
   const HertzSolution& hertz() const { return hertz_; }
   Real centre_x() const { return centre_x_; }
   Real extraction_x() const { return extraction_x_; }
-  // The load as contact records of the top nodes (contact.csv), and the roller's pose over it.
+  // The load as contact records of the top nodes (contact.csv), and the roller's pose over it
+  // (the last pass's, with the roller's contact).
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
   RollerPose roller_pose() const;
 
@@ -55,10 +60,12 @@ class StationaryPasses {
   ElementMaterials elastic_materials_;
   StationaryStrip elastic_strip_;
   std::unique_ptr<StripModel> elastic_twin_;  // assembles K_e
-  mutable SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
+  SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
+  std::unique_ptr<PrescribedLoadCorrection> hertz_correction_;
   VecX load_;
-  StationaryPassResult elastic_;   // the load's elastic field
-  std::vector<Index> extraction_;  // per streamline: its point at the extraction column
+  std::unique_ptr<RollerContactCorrection> roller_correction_;  // passes.stationary_contact = "roller"
+  std::optional<RollerPose> pose_;                              // the roller's, with the roller's contact
+  std::vector<Index> extraction_;                               // per streamline: its point at the extraction column
   std::vector<NodeContactRecord> contact_;
 };
 

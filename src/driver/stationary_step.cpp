@@ -9,7 +9,7 @@ namespace roller {
 
 Simulation::StepRecord Simulation::advance_stationary(int step) {
   if (!stationary_) stationary_ = std::make_unique<StationaryPasses>(scene_, *model_);
-  const StationaryPasses& passes = *stationary_;
+  StationaryPasses& passes = *stationary_;
   StepRecord res;
   res.step = step;
   res.pass = step;

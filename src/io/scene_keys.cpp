@@ -754,6 +754,10 @@ std::vector<SceneKey> make_keys() {
           "passes.method", [](auto& s) -> auto& { return s.passes.method; },
           "transient: each pass marched over the steps; stationary: each pass solved as the steady state in the "
           "roller's frame, one step a pass (small strain, quasi-static; docs/model.md)"),
+      key(
+          "passes.stationary_contact", [](auto& s) -> auto& { return s.passes.stationary_contact; },
+          "the stationary pass's load: hertz, the Hertz pressure of the travel force (q = mu p when it slides); "
+          "roller, the rigid roller's frictionless contact solved in every iteration"),
 
       // [newton]
       key(

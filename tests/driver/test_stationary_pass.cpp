@@ -85,8 +85,9 @@ TEST_CASE("stationary pass: an unloaded strip keeps its upstream state, an elast
     }
   }
   SECTION("no load: the solution is u = 0 at once") {
-    const StationaryPassResult r = solve_stationary_pass(strip, s.sim.model().dof_map(), s.solver,
-                                                         VecX::Zero(s.load.size()), upstream, StationarySettings{});
+    PrescribedLoadCorrection none(s.sim.model().dof_map(), s.solver, VecX::Zero(s.load.size()));
+    const StationaryPassResult r =
+        solve_stationary_pass(strip, s.sim.model().dof_map(), none, upstream, StationarySettings{});
     REQUIRE(r.converged());
     CHECK(r.iterations == 0);
     CHECK(r.displacement.cwiseAbs().maxCoeff() == 0.0);
@@ -96,8 +97,9 @@ TEST_CASE("stationary pass: an unloaded strip keeps its upstream state, an elast
     const StationaryStrip elastic_strip(s.sim.model().mesh(), elastic, s.sim.model().options(), 1.0);
     StationarySettings settings;
     settings.tolerance = 1e-12;
-    const StationaryPassResult r = solve_stationary_pass(elastic_strip, s.sim.model().dof_map(), s.solver, s.load,
-                                                         elastic_strip.virgin_upstream(), settings);
+    PrescribedLoadCorrection hertz(s.sim.model().dof_map(), s.solver, s.load);
+    const StationaryPassResult r =
+        solve_stationary_pass(elastic_strip, s.sim.model().dof_map(), hertz, elastic_strip.virgin_upstream(), settings);
     REQUIRE(r.converged());
     CHECK(r.iterations == 1);
     const VecX direct = s.solver.solve(s.sim.model().dof_map().restrict_to_free(s.load));
@@ -111,15 +113,16 @@ TEST_CASE("stationary pass of shakedown_p45 (explore)", "[.explore]") {
   StationarySettings settings;
   settings.progress = &std::cout;
   const auto t0 = std::chrono::steady_clock::now();
+  PrescribedLoadCorrection hertz(s.sim.model().dof_map(), s.solver, s.load);
   const StationaryPassResult r =
-      solve_stationary_pass(s.strip, s.sim.model().dof_map(), s.solver, s.load, s.strip.virgin_upstream(), settings);
+      solve_stationary_pass(s.strip, s.sim.model().dof_map(), hertz, s.strip.virgin_upstream(), settings);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::cout << fmt::format("status {} after {} iterations, |r|/F {:.3g}, {:.2f} s\n", enum_name(r.status), r.iterations,
                            r.residual, wall);
   // The elastic field of the load, to unload with.
   ElementMaterials elastic = elastic_copy(s.sim.model().materials());
   const StationaryStrip elastic_strip(s.sim.model().mesh(), elastic, s.sim.model().options(), 1.0);
-  const StationaryPassResult e = solve_stationary_pass(elastic_strip, s.sim.model().dof_map(), s.solver, s.load,
+  const StationaryPassResult e = solve_stationary_pass(elastic_strip, s.sim.model().dof_map(), hertz,
                                                        elastic_strip.virgin_upstream(), StationarySettings{});
   const Real top = 100.0;
   for (const Streamline& line : s.strip.streamlines()) {

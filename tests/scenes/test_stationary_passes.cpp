@@ -39,8 +39,10 @@ TEST_CASE("stationary passes: the transient method's verdicts below and above th
 TEST_CASE("stationary passes: an elastic strip is left without residual stress or plastic strain",
           "[scenes][stationary]") {
   // p0/k = 3.0 stays below first yield (3.07): the state leaving a pass is the load's elastic
-  // field, which the unloading takes off exactly.
-  const Simulation sim = test::run_scene("shakedown_p30", {kStationary, {"passes.count", "2"}});
+  // field, which the unloading takes off exactly, with the Hertz load and with the roller's contact.
+  const std::string contact = GENERATE(as<std::string>{}, "hertz", "roller");
+  const Simulation sim = test::run_scene(
+      "shakedown_p30", {kStationary, {"passes.count", "2"}, {"passes.stationary_contact", "\"" + contact + "\""}});
   Real peak = 0.0, plastic = 0.0;
   for (const MaterialState& s : sim.model().states()) {
     peak = std::max(peak, s.stress.cwiseAbs().maxCoeff());
@@ -49,6 +51,18 @@ TEST_CASE("stationary passes: an elastic strip is left without residual stress o
   CHECK(plastic == 0.0);
   CHECK(peak <= 1e-8 * 2307.7);  // p0: roundoff of the two solves
   CHECK(sim.state().pass_records.back().mean_plastic_increment == 0.0);
+}
+
+TEST_CASE("stationary passes with the roller's contact: elastic shakedown below the limit, the contact's force P",
+          "[scenes][stationary]") {
+  const Simulation sim = test::run_scene("shakedown_p37", {kStationary, {"passes.stationary_contact", "\"roller\""}});
+  const auto& passes = sim.state().pass_records;
+  REQUIRE(passes.size() == 5);
+  CHECK(classify_passes(passes).verdict == ShakedownVerdict::ElasticShakedown);
+  // The contact carries the travel force (the force-controlled roller of the elastic twin).
+  Real force = 0.0;
+  for (const NodeContactRecord& c : sim.state().contact) force += c.force.y();
+  CHECK(-force == Approx(7249.8292).epsilon(1e-6));
 }
 
 TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", "[scenes][stationary]") {
@@ -74,6 +88,15 @@ TEST_CASE("stationary passes: scenes it cannot take are input errors naming the 
   const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml";
   CHECK_THROWS_WITH(load_scene(file, {kStationary, {"kinematics", "\"finite\""}}),
                     Catch::Contains("passes.method") && Catch::Contains("small-strain"));
+  SECTION("the roller's contact under a sliding traction") {
+    Simulation sim(load_scene(file, {kStationary,
+                                     {"passes.stationary_contact", "\"roller\""},
+                                     {"contact.friction", "0.2"},
+                                     {"roller.path",
+                                      "[{ steps = [1, 3], fy = 7249.8, friction = 0.0 }, { steps = [4, 19], "
+                                      "dx = 16.0, fy = 7249.8, slip = 1.0 }, { steps = [20, 21], dy = 0.3 }]"}}));
+    CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("stationary_contact") && Catch::Contains("hertz"));
+  }
   SECTION("a travel segment that prescribes the height, not the force") {
     Simulation sim(load_scene(file, {kStationary,
                                      {"roller.path",

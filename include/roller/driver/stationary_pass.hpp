@@ -2,12 +2,14 @@
 // One steady pass of the roller solved in its own frame (docs/model.md, "Stationary pass"):
 // the displacement u (from the upstream configuration) for which the states swept along the
 // streamlines carry the load. Each iteration is an initial-stress correction with the elastic
-// stiffness, factorised once for every pass:
-//   r(u) = f_ext + f(sigma_upstream) - f(sigma(u)),   g = K_e^-1 r
-// and the fixed point u = u + g accelerated by Anderson's mixing of the last 20 corrections. The
-// upstream term makes an unloaded strip keep its upstream state (r = 0 at u = 0).
+// stiffness:
+//   r(u) = f(sigma_upstream) - f(sigma(u)),   K_e du = r + f_c  (f_c: the load, with du)
+// and the fixed point u = u + du accelerated by Anderson's mixing of the last 20 corrections;
+// converged when |r + f_c| <= tolerance |f_c|. The upstream term makes an unloaded strip keep its
+// upstream state (r = 0 at u = 0).
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "roller/assembly/dof_map.hpp"
@@ -16,6 +18,38 @@
 #include "roller/solver/termination.hpp"
 
 namespace roller {
+
+// The load's side of one iteration: from the iterate u (all dofs), its states and r (free dofs),
+// the correction du (free dofs) and the load f_c (all dofs) it carries: a prescribed load
+// (du = K_e^-1 (r + f_ext)), or the roller's contact solved with K_e.
+class StationaryCorrection {
+ public:
+  virtual ~StationaryCorrection() = default;
+  struct Result {
+    VecX du;              // free dofs
+    VecX load;            // all dofs
+    std::string message;  // why there is none (du empty)
+  };
+  virtual Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) = 0;
+};
+
+// K_e^-1 (r + f_ext) with K_e factorised (over the free dofs) and a fixed load f_ext.
+class PrescribedLoadCorrection : public StationaryCorrection {
+ public:
+  PrescribedLoadCorrection(const DofMap& dofs, SparseSolver& elastic, VecX external)
+      : dofs_(dofs),
+        elastic_(elastic),
+        external_(std::move(external)),
+        external_free_(dofs.restrict_to_free(external_)) {}
+  Result correct(const VecX&, const std::vector<MaterialState>&, const VecX& r) override {
+    return {elastic_.solve(r + external_free_), external_, {}};
+  }
+
+ private:
+  const DofMap& dofs_;
+  SparseSolver& elastic_;
+  VecX external_, external_free_;
+};
 
 struct StationarySettings {
   Real tolerance = 1e-8;             // on |r|_inf / F_ref, F_ref = |f_ext|_inf
@@ -29,6 +63,7 @@ struct StationaryPassResult {
   int iterations = 0;
   Real residual = 0.0;                // |r|_inf / F_ref at the end
   VecX displacement;                  // all dofs
+  VecX load;                          // f_c of the last correction: the load the pass carries (all dofs)
   std::vector<Vec4> strains;          // at every point
   std::vector<MaterialState> states;  // at every point
   Index n_yielded = 0;                // points that yield on their way
@@ -36,10 +71,9 @@ struct StationaryPassResult {
   bool converged() const { return status == Termination::Converged; }
 };
 
-// `elastic`: K_e over the free dofs, factorised. `external`: the load (all dofs). `upstream`: one
-// state per streamline. Constrained dofs stay at zero.
-StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs, SparseSolver& elastic,
-                                           const VecX& external, const std::vector<MaterialState>& upstream,
+// `upstream`: one state per streamline. Constrained dofs stay at zero.
+StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs,
+                                           StationaryCorrection& correction, const std::vector<MaterialState>& upstream,
                                            const StationarySettings& settings);
 
 }  // namespace roller

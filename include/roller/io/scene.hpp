@@ -37,10 +37,20 @@ struct EnumNames<PassMethod> {
       {{PassMethod::Transient, "transient"}, {PassMethod::Stationary, "stationary"}}};
 };
 
+// The load of a stationary pass: the Hertz pressure of the travel force (and q = mu p when the
+// roller slides), or the rigid roller's contact solved in every iteration (frictionless).
+enum class StationaryContact { Hertz, Roller };
+template <>
+struct EnumNames<StationaryContact> {
+  static constexpr std::array<std::pair<StationaryContact, const char*>, 2> names{
+      {{StationaryContact::Hertz, "hertz"}, {StationaryContact::Roller, "roller"}}};
+};
+
 struct PassSpec {
   int count = 1;  // passes in the run
   PassDirection direction = PassDirection::Same;
   PassMethod method = PassMethod::Transient;
+  StationaryContact stationary_contact = StationaryContact::Hertz;
 };
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
