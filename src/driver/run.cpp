@@ -151,6 +151,7 @@ RunStatus status_of(const std::exception& e) {
 
 RunSummary Simulation::run(const RunOptions& options) {
   const auto t_start = Clock::now();
+  progress_ = options.progress;
   start_or_resume(options);
   const int first_step = state_.steps_done + 1;
   const std::filesystem::path summary_file = options.out_dir / "summary.json";

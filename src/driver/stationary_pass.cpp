@@ -79,7 +79,7 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
       out.message = fmt::format("the stationary iteration diverged (residual not finite after {} iterations)", k);
       return out;
     }
-    if (settings.progress && (k % settings.report_every == 0))
+    if (settings.progress && k > 0 && k % settings.report_every == 0)
       *settings.progress << fmt::format("  stationary iteration {:5d}  |r|/F {:.3e}  yielded {}\n", k, out.residual,
                                         out.n_yielded);
     if (out.residual <= settings.tolerance) {

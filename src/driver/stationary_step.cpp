@@ -15,7 +15,7 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   res.pass = step;
   res.time = step * scene_.steps.dt;
   const PassBaseline baseline = PassBaseline::of(*model_);
-  const StationaryPasses::Pass pass = passes.run(*model_, nullptr);
+  const StationaryPasses::Pass pass = passes.run(*model_, progress_);
   res.counters.iterations = pass.solve.iterations;
   res.counters.factorizations = step == 1 ? 1 : 0;  // K_e, once for the run
   res.n_yielded = pass.solve.n_yielded;

@@ -192,6 +192,7 @@ class Simulation {
   RunState state_;  // everything a later step reads but the strip and the dynamics (run_state.hpp)
   DynamicsState dynamics_;
   std::unique_ptr<StationaryPasses> stationary_;  // the stationary method's set-up, built at its first pass
+  std::ostream* progress_ = nullptr;              // run()'s progress stream, for the stationary iterations
 };
 
 }  // namespace roller

@@ -55,7 +55,7 @@ struct StationarySettings {
   Real tolerance = 1e-8;             // on |r|_inf / F_ref, F_ref = |f_ext|_inf
   int max_iterations = 3000;         // then limit_reached
   std::ostream* progress = nullptr;  // a line every `report_every` iterations
-  int report_every = 50;
+  int report_every = 100;
 };
 
 struct StationaryPassResult {
