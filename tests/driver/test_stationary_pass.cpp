@@ -2,9 +2,7 @@
 // one; an unloaded strip keeps its upstream state; the pass of a shakedown scene converges.
 #include <catch2/catch.hpp>
 
-#include <chrono>
 #include <cmath>
-#include <iostream>
 
 #include <fmt/format.h>
 
@@ -105,35 +103,5 @@ TEST_CASE("stationary pass: an unloaded strip keeps its upstream state, an elast
     const VecX direct = s.solver.solve(s.sim.model().dof_map().restrict_to_free(s.load));
     CHECK((s.sim.model().dof_map().restrict_to_free(r.displacement) - direct).cwiseAbs().maxCoeff() <=
           1e-10 * direct.cwiseAbs().maxCoeff());
-  }
-}
-
-TEST_CASE("stationary pass of shakedown_p45 (explore)", "[.explore]") {
-  Setup s("shakedown_p45", 100.0, 7249.8292);
-  StationarySettings settings;
-  settings.progress = &std::cout;
-  const auto t0 = std::chrono::steady_clock::now();
-  PrescribedLoadCorrection hertz(s.sim.model().dof_map(), s.solver, s.load);
-  const StationaryPassResult r =
-      solve_stationary_pass(s.strip, s.sim.model().dof_map(), hertz, s.strip.virgin_upstream(), settings);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << fmt::format("status {} after {} iterations, |r|/F {:.3g}, {:.2f} s\n", enum_name(r.status), r.iterations,
-                           r.residual, wall);
-  // The elastic field of the load, to unload with.
-  ElementMaterials elastic = elastic_copy(s.sim.model().materials());
-  const StationaryStrip elastic_strip(s.sim.model().mesh(), elastic, s.sim.model().options(), 1.0);
-  const StationaryPassResult e = solve_stationary_pass(elastic_strip, s.sim.model().dof_map(), hertz,
-                                                       elastic_strip.virgin_upstream(), StationarySettings{});
-  const Real top = 100.0;
-  for (const Streamline& line : s.strip.streamlines()) {
-    if (top - line.y > 6.0) continue;
-    Index pick = line.points.back();
-    for (const Index p : line.points)
-      if (std::abs(s.strip.point_position(p).x() - 50.0) < std::abs(s.strip.point_position(pick).x() - 50.0)) pick = p;
-    const Vec4 res = r.states[pick].stress - e.states[pick].stress;
-    std::cout << fmt::format(
-        "depth {:.3f} x {:.2f}: eps_p {:.4e}  residual xx {:.1f} yy {:.1f} zz {:.1f} xy {:.1f}  (end: xx {:.1f})\n",
-        top - line.y, s.strip.point_position(pick).x(), r.states[pick].eq_plastic_strain, res[0], res[1], res[2],
-        res[3], r.states[line.points.back()].stress[0]);
   }
 }

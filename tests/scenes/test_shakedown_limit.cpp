@@ -48,7 +48,8 @@ Real mcewen_kinematic_limit(Real mu) {
 
 }  // namespace
 
-TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with sliding traction", "[scenes][melan]") {
+TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with sliding traction",
+          "[scenes][melan][slow]") {
   const auto [mu, johnson] = GENERATE(table<Real, Real>({{0.0, 4.00}, {0.1, 3.56}, {0.2, 3.20}, {0.3, 2.89}}));
   const ShakedownLimitResult r = limit_of(shipped("shakedown_p45"), mu);
   const MelanRowLimit& c = r.elastic.rows[r.elastic.critical_row];
@@ -61,7 +62,8 @@ TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with 
   CHECK_FALSE(r.kinematic);                                       // perfectly plastic: no back-stress bound
 }
 
-TEST_CASE("shakedown-limit with kinematic hardening: the back-stress bound of the half-plane", "[scenes][melan]") {
+TEST_CASE("shakedown-limit with kinematic hardening: the back-stress bound of the half-plane",
+          "[scenes][melan][slow]") {
   const Real mu = 0.2;
   const ShakedownLimitResult r = limit_of(shipped("shakedown_kinematic_p45"), mu);
   REQUIRE(r.kinematic);

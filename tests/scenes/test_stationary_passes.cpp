@@ -54,7 +54,7 @@ TEST_CASE("stationary passes: an elastic strip is left without residual stress o
 }
 
 TEST_CASE("stationary passes with the roller's contact: elastic shakedown below the limit, the contact's force P",
-          "[scenes][stationary]") {
+          "[scenes][stationary][slow]") {
   const Simulation sim = test::run_scene("shakedown_p37", {kStationary, {"passes.stationary_contact", "\"roller\""}});
   const auto& passes = sim.state().pass_records;
   REQUIRE(passes.size() == 5);
