@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
 
 #include <fmt/format.h>
@@ -58,6 +59,9 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
   const VecX carried = strip.forces(strip.spread(upstream));  // f(sigma_upstream)
   out.displacement = VecX::Zero(carried.size());
   Anderson anderson(kAndersonDepth);
+  // Stagnation: the best residual so far and the iteration at which it last halved.
+  Real mark = std::numeric_limits<Real>::infinity();
+  int mark_iteration = 0;
   for (int k = 0;; ++k) {
     out.strains = strip.strains(out.displacement);
     SweepReport report;
@@ -86,10 +90,21 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
       out.status = Termination::Converged;
       return out;
     }
+    if (out.residual <= 0.5 * mark) mark = out.residual, mark_iteration = k;
+    const char* fix =
+        "the pass may have no steady state at this load (a surface layer that keeps flowing), or the elastic "
+        "correction cannot reach it: use passes.method = \"transient\"";
+    if (k - mark_iteration >= settings.stagnation_window) {
+      out.status = Termination::LimitReached;
+      out.message =
+          fmt::format("the stationary iteration stagnates: |r|/F = {:.3g} has not halved in {} iterations; {}",
+                      out.residual, settings.stagnation_window, fix);
+      return out;
+    }
     if (k == settings.max_iterations) {
       out.status = Termination::LimitReached;
-      out.message = fmt::format("the stationary iteration reached {} iterations at |r|/F = {:.3g} (tolerance {:g})", k,
-                                out.residual, settings.tolerance);
+      out.message = fmt::format("the stationary iteration reached {} iterations at |r|/F = {:.3g} (tolerance {:g}); {}",
+                                k, out.residual, settings.tolerance, fix);
       return out;
     }
     dofs.scatter_free(anderson.next(dofs.restrict_to_free(out.displacement), c.du), out.displacement);

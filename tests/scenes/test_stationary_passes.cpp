@@ -105,3 +105,22 @@ TEST_CASE("stationary passes: scenes it cannot take are input errors naming the 
     CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("fy"));
   }
 }
+
+TEST_CASE("stationary passes: a pass whose iteration stagnates stops with a message naming the transient method",
+          "[scenes][stationary][slow]") {
+  // p0/k = 3.8 under a sliding traction q = 0.3 p (Melan: 2.91): the surface layer flows and the
+  // initial-stress iteration does not get below |r|/F ~ 0.4; it stops after 500 iterations
+  // without halving the residual, not after the 3000 of the budget.
+  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml",
+                            {kStationary,
+                             {"material.yield_stress", "1051.8527"},
+                             {"contact.friction", "0.3"},
+                             {"roller.path",
+                              "[{ steps = [1, 3], fy = 7249.8292, friction = 0.0 }, { steps = [4, 19], dx = 16.0, "
+                              "fy = 7249.8292, slip = 1.0 }, { steps = [20, 21], dy = 0.3 }]"}}));
+  const Simulation::StepRecord r = sim.advance_step(1);
+  CHECK(r.status == Termination::LimitReached);
+  CHECK(r.counters.iterations < 3000);
+  CHECK_THAT(r.message, Catch::Contains("stagnates") && Catch::Contains("passes.method = \"transient\""));
+  CHECK(sim.state().steps_done == 0);  // nothing committed
+}

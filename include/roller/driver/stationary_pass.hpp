@@ -52,8 +52,9 @@ class PrescribedLoadCorrection : public StationaryCorrection {
 };
 
 struct StationarySettings {
-  Real tolerance = 1e-8;             // on |r|_inf / F_ref, F_ref = |f_ext|_inf
+  Real tolerance = 1e-8;             // on |r + f_c|_inf / |f_c|_inf
   int max_iterations = 3000;         // then limit_reached
+  int stagnation_window = 500;       // limit_reached when |r|/F has not halved in this many iterations
   std::ostream* progress = nullptr;  // a line every `report_every` iterations
   int report_every = 100;
 };
