@@ -10,6 +10,7 @@
 #include <IpTNLP.hpp>
 
 #include "roller/core/error.hpp"
+#include "roller/material/j2_plasticity.hpp"
 
 namespace roller {
 
@@ -172,9 +173,8 @@ class MelanRowNlp : public Ipopt::TNLP {
 
 Real row_first_yield(const MelanRow& row) {
   Real f = std::numeric_limits<Real>::infinity();
-  const Eigen::Matrix4d m = von_mises_form();
   for (std::size_t i = 0; i < row.stress.size(); ++i) {
-    const Real vm = std::sqrt(row.stress[i].dot(m * row.stress[i]));
+    const Real vm = von_mises(row.stress[i]);
     if (vm > 0.0) f = std::min(f, row.yield_stress[i] / vm);
   }
   return f;

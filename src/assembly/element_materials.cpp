@@ -34,6 +34,11 @@ Real mesh_top(const Mesh& mesh) {
   return top;
 }
 
+ElementMaterials linear_elastic(ElementMaterials materials) {
+  for (MaterialParams& p : materials.table) p.plastic = false;
+  return materials;
+}
+
 Real centroid_depth(const Mesh& mesh, Index e, Real top) {
   Real y = 0.0;
   for (Index a : mesh.elements[e]) y += mesh.nodes[a].y();

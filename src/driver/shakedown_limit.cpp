@@ -21,17 +21,8 @@ namespace {
 
 // The scene's press with a linear elastic, small-strain strip and no friction.
 Scene elastic_press_scene(const Scene& scene, int press_steps) {
-  Scene s = scene;
-  s.element.kinematics = Kinematics::Small;
-  s.material.plastic = false;
-  for (MaterialLayer& layer : s.layers) layer.material.plastic = false;
-  s.dynamics = DynamicsOptions{};
-  s.contact.friction = 0.0;
-  for (PathSegment& seg : s.roller->path) seg.friction = 0.0;
+  Scene s = elastic_frictionless_scene(scene);
   s.steps.n_steps = press_steps;
-  s.passes = PassSpec{};
-  s.output.monitor = false;
-  s.initial_state.clear();
   return s;
 }
 
@@ -70,18 +61,19 @@ std::vector<MelanRow> depth_rows(const StripModel& elastic, const ElementMateria
   const Mesh& mesh = elastic.mesh();
   std::map<long long, MelanRow> rows;  // keyed by depth in nm: the elements of a row share it to rounding
   for (Index e = 0; e < mesh.n_elements(); ++e) {
-    Vec2 centroid = Vec2::Zero();
-    for (const Index a : mesh.elements[e]) centroid += mesh.nodes[a];
-    centroid /= static_cast<Real>(mesh.elements[e].size());
+    Real x = 0.0;
+    for (const Index a : mesh.elements[e]) x += mesh.nodes[a].x();
+    x /= static_cast<Real>(mesh.elements[e].size());
+    const Real depth = centroid_depth(mesh, e, top);  // as assign_materials takes it
     Vec4 stress = Vec4::Zero();
     for (int q = 0; q < elastic.points_per_element(); ++q) stress += elastic.state(e, q).stress;
     stress /= elastic.points_per_element();
     const MaterialParams& m = plastic.of(e);
-    MelanRow& row = rows[std::llround((top - centroid.y()) * 1e6)];
+    MelanRow& row = rows[std::llround(depth * 1e6)];
     row.back_stress_bound =
         row.x.empty() ? back_stress_bound(m) : std::min(row.back_stress_bound, back_stress_bound(m));
-    row.depth = top - centroid.y();
-    row.x.push_back(centroid.x());
+    row.depth = depth;
+    row.x.push_back(x);
     row.stress.push_back(stress);
     row.yield_stress.push_back(m.yield_stress);
   }

@@ -63,9 +63,8 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
   Real mark = std::numeric_limits<Real>::infinity();
   int mark_iteration = 0;
   for (int k = 0;; ++k) {
-    out.strains = strip.strains(out.displacement);
     SweepReport report;
-    out.states = strip.sweep(out.strains, upstream, &report);
+    out.states = strip.sweep(strip.strains(out.displacement), upstream, &report);
     out.n_yielded = report.n_yielded;
     const VecX r = dofs.restrict_to_free(carried - strip.forces(out.states));
     const StationaryCorrection::Result c = correction.correct(out.displacement, out.states, r);

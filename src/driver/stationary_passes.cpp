@@ -15,11 +15,6 @@ namespace roller {
 
 namespace {
 
-ElementMaterials elastic_copy(ElementMaterials m) {
-  for (MaterialParams& p : m.table) p.plastic = false;
-  return m;
-}
-
 // The travel segment's force, or an InputError: the stationary pass carries a prescribed load.
 Real travel_force(const Scene& scene, const SteadyLoad& load) {
   if (!load.force)
@@ -47,16 +42,8 @@ Real contact_centre(const Scene& scene, const SteadyLoad& load) {
 class RollerContactCorrection : public StationaryCorrection {
  public:
   RollerContactCorrection(const Scene& scene, Real centre_x, Real force) {
-    Scene twin = scene;
-    twin.material.plastic = false;
-    for (MaterialLayer& layer : twin.layers) layer.material.plastic = false;
-    twin.element.kinematics = Kinematics::Small;
-    twin.dynamics = DynamicsOptions{};
-    twin.contact.friction = 0.0;
-    twin.passes = PassSpec{};
+    Scene twin = elastic_frictionless_scene(scene);
     twin.steps.n_steps = 1;
-    twin.output.monitor = false;
-    twin.initial_state.clear();
     twin.roller->start_centre = Vec2(centre_x, scene.mesh.height + scene.roller->radius);
     PathSegment press;
     press.first_step = press.last_step = 1;
@@ -93,7 +80,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
     : roller_y_(given_start_centre(scene).y()),
       travel_(steady_load(scene, std::nullopt).travel_sign),
       strip_(model.mesh(), model.materials(), model.options(), travel_),
-      elastic_materials_(elastic_copy(model.materials())),
+      elastic_materials_(linear_elastic(model.materials())),
       elastic_strip_(model.mesh(), elastic_materials_, model.options(), travel_) {
   const SteadyLoad steady = steady_load(scene, std::nullopt);
   const Mesh& mesh = model.mesh();
@@ -117,11 +104,11 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
   std::vector<Real> x;
   for (const Index a : top) x.push_back(mesh.nodes[a].x() - centre_x_);
   const std::vector<Real> f = hertz_nodal_forces(hertz_, x);
-  load_ = VecX::Zero(mesh.n_dofs());
+  VecX load = VecX::Zero(mesh.n_dofs());
   for (std::size_t i = 0; i < top.size(); ++i) {
     if (f[i] == 0.0) continue;
     const Vec2 force(travel_ * steady.traction * f[i], -f[i]);
-    load_.segment<2>(2 * top[i]) = force;
+    load.segment<2>(2 * top[i]) = force;
     NodeContactRecord c;
     c.node = top[i];
     c.position = mesh.nodes[top[i]];
@@ -132,12 +119,12 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
     c.force = force;
     contact_.push_back(c);
   }
-  elastic_twin_ = std::make_unique<StripModel>(model.mesh(), elastic_materials_, model.options());
-  elastic_twin_->set_dof_map(model.dof_map());
+  StripModel elastic(model.mesh(), elastic_materials_, model.options());  // assembles K_e
+  elastic.set_dof_map(model.dof_map());
   SparseMatrix k;
-  elastic_twin_->evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
+  elastic.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
   if (!solver_.factorize(k)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
-  hertz_correction_ = std::make_unique<PrescribedLoadCorrection>(model.dof_map(), solver_, load_);
+  hertz_correction_ = std::make_unique<PrescribedLoadCorrection>(model.dof_map(), solver_, std::move(load));
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
     if (steady.traction != 0.0)
       throw InputError(

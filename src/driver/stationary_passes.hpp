@@ -59,10 +59,8 @@ class StationaryPasses {
   StationaryStrip strip_;
   ElementMaterials elastic_materials_;
   StationaryStrip elastic_strip_;
-  std::unique_ptr<StripModel> elastic_twin_;  // assembles K_e
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   std::unique_ptr<PrescribedLoadCorrection> hertz_correction_;
-  VecX load_;
   std::unique_ptr<RollerContactCorrection> roller_correction_;  // passes.stationary_contact = "roller"
   std::optional<RollerPose> pose_;                              // the roller's, with the roller's contact
   std::vector<Index> extraction_;                               // per streamline: its point at the extraction column

@@ -8,7 +8,8 @@
 namespace roller {
 
 Simulation::StepRecord Simulation::advance_stationary(int step) {
-  if (!stationary_) stationary_ = std::make_unique<StationaryPasses>(scene_, *model_);
+  const bool built = !stationary_;  // K_e is factorised once, when the set-up is built
+  if (built) stationary_ = std::make_unique<StationaryPasses>(scene_, *model_);
   StationaryPasses& passes = *stationary_;
   StepRecord res;
   res.step = step;
@@ -17,7 +18,7 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   const PassBaseline baseline = PassBaseline::of(*model_);
   const StationaryPasses::Pass pass = passes.run(*model_, progress_);
   res.counters.iterations = pass.solve.iterations;
-  res.counters.factorizations = step == 1 ? 1 : 0;  // K_e, once for the run
+  res.counters.factorizations = built ? 1 : 0;
   res.n_yielded = pass.solve.n_yielded;
   res.status = pass.solve.status;
   res.last.status = pass.solve.status;

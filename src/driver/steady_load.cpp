@@ -46,4 +46,19 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
   return load;
 }
 
+Scene elastic_frictionless_scene(const Scene& scene) {
+  Scene s = scene;
+  s.element.kinematics = Kinematics::Small;
+  s.material.plastic = false;
+  for (MaterialLayer& layer : s.layers) layer.material.plastic = false;
+  s.dynamics = DynamicsOptions{};
+  s.contact.friction = 0.0;
+  if (s.roller)
+    for (PathSegment& seg : s.roller->path) seg.friction = 0.0;
+  s.passes = PassSpec{};
+  s.output.monitor = false;
+  s.initial_state.clear();
+  return s;
+}
+
 }  // namespace roller

@@ -15,11 +15,6 @@ using namespace roller;
 
 namespace {
 
-ElementMaterials elastic_copy(ElementMaterials m) {
-  for (MaterialParams& p : m.table) p.plastic = false;
-  return m;
-}
-
 struct Setup {
   Simulation sim;
   StationaryStrip strip;
@@ -29,7 +24,7 @@ struct Setup {
   explicit Setup(const std::string& scene, Real x_centre, Real load_p)
       : sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml")),
         strip(sim.model().mesh(), sim.model().materials(), sim.model().options(), 1.0),
-        twin(sim.model().mesh(), elastic_copy(sim.model().materials()), sim.model().options()) {
+        twin(sim.model().mesh(), linear_elastic(sim.model().materials()), sim.model().options()) {
     twin.set_dof_map(sim.model().dof_map());
     SparseMatrix k;
     twin.evaluate(VecX::Zero(twin.n_dofs()), nullptr, &k);
@@ -58,7 +53,7 @@ TEST_CASE("stationary strip: the sweep's nodal forces of an elastic strip are th
   for (Index i = 0; i < u.size(); ++i) u[i] = 1e-3 * std::sin(0.37 * i) * (model.dof_map().is_constrained(i) ? 0 : 1);
   VecX gradient = VecX::Zero(model.n_dofs());
   s.twin.evaluate(u, &gradient, nullptr);
-  ElementMaterials elastic = elastic_copy(s.sim.model().materials());
+  ElementMaterials elastic = linear_elastic(s.sim.model().materials());
   const StationaryStrip strip(model.mesh(), elastic, model.options(), 1.0);
   const VecX f = strip.forces(strip.sweep(strip.strains(u), strip.virgin_upstream()));
   CHECK((f - gradient).cwiseAbs().maxCoeff() <= 1e-10 * gradient.cwiseAbs().maxCoeff());
@@ -91,7 +86,7 @@ TEST_CASE("stationary pass: an unloaded strip keeps its upstream state, an elast
     CHECK(r.displacement.cwiseAbs().maxCoeff() == 0.0);
   }
   SECTION("an elastic strip: the first correction is K_e^-1 f and the residual vanishes") {
-    ElementMaterials elastic = elastic_copy(s.sim.model().materials());
+    ElementMaterials elastic = linear_elastic(s.sim.model().materials());
     const StationaryStrip elastic_strip(s.sim.model().mesh(), elastic, s.sim.model().options(), 1.0);
     StationarySettings settings;
     settings.tolerance = 1e-12;

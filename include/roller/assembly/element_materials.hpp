@@ -25,6 +25,10 @@ struct ElementMaterials {
   bool any_recovery() const;
 };
 
+// The same strip made linear elastic: every material's plasticity switched off (the elastic
+// solutions and stiffness of the steady solves: shakedown-limit, the stationary pass).
+ElementMaterials linear_elastic(ElementMaterials materials);
+
 // Every element made of `m`.
 ElementMaterials uniform_materials(const MaterialParams& m, Index n_elements);
 

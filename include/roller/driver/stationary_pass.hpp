@@ -37,16 +37,12 @@ class StationaryCorrection {
 class PrescribedLoadCorrection : public StationaryCorrection {
  public:
   PrescribedLoadCorrection(const DofMap& dofs, SparseSolver& elastic, VecX external)
-      : dofs_(dofs),
-        elastic_(elastic),
-        external_(std::move(external)),
-        external_free_(dofs.restrict_to_free(external_)) {}
+      : elastic_(elastic), external_(std::move(external)), external_free_(dofs.restrict_to_free(external_)) {}
   Result correct(const VecX&, const std::vector<MaterialState>&, const VecX& r) override {
     return {elastic_.solve(r + external_free_), external_, {}};
   }
 
  private:
-  const DofMap& dofs_;
   SparseSolver& elastic_;
   VecX external_, external_free_;
 };
@@ -65,7 +61,6 @@ struct StationaryPassResult {
   Real residual = 0.0;                // |r|_inf / F_ref at the end
   VecX displacement;                  // all dofs
   VecX load;                          // f_c of the last correction: the load the pass carries (all dofs)
-  std::vector<Vec4> strains;          // at every point
   std::vector<MaterialState> states;  // at every point
   Index n_yielded = 0;                // points that yield on their way
   std::string message;

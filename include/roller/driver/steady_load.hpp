@@ -23,4 +23,9 @@ struct SteadyLoad {
 // traction given.
 SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
 
+// The scene with its strip linear elastic (every layer), small-strain, quasi-static and
+// frictionless, one pass, no monitor and no initial state: the elastic solutions of the steady
+// solves. Steps and path are the caller's to set.
+Scene elastic_frictionless_scene(const Scene& scene);
+
 }  // namespace roller
