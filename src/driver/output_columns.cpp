@@ -135,12 +135,30 @@ Row depth_row(int step, int pass, Real x, const DepthSample& d) {
           {"back_xy", "MPa", d.back_stress(3)}};
 }
 
+std::vector<OutputTable> tables_of(const Scene& scene) {
+  std::vector<OutputTable> tables{OutputTable::Solver};
+  if (scene.roller) tables.insert(tables.end(), {OutputTable::Contact, OutputTable::Roller});
+  if (scene.passes.count > 1) tables.insert(tables.end(), {OutputTable::Passes, OutputTable::ResidualDepth});
+  return tables;
+}
+
+Row empty_row(OutputTable table) {
+  switch (table) {
+    case OutputTable::Solver: return solver_row(Simulation::StepRecord{}, MonitorReport{}, 0.0);
+    case OutputTable::Contact: return contact_row(0, 1, NodeContactRecord{});
+    case OutputTable::Roller: return roller_row(0, 1, 0.0, Simulation::RollerRecord{});
+    case OutputTable::Passes: return pass_row(0, PassRecord{});
+    case OutputTable::ResidualDepth: return depth_row(0, 1, 0.0, DepthSample{});
+  }
+  return {};
+}
+
+std::string file_name(OutputTable table) { return std::string(enum_name(table)) + ".csv"; }
+
 std::vector<TableColumns> output_tables() {
-  return {{"solver.csv", solver_row(Simulation::StepRecord{}, MonitorReport{}, 0.0)},
-          {"contact.csv", contact_row(0, 1, NodeContactRecord{})},
-          {"roller.csv", roller_row(0, 1, 0.0, Simulation::RollerRecord{})},
-          {"passes.csv", pass_row(0, PassRecord{})},
-          {"residual_depth.csv", depth_row(0, 1, 0.0, DepthSample{})}};
+  std::vector<TableColumns> out;
+  for (const auto& [table, name] : EnumNames<OutputTable>::names) out.push_back({file_name(table), empty_row(table)});
+  return out;
 }
 
 std::string output_tables_markdown() {

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <ostream>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <sys/resource.h>
 
+#include "file_outputs.hpp"
 #include "output_folder.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/scene_warnings.hpp"
@@ -154,12 +157,14 @@ RunSummary Simulation::run(const RunOptions& options) {
   progress_ = options.progress;
   start_or_resume(options);
   const int first_step = state_.steps_done + 1;
+  const bool files = options.write_files;
   const std::filesystem::path summary_file = options.out_dir / "summary.json";
   RunSummary summary;
   summary.steps_done = state_.steps_done;
   // Written now with room to spare, so that the run's end can still say why it stopped when the
   // disk fills up meanwhile.
-  write_with_reserve(summary_file, summary_json(*this, summary, first_step, options.resume), kSummaryReserve);
+  if (files)
+    write_with_reserve(summary_file, summary_json(*this, summary, first_step, options.resume), kSummaryReserve);
   // VTU and state files are written while the next step is solved (io/background_writer.hpp),
   // except when the factors go to disk to save memory: the jobs' copies would undo that.
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
@@ -177,7 +182,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     summary.message = message;
     finish_summary();
     try {
-      write_summary(summary_file, *this, summary, first_step, options.resume);
+      if (files) write_summary(summary_file, *this, summary, first_step, options.resume);
     } catch (const std::exception&) {
     }
   };
@@ -188,17 +193,23 @@ RunSummary Simulation::run(const RunOptions& options) {
     record_stop(RunStatus::SystemError, message);
   });
   try {
-    RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, state_.steps_done, options.out_dir, options.resume,
-                       writer);
+    std::optional<FileOutputs> file_outputs;
+    std::vector<OutputSink*> sinks;
+    if (files) {
+      file_outputs.emplace(scene_, model_->mesh(), options.out_dir, options.resume, state_.steps_done, writer);
+      sinks.push_back(&*file_outputs);
+    }
+    if (options.sink) sinks.push_back(options.sink);
+    RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, !options.resume, std::move(sinks));
     StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                         scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
                         options.progress);
     run_steps(options, first_step, outputs, monitor, writer, summary);
     writer.finish();
-    if (summary.status == RunStatus::Interrupted) {
+    if (files && summary.status == RunStatus::Interrupted) {
       // The checkpoint of the last step done, so that --resume goes on from there.
       if (scene_.output.checkpoint_every > 0) save_state(options.out_dir / "checkpoint.cbor");
-    } else if (summary.converged) {
+    } else if (files && summary.converged) {
       // The checkpoint of the last step holds the same state: a copy instead of a second
       // serialisation (at 2.9e5 dofs 37 MB, 0.4 s).
       const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
@@ -222,7 +233,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   if (summary.status != RunStatus::Interrupted)
     summary.status = summary.converged ? RunStatus::Completed : RunStatus::StepFailed;
   if (summary.status == RunStatus::Completed) summary.message = fmt::format("{} steps converged", summary.steps_done);
-  write_summary(summary_file, *this, summary, first_step, options.resume);
+  if (files) write_summary(summary_file, *this, summary, first_step, options.resume);
   return summary;
 }
 
@@ -253,13 +264,18 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     }
     summary.steps_done = step;
     outputs.write_step(res);
-    save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
+    if (options.write_files)
+      save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
     if (options.progress) print_progress(*options.progress, scene_, res, wall);
   }
 }
 
 void Simulation::start_or_resume(const RunOptions& options) {
   const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
+  if (!options.write_files) {
+    if (options.resume) throw InputError("a run that writes no files cannot resume: it has no checkpoint");
+    return;
+  }
   if (!options.resume) {
     prepare_output_folder(options.out_dir, scene_.name, options.overwrite);
     write_file_atomically(options.out_dir / "scene.resolved.toml", scene_to_toml(scene_));

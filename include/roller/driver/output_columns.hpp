@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "roller/core/enum_names.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
 #include "roller/io/csv_table.hpp"
@@ -31,6 +32,24 @@ Row depth_row(int step, int pass, Real x, const DepthSample& d);
 // Contact pressure and tangential traction of a node [MPa]: its forces over its tributary length
 // (contact.csv's p_n, p_t and the VTU's contact fields).
 Vec2 tractions(const NodeContactRecord& c);
+
+enum class OutputTable { Solver, Contact, Roller, Passes, ResidualDepth };
+template <>
+struct EnumNames<OutputTable> {
+  static constexpr std::array<std::pair<OutputTable, const char*>, 5> names{
+      {{OutputTable::Solver, "solver"},
+       {OutputTable::Contact, "contact"},
+       {OutputTable::Roller, "roller"},
+       {OutputTable::Passes, "passes"},
+       {OutputTable::ResidualDepth, "residual_depth"}}};
+};
+
+// The tables a scene's run fills: solver always, contact and roller with a roller, passes and
+// residual_depth with more than one pass.
+std::vector<OutputTable> tables_of(const Scene& scene);
+// A table's columns (the names of a row of an empty record) and its file in the output folder.
+Row empty_row(OutputTable table);
+std::string file_name(OutputTable table);
 
 // Every table a run may write, with its columns (from rows of empty records).
 struct TableColumns {

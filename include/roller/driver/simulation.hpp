@@ -26,6 +26,7 @@
 namespace roller {
 
 class RunOutputs;        // driver/run_outputs.hpp
+class OutputSink;        // driver/output_sink.hpp
 class StepMonitor;       // driver/step_monitor.hpp
 class BackgroundWriter;  // io/background_writer.hpp
 class StationaryPasses;  // driver/stationary_passes.hpp
@@ -42,6 +43,11 @@ struct RunOptions {
   // Set (to the signal's number) by the caller's handler of SIGINT or SIGTERM: the run stops
   // after the step under way, keeps its files and checkpoint, and says "interrupted".
   const std::atomic<int>* stop_signal = nullptr;
+  // Without files (write_files = false) nothing is written to out_dir: no tables, fields,
+  // summary.json or state files; the results go to `sink` alone (roller run from Python).
+  bool write_files = true;
+  // Also given every row and field the run writes (driver/output_sink.hpp); may be nullptr.
+  OutputSink* sink = nullptr;
 };
 
 // How a run ended, and the exit code of `roller run` for it (docs/scenes.md, Exit codes).

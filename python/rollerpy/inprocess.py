@@ -1,0 +1,168 @@
+"""roller in the Python process (docs/python.md, "roller in process").
+
+    import rollerpy
+    run = rollerpy.run("problems/hertz.toml", set={"steps.count": 8})
+    run.roller["fy"], run.field("von_mises_nodal"), run.mesh.points
+
+A scene is a file or a dict of the scene file's tables; `set` overrides keys as `--set` does,
+path segments included ("roller.path[1].fy"). Results come as numpy arrays, with the output
+folder's files too when `out` is given. Ctrl-C stops the run after the step under way and raises
+RunInterrupted (a KeyboardInterrupt) holding the results so far.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Callable, Optional, Union
+
+import numpy as np
+
+try:
+    from rollerpy import _roller
+except ImportError as e:  # the native module is built with roller (scripts/build.sh)
+    raise ImportError(
+        "rollerpy's native module _roller is not built: run scripts/build.sh (it builds "
+        f"python/rollerpy/_roller*.so with Debian's pybind11-dev) ({e})") from e
+
+InputError = _roller.InputError        # a scene or override refused (a ValueError)
+ResourceError = _roller.ResourceError  # the machine refused: memory, disk (a RuntimeError)
+Scene = _roller.Scene
+
+SceneSource = Union[str, os.PathLike, dict, Scene]
+
+
+def load_scene(source: SceneSource, set: Optional[dict] = None,
+               base_dir: Union[str, os.PathLike] = ".") -> Scene:
+    """A checked scene from a file, a dict (relative paths in it from `base_dir`) or a Scene."""
+    overrides = dict(set or {})
+    if isinstance(source, Scene):
+        if overrides:
+            raise InputError("overrides need the scene's file or dict, not a loaded Scene")
+        return source
+    if isinstance(source, dict):
+        return _roller.scene_from_dict(source, overrides, os.fspath(base_dir))
+    return _roller.load_scene(os.fspath(source), overrides)
+
+
+@dataclass(frozen=True)
+class Mesh:
+    points: np.ndarray  # (n_nodes, 2) reference coordinates [mm]
+    cells: np.ndarray   # (n_elements, 3 or 4) node indices, counter-clockwise
+    cell_type: str      # "Q4" or "T3"
+
+
+@dataclass(frozen=True)
+class StepFields:
+    """The fields of one written step, by their VTU names (docs/scenes.md, Output)."""
+    step: int
+    pass_: int
+    time: float
+    point_data: dict    # name -> (n_nodes,) or (n_nodes, components)
+    cell_data: dict     # name -> (n_elements,) or (n_elements, components)
+    roller: Optional[dict]  # {"xc", "yc", "phi"} of the roller, None without one
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        if name in self.point_data:
+            return self.point_data[name]
+        if name in self.cell_data:
+            return self.cell_data[name]
+        raise KeyError(f"no field '{name}' at step {self.step}; the fields are "
+                       f"{sorted(self.point_data) + sorted(self.cell_data)}")
+
+
+@dataclass(frozen=True)
+class RunResult:
+    scene: str
+    status: str          # as summary.json's: completed, step_failed, interrupted
+    message: str
+    steps: int           # the run's steps
+    steps_done: int
+    wall_s: float
+    iterations: int
+    mesh: Mesh
+    tables: dict         # "solver", "roller", ... -> {column: array} (the CSV tables' columns)
+    fields: list         # StepFields of every written step, in order
+    warnings: list
+    verdict: Optional[dict] = None  # multi-pass runs: {"verdict", "criterion"}
+    summary: dict = field(default_factory=dict)
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "completed"
+
+    def table(self, name: str) -> dict:
+        if name not in self.tables:
+            raise KeyError(f"no table '{name}' in this run; it has {sorted(self.tables)}")
+        return self.tables[name]
+
+    solver = property(lambda self: self.table("solver"))
+    roller = property(lambda self: self.table("roller"))
+    contact = property(lambda self: self.table("contact"))
+    passes = property(lambda self: self.table("passes"))
+    residual_depth = property(lambda self: self.table("residual_depth"))
+
+    @property
+    def written_steps(self) -> list:
+        return [f.step for f in self.fields]
+
+    def at_step(self, step: int = -1) -> StepFields:
+        """The fields of a written step (-1: the last one written)."""
+        if not self.fields:
+            raise KeyError("this run wrote no fields (output.vtu = false, or it failed at once)")
+        if step == -1:
+            return self.fields[-1]
+        for f in self.fields:
+            if f.step == step:
+                return f
+        raise KeyError(f"step {step} was not written; the written steps are {self.written_steps}")
+
+    def field(self, name: str, step: int = -1) -> np.ndarray:
+        return self.at_step(step)[name]
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C stopped the run after the step under way; `result` holds the steps done."""
+
+    def __init__(self, result: RunResult):
+        super().__init__(f"roller: {result.message}")
+        self.result = result
+
+
+def run(scene: SceneSource, *, set: Optional[dict] = None,
+        out: Optional[Union[str, os.PathLike]] = None, overwrite: bool = False,
+        progress: Optional[Callable[[dict], None]] = None,
+        verbose: bool = False) -> RunResult:
+    """Runs a scene in this process.
+
+    out: also write the output folder (as `roller run --out`); None writes no file.
+    progress: called after every step with its row of solver.csv (a dict) and "steps", the
+    run's step count. An exception it raises stops the run after that step and is raised again.
+    verbose: roller's progress lines on standard output.
+    """
+    loaded = load_scene(scene, set)
+    raw = _roller.run(loaded, None if out is None else os.fspath(out), overwrite, progress, verbose)
+    result = _result(raw)
+    error = raw["error"]
+    if isinstance(error, KeyboardInterrupt):
+        raise RunInterrupted(result) from error
+    if error is not None:
+        raise error
+    return result
+
+
+def _result(raw: dict) -> RunResult:
+    s = raw["summary"]
+    fields = [StepFields(f["step"], f["pass"], f["time"], f["point_data"], f["cell_data"],
+                         f["roller"]) for f in raw["fields"]]
+    m = raw["mesh"]
+    return RunResult(scene=raw["scene"], status=s["status"], message=s["message"],
+                     steps=raw["steps"], steps_done=s["steps_done"], wall_s=s["wall_s"],
+                     iterations=s["iterations"],
+                     mesh=Mesh(m["points"], m["cells"], m["cell_type"]), tables=raw["tables"],
+                     fields=fields, warnings=list(raw["warnings"]), verdict=raw.get("verdict"),
+                     summary=s)
+
+
+def version() -> dict:
+    """roller's version, commit, and its Ipopt and MUMPS."""
+    return _roller.version()

@@ -1,0 +1,117 @@
+// rollerpy._roller: roller in the Python process (docs/python.md, "roller in process"). Scenes
+// are loaded from a file or a dict with --set's overrides, runs give their tables and fields as
+// numpy arrays, with or without the output folder's files. The package's rollerpy.inprocess wraps
+// this module in typed results; use that.
+#include <iostream>
+#include <optional>
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "python_sink.hpp"
+#include "results_to_python.hpp"
+#include "roller/core/error.hpp"
+#include "roller/core/version.hpp"
+#include "roller/driver/scene_warnings.hpp"
+#include "roller/driver/simulation.hpp"
+#include "roller/io/scene_loader.hpp"
+#include "scene_from_python.hpp"
+
+namespace py = pybind11;
+
+namespace roller::python {
+
+namespace {
+
+Scene load(const std::filesystem::path& file, const py::dict& set) { return load_scene(file, overrides_of(set)); }
+
+// Relative paths in the dict (restart.from) are taken from `base_dir`.
+Scene from_dict(const py::dict& scene, const py::dict& set, const std::filesystem::path& base_dir) {
+  return parse_scene(toml_document(scene), base_dir / "<dict>", overrides_of(set));
+}
+
+py::dict summary_dict(const RunSummary& s) {
+  py::dict d;
+  d["status"] = enum_name(s.status);
+  d["exit_code"] = exit_code(s.status, s.signal);
+  d["converged"] = s.converged;
+  d["steps_done"] = s.steps_done;
+  d["message"] = s.message;
+  d["wall_s"] = s.wall_s;
+  d["iterations"] = s.totals.iterations;
+  d["cuts"] = s.totals.cuts;
+  d["max_penetration"] = s.totals.max_penetration;
+  d["peak_memory_mb"] = s.peak_memory_mb;
+  return d;
+}
+
+py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out, bool overwrite,
+             const py::object& progress, bool verbose) {
+  std::optional<Simulation> sim;
+  {
+    const py::gil_scoped_release nogil;
+    sim.emplace(scene);
+  }
+  py::dict result;
+  result["scene"] = sim->scene().name;
+  result["steps"] = sim->scene().total_steps();
+  result["warnings"] = scene_warnings(sim->scene(), sim->model().mesh());
+  result["mesh"] = mesh_dict(sim->model().mesh());
+  PythonSink sink(progress, sim->scene().total_steps());
+  RunOptions options;
+  options.write_files = out.has_value();
+  if (out) options.out_dir = *out;
+  options.overwrite = overwrite;
+  options.progress = verbose ? &std::cout : nullptr;
+  options.stop_signal = &sink.stop();
+  options.sink = &sink;
+  RunSummary summary;
+  {
+    const py::gil_scoped_release nogil;
+    summary = sim->run(options);
+  }
+  result["summary"] = summary_dict(summary);
+  result["tables"] = tables_dict(sink);
+  result["fields"] = fields_list(sink);
+  if (const RunState& state = sim->state(); sim->scene().passes.count > 1) {
+    const ShakedownClassification c = classify_passes(state.pass_records);
+    result["verdict"] = py::dict(py::arg("verdict") = enum_name(c.verdict), py::arg("criterion") = c.criterion);
+  }
+  // What stopped the run early (Ctrl-C, or the progress callback's exception), for the wrapper
+  // to raise with the results so far.
+  result["error"] = sink.pending_error() ? sink.pending_error()->value() : py::none();
+  return result;
+}
+
+}  // namespace
+
+}  // namespace roller::python
+
+PYBIND11_MODULE(_roller, m) {
+  using namespace roller;
+  using namespace roller::python;
+  m.doc() = "roller in process: scenes, runs, results as numpy arrays (docs/python.md)";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<SystemError>(m, "ResourceError", PyExc_RuntimeError);
+
+  py::class_<Scene>(m, "Scene", "a checked scene (docs/scenes.md)")
+      .def_readonly("name", &Scene::name)
+      .def_readonly("title", &Scene::title)
+      .def_property_readonly("file", [](const Scene& s) { return s.file.string(); })
+      .def_property_readonly("total_steps", &Scene::total_steps)
+      .def("toml", &scene_to_toml, "the scene with every default filled in (scene.resolved.toml)");
+
+  m.def("load_scene", &load, py::arg("file"), py::arg("set") = py::dict(),
+        "a scene file with overrides {'key': value} (keys as --set's, e.g. 'roller.path[1].fy')");
+  m.def("scene_from_dict", &from_dict, py::arg("scene"), py::arg("set") = py::dict(), py::arg("base_dir") = ".",
+        "a scene from a dict of the scene file's tables, with overrides");
+  m.def("run", &run, py::arg("scene"), py::arg("out") = py::none(), py::arg("overwrite") = false,
+        py::arg("progress") = py::none(), py::arg("verbose") = false,
+        "runs the scene; its results in memory, and in the folder `out` when given");
+  m.def("version", [] {
+    const BuildInfo b = build_info();
+    return py::dict(py::arg("version") = b.version, py::arg("commit") = b.commit,
+                    py::arg("ipopt") = b.ipopt_version, py::arg("mumps") = b.mumps_version);
+  });
+}
