@@ -111,7 +111,7 @@ PYBIND11_MODULE(_roller, m) {
         "runs the scene; its results in memory, and in the folder `out` when given");
   m.def("version", [] {
     const BuildInfo b = build_info();
-    return py::dict(py::arg("version") = b.version, py::arg("commit") = b.commit,
-                    py::arg("ipopt") = b.ipopt_version, py::arg("mumps") = b.mumps_version);
+    return py::dict(py::arg("version") = b.version, py::arg("commit") = b.commit, py::arg("ipopt") = b.ipopt_version,
+                    py::arg("mumps") = b.mumps_version);
   });
 }

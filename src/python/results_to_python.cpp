@@ -21,8 +21,7 @@ py::object column_array(const std::vector<std::vector<CsvTable::Cell>>& rows, st
   const auto n = static_cast<py::ssize_t>(rows.size());
   if (any_text) {
     py::list values;
-    for (const auto& row : rows)
-      std::visit([&](const auto& v) { values.append(py::str(py::cast(v))); }, row[col]);
+    for (const auto& row : rows) std::visit([&](const auto& v) { values.append(py::str(py::cast(v))); }, row[col]);
     return py::module_::import("numpy").attr("array")(values, py::arg("dtype") = "str");
   }
   if (all_index && !rows.empty()) {

@@ -35,9 +35,10 @@ std::unique_ptr<toml::node> to_node(const py::handle& value, const std::string& 
   }
   // numpy scalars and other numbers: by their float value.
   if (py::hasattr(value, "__float__")) return std::make_unique<toml::value<double>>(value.cast<double>());
-  throw InputError(fmt::format("{}: a value of Python type '{}' cannot be a scene value (expected bool, int, "
-                               "float, str, list or dict)",
-                               key, py::str(value.get_type().attr("__name__")).cast<std::string>()));
+  throw InputError(
+      fmt::format("{}: a value of Python type '{}' cannot be a scene value (expected bool, int, "
+                  "float, str, list or dict)",
+                  key, py::str(value.get_type().attr("__name__")).cast<std::string>()));
 }
 
 }  // namespace

@@ -1,0 +1,149 @@
+"""roller in the Python process (rollerpy.run over the native module): the in-memory results equal
+the files the same run writes, a scene from a dict equals its file, overrides reach path segments,
+the progress callback sees every step, and Ctrl-C stops cleanly with the results so far."""
+import os
+import signal
+import subprocess
+import sys
+import tomllib
+
+import numpy as np
+import pytest
+
+import rollerpy
+from rollerpy.outputs import read_rows, read_summary
+from rollerpy.paths import PROBLEMS, ROOT
+from rollerpy.vtu import available_steps, read_vtu, vtu_path
+
+HERTZ = os.path.join(PROBLEMS, "hertz.toml")
+
+
+def assert_table_equals_csv(table, path, skip=()):
+    """Every cell of the table equals the CSV's (reals are written round-trip exact); `skip`: timings."""
+    rows = read_rows(str(path))
+    assert list(table) == list(rows[0]) and all(len(v) == len(rows) for v in table.values())
+    for column, values in table.items():
+        if column in skip:
+            continue
+        written = [r[column] for r in rows]
+        if values.dtype.kind == "U":
+            assert list(values) == written, column
+        else:
+            np.testing.assert_array_equal(values, np.array([float(w) for w in written]), err_msg=f"{path}: {column}")
+
+
+def test_results_in_memory_equal_the_files_of_the_same_run(tmp_path):
+    out = tmp_path / "hertz"
+    run = rollerpy.run(HERTZ, set={"steps.count": 3, "roller.path[0].steps": [1, 3]}, out=out)
+    assert run.ok and run.steps_done == 3 and run.written_steps == [0, 1, 2, 3]
+    for name in ("roller", "contact", "solver"):
+        assert_table_equals_csv(run.table(name), out / f"{name}.csv", skip=("wall_s", "ipopt_time_s"))
+    assert list(run.solver["status"]) == ["converged"] * 3
+    for step in run.written_steps:
+        vtu = read_vtu(vtu_path(str(out), step))
+        np.testing.assert_array_equal(run.mesh.points, vtu.reference)
+        fields = run.at_step(step)
+        for name, values in vtu.point_data.items():
+            mine = fields[name]
+            np.testing.assert_array_equal(mine, values[:, :mine.shape[1]] if mine.ndim == 2 else values,
+                                          err_msg=f"step {step}: {name}")
+        for name, values in vtu.cell_data.items():
+            np.testing.assert_array_equal(fields[name], values, err_msg=f"step {step}: {name}")
+    assert read_summary(str(out))["status"] == "completed"
+
+
+def test_without_out_no_file_is_written_and_the_answer_is_hertz(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    scene = tomllib.load(open(HERTZ, "rb"))
+    del scene["roller"]["path"][0]["dy"]
+    run = rollerpy.run(scene, set={"roller.path[0].p0": 2000.0})
+    assert os.listdir(tmp_path) == []
+    # The peak of the nodal pressure on the graded mesh against the prescribed Hertz peak.
+    assert run.field("contact_pressure").max() == pytest.approx(2000.0, rel=0.01)
+    e_star = 2.1e5 / (1 - 0.3**2)
+    assert run.roller["fy"][-1] == pytest.approx(np.pi * 100.0 * 2000.0**2 / e_star, rel=1e-6)
+
+
+def test_a_scene_from_a_dict_gives_the_results_of_its_file():
+    scene = tomllib.load(open(HERTZ, "rb"))
+    from_dict = rollerpy.run(scene, set={"steps.count": 2, "roller.path[0].steps": [1, 2]})
+    from_file = rollerpy.run(HERTZ, set={"steps.count": 2, "roller.path[0].steps": [1, 2]})
+    for column in from_file.roller:
+        np.testing.assert_array_equal(from_dict.roller[column], from_file.roller[column])
+    np.testing.assert_array_equal(from_dict.field("stress_nodal"), from_file.field("stress_nodal"))
+
+
+def test_overrides_reach_path_segments_and_bad_ones_are_input_errors():
+    deeper = rollerpy.load_scene(HERTZ, set={"roller.path[0].dy": -0.2})
+    assert 'dy = -0.2' in deeper.toml()
+    with pytest.raises(rollerpy.InputError, match="material.E"):
+        rollerpy.load_scene(HERTZ, set={"material.E": "stiff"})
+    with pytest.raises(rollerpy.InputError, match="roller.path\\[5\\]"):
+        rollerpy.load_scene(HERTZ, set={"roller.path[5].dy": -0.2})
+    with pytest.raises(rollerpy.InputError, match="material.nu: a value of Python type 'object'"):
+        rollerpy.load_scene(HERTZ, set={"material.nu": object()})
+    with pytest.raises(ValueError):  # InputError is a ValueError
+        rollerpy.load_scene({"mesh": {"length": -1.0}})
+
+
+def test_progress_sees_every_step_and_its_exception_stops_the_run():
+    seen = []
+    rollerpy.run(HERTZ, progress=lambda row: seen.append((row["step"], row["steps"], row["status"])))
+    assert seen == [(s, 4, "converged") for s in (1, 2, 3, 4)]
+
+    class Enough(Exception):
+        pass
+
+    def stop_at_two(row):
+        if row["step"] == 2:
+            raise Enough()
+
+    with pytest.raises(Enough):
+        rollerpy.run(HERTZ, progress=stop_at_two)
+
+
+CTRL_C_SCRIPT = """
+import sys
+import rollerpy
+try:
+    rollerpy.run(sys.argv[1], set={"steps.count": 400, "roller.path[0].steps": [1, 400]}, out=sys.argv[2],
+                 progress=lambda row: print("step", row["step"], flush=True))
+except rollerpy.RunInterrupted as e:
+    print("interrupted", e.result.status, e.result.steps_done, len(e.result.roller["fy"]), flush=True)
+"""
+
+
+def test_ctrl_c_stops_after_the_step_under_way_with_the_results_and_the_checkpoint(tmp_path):
+    out = tmp_path / "hertz"
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+    proc = subprocess.Popen([sys.executable, "-c", CTRL_C_SCRIPT, HERTZ, str(out)], env=env,
+                            stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline().startswith("step 1")
+    proc.send_signal(signal.SIGINT)
+    lines = proc.communicate(timeout=120)[0].splitlines()
+    assert proc.returncode == 0
+    word, status, steps_done, rows = lines[-1].split()
+    assert word == "interrupted" and status == "interrupted"
+    assert 1 <= int(steps_done) < 400 and int(rows) == int(steps_done) + 1  # the roller's row 0 too
+    summary = read_summary(str(out))
+    assert summary["status"] == "interrupted" and summary["steps_done"] == int(steps_done)
+    assert (out / "checkpoint.cbor").exists()
+
+
+def test_a_multi_pass_run_gives_the_verdict_and_the_tables_of_the_files(tmp_path):
+    out = tmp_path / "p45"
+    run = rollerpy.run(os.path.join(PROBLEMS, "shakedown_p45.toml"),
+                       set={"passes.method": "stationary", "passes.count": 3}, out=out)
+    summary = read_summary(str(out))
+    assert run.verdict["verdict"] == summary["passes"]["verdict"]
+    assert_table_equals_csv(run.passes, out / "passes.csv")
+    assert_table_equals_csv(run.residual_depth, out / "residual_depth.csv")
+    assert run.written_steps == available_steps(str(out)) and run.written_steps[-1] == 3
+
+
+def test_the_documented_example_draws_its_figure(tmp_path):
+    figure = tmp_path / "load_sweep.png"
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
+    subprocess.run([sys.executable, os.path.join(ROOT, "docs", "examples", "load_sweep.py"), str(figure)],
+                   cwd=ROOT, env=env, check=True, timeout=120)
+    assert figure.stat().st_size > 10000
