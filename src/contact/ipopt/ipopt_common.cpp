@@ -172,6 +172,15 @@ StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const Ip
           fmt::format("Ipopt failed with an internal error (return status {}){}", static_cast<int>(s), cause)};
 }
 
+ContactStatus contact_status(const NodeContact& c, Real open_force, Real bound, Real length) {
+  if (c.normal_force <= open_force && c.gap > 0.0) return ContactStatus::Open;
+  const Real slip = std::abs(c.slip);
+  const bool moves = slip > kNoSlip * length;
+  if (bound <= 0.0) return moves ? ContactStatus::Slip : ContactStatus::Stick;
+  const bool on_cone = std::abs(c.tangential_force) >= (1.0 - kConeTolerance) * bound;
+  return slip > kSlipFraction * length || (on_cone && moves) ? ContactStatus::Slip : ContactStatus::Stick;
+}
+
 bool report_increment(IncrementProblem& problem, const VecX& x, const std::vector<Real>& normal,
                       const std::vector<Real>& tangential, const std::vector<Real>& fbar,
                       const std::vector<bool>& has_friction, const Scales& scales, BackendResult* result) {
@@ -189,8 +198,7 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
   const Real force_scale = std::max(strip->force_scale, scales.force);
   Real fn_max = 0.0;
   for (std::size_t i = 0; i < n_c; ++i) fn_max = std::max(fn_max, normal[i]);
-  const Real force_tol = 1e-6 * std::max(scales.force, fn_max);
-  const Real slip_tol = 1e-6 * scales.length;
+  const Real no_force = open_force(fn_max, scales.force);
   Real complementarity = 0.0, violation = 0.0;
   VecX r = gradient;
   result->contact.assign(n_c, NodeContact{});
@@ -201,16 +209,7 @@ bool report_increment(IncrementProblem& problem, const VecX& x, const std::vecto
     nc.tangential_force = tangential[i];
     nc.gap = problem.gap(c, x);
     nc.slip = problem.slip(c, x);
-    if (nc.normal_force <= force_tol && nc.gap > 0.0) {
-      nc.status = ContactStatus::Open;
-    } else {
-      Real tol = slip_tol;
-      if (has_friction[i]) {
-        const Real bound = mu * fbar[i];
-        tol = scales.length * std::max(0.0, 1.0 - std::abs(nc.tangential_force) / bound);
-      }
-      nc.status = std::abs(nc.slip) <= tol ? ContactStatus::Stick : ContactStatus::Slip;
-    }
+    nc.status = contact_status(nc, no_force, has_friction[i] ? mu * fbar[i] : 0.0, scales.length);
     const Vec2 f = contact_force(nc.normal_force, nc.tangential_force, problem.normal(c, x), c.tangent);
     for (int k = 0; k < 2; ++k)
       if (c.free_dof[k] >= 0) r(c.free_dof[k]) -= f(k);

@@ -2,6 +2,7 @@
 // Pieces shared by the two formulations of the interior-point backend (ipopt_full.cpp,
 // ipopt_condensed.cpp): Ipopt set-up, status messages, the increment's scales and the
 // per-candidate report. Internal to src/contact (Ipopt stays out of the public headers).
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,22 @@ struct StatusText {
 };
 StatusText map_status(Ipopt::ApplicationReturnStatus s, int iterations, const IpoptOptions& o,
                       const std::string& evaluation_error);
+
+// The status of a node at an interior-point solution, where the barrier leaves every force and
+// gap slightly positive and a stick node's slip slightly non-zero (docs/model.md, "Stick, slip and
+// open at an interior-point solution"). `length` is the increment's length scale (the largest
+// motion of the roller or the strip), `bound` mu F_N of the last pass (0: no friction row).
+// - open: apart and carrying at most `open_force` (open_force(): kOpenForceRatio of the largest
+//   normal force, at least 1e-6 of the problem's force scale);
+// - slip: it slips more than kSlipFraction of `length`, or more than kNoSlip of it with |F_T| on
+//   the Coulomb bound to within kConeTolerance (without friction: more than kNoSlip of it);
+// - stick: otherwise.
+inline constexpr Real kOpenForceRatio = 1e-4;
+inline constexpr Real kSlipFraction = 1e-3;
+inline constexpr Real kNoSlip = 1e-6;
+inline constexpr Real kConeTolerance = 1e-2;
+inline Real open_force(Real fn_max, Real force_scale) { return std::max(kOpenForceRatio * fn_max, 1e-6 * force_scale); }
+ContactStatus contact_status(const NodeContact& c, Real open_force, Real bound, Real length);
 
 // Fills result->contact (forces, gaps, slips, open/stick/slip), residual (|grad Pi - contact
 // forces| / F_ref at x), complementarity and constraint_violation from a solution x with forces
