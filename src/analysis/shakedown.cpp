@@ -29,6 +29,18 @@ ShakedownClassification classify_passes(const std::vector<PassRecord>& passes, c
         ratio, last.pass, c.elastic_fraction);
     return out;
   }
+  // Still falling: under a sliding traction every plastic increment shears one way, so the net
+  // shear test below would call increments that die out ratchetting.
+  const PassRecord& before = passes[passes.size() - 2];
+  if (before.mean_plastic_increment > 0.0 &&
+      last.mean_plastic_increment < c.settled_ratio * before.mean_plastic_increment) {
+    out.criterion = fmt::format(
+        "the mean increment of equivalent plastic strain is {:.3g} of pass 1's in pass {} (elastic shakedown: <= {:g}) "
+        "and still falls: {:.3g} of pass {}'s (settled: >= {:g}); run more passes",
+        ratio, last.pass, c.elastic_fraction, last.mean_plastic_increment / before.mean_plastic_increment,
+        before.pass, c.settled_ratio);
+    return out;
+  }
   // Plastic strain still grows: a closed cycle adds no net strain, ratchetting does.
   const Real accumulated = std::sqrt(3.0) * last.band_plastic_increment;
   const Real net = std::abs(last.residual_shear_increment);

@@ -47,10 +47,28 @@ TEST_CASE("shakedown verdict: steady increments with no net strain are plastic s
   const auto ratchet = classify_passes(sequence(5, steady, 0.8));
   CHECK(ratchet.verdict == ShakedownVerdict::Ratchetting);
   CHECK_THAT(ratchet.criterion, Contains("0.8 of its accumulated"));
-  // Decaying, but not below 1 % of pass 1 by the last pass: not (yet) elastic shakedown.
+}
+
+TEST_CASE("shakedown verdict: increments that still fall give no verdict, whatever their net shear",
+          "[analysis][shakedown]") {
+  // Halved every pass, not below 1 % of pass 1 by the last: under a sliding traction the net shear
+  // is most of the plastic shear, and these are not ratchetting.
+  const auto falling = classify_passes(sequence(
+      4, [](int k) { return 1e-3 * std::pow(0.5, k - 1); }, 0.9));
+  CHECK(falling.verdict == ShakedownVerdict::Undetermined);
+  CHECK_THAT(falling.criterion, Contains("still falls: 0.5 of pass 3's (settled: >= 0.75); run more passes"));
+  // The same with enough passes: below 1 % of pass 1.
   CHECK(classify_passes(sequence(
-                            4, [](int k) { return 1e-3 * std::pow(0.5, k - 1); }, 0.9))
-            .verdict == ShakedownVerdict::Ratchetting);
+                            8, [](int k) { return 1e-3 * std::pow(0.5, k - 1); }, 0.9))
+            .verdict == ShakedownVerdict::ElasticShakedown);
+  // Falling fast once, then settled (the transient passes 5 % above Melan's limit:
+  // 1.3e-3 2.1e-4 1.5e-4 1.4e-4 1.3e-4): ratchetting by the net shear.
+  auto settling = [](int k) {
+    const Real m[] = {1.3e-3, 2.1e-4, 1.5e-4, 1.4e-4, 1.3e-4};
+    return m[k - 1];
+  };
+  CHECK(classify_passes(sequence(5, settling, 0.3)).verdict == ShakedownVerdict::Ratchetting);
+  CHECK(classify_passes(sequence(3, settling, 0.3)).verdict == ShakedownVerdict::Undetermined);  // 0.71
 }
 
 TEST_CASE("shakedown verdict: fewer than three passes are undetermined", "[analysis][shakedown]") {

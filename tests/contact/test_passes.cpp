@@ -109,8 +109,12 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   CHECK(depth_rows >= 3 * 30);  // the strip's 30 rows of elements (mesh ny)
   const auto summary = nlohmann::json::parse(test::read_text(whole / "summary.json"));
   CHECK(summary["passes"]["count"] == 3);
-  CHECK(summary["passes"]["verdict"] != "undetermined");
-  CHECK(summary["passes"]["criterion"].get<std::string>().size() > 20);
+  // Three passes of a hardening strip whose increments still fall: a verdict on the increments
+  // (here "still falls ... run more passes"), not the one for too few passes.
+  const std::string criterion = summary["passes"]["criterion"].get<std::string>();
+  INFO(criterion);
+  CHECK_THAT(criterion, Catch::Contains("of pass 1's in pass 3"));
+  CHECK_THAT(criterion, !Catch::Contains("at least 3"));
   CHECK(summary["passes"].contains("p0_over_k") == false);  // depth-controlled: no load to measure
 
   // The run as if killed after step 12 (mid-pass 2).
