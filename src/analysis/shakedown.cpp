@@ -37,8 +37,8 @@ ShakedownClassification classify_passes(const std::vector<PassRecord>& passes, c
     out.criterion = fmt::format(
         "the mean increment of equivalent plastic strain is {:.3g} of pass 1's in pass {} (elastic shakedown: <= {:g}) "
         "and still falls: {:.3g} of pass {}'s (settled: >= {:g}); run more passes",
-        ratio, last.pass, c.elastic_fraction, last.mean_plastic_increment / before.mean_plastic_increment,
-        before.pass, c.settled_ratio);
+        ratio, last.pass, c.elastic_fraction, last.mean_plastic_increment / before.mean_plastic_increment, before.pass,
+        c.settled_ratio);
     return out;
   }
   // Plastic strain still grows: a closed cycle adds no net strain, ratchetting does.

@@ -37,9 +37,10 @@ TEST_CASE("stationary passes: the transient method's verdicts below and above th
   CHECK(sim.state().steps_done == 5);  // one step a pass
 }
 
-TEST_CASE("stationary passes under a sliding traction: falling increments give no verdict until they die out "
-          "below Melan's limit, and ratchet above it",
-          "[scenes][stationary][slow]") {
+TEST_CASE(
+    "stationary passes under a sliding traction: falling increments give no verdict until they die out "
+    "below Melan's limit, and ratchet above it",
+    "[scenes][stationary][slow]") {
   // The stationary shakedown map's strip (problems/studies/shakedown_map_stationary.toml) at
   // mu = 0.1, Melan's limit p0/k = 3.58: at 3.4 every plastic increment shears one way, and the
   // net-shear test alone called four falling passes ratchetting.
@@ -47,8 +48,9 @@ TEST_CASE("stationary passes under a sliding traction: falling increments give n
       kStationary,
       {"contact.friction", "0.1"},
       {"output.vtu", "false"},
-      {"roller.path", "[{steps=[1,3], fy=7249.8292, friction=0.0}, {steps=[4,19], dx=16.0, fy=7249.8292, slip=1.0}, "
-                      "{steps=[20,21], dy=0.3}]"}};
+      {"roller.path",
+       "[{steps=[1,3], fy=7249.8292, friction=0.0}, {steps=[4,19], dx=16.0, fy=7249.8292, slip=1.0}, "
+       "{steps=[20,21], dy=0.3}]"}};
   auto verdict = [&](const char* yield_stress, int passes) {
     std::vector<SceneOverride> o = sliding;
     o.push_back({"material.yield_stress", yield_stress});
@@ -62,7 +64,7 @@ TEST_CASE("stationary passes under a sliding traction: falling increments give n
   CHECK_THAT(four.criterion, Catch::Contains("still falls"));
   const ShakedownClassification eight = verdict("1175.6001", 8);
   INFO(eight.criterion);
-  CHECK(eight.verdict == ShakedownVerdict::ElasticShakedown);  // measured: 0.0069 of pass 1's in pass 8
+  CHECK(eight.verdict == ShakedownVerdict::ElasticShakedown);     // measured: 0.0069 of pass 1's in pass 8
   const ShakedownClassification above = verdict("1051.8527", 4);  // p0/k = 3.8
   INFO(above.criterion);
   CHECK(above.verdict == ShakedownVerdict::Ratchetting);
