@@ -13,6 +13,7 @@
 #include "../support/resume_copy.hpp"
 #include "../support/run_scene.hpp"
 #include "../support/temp_files.hpp"
+#include "roller/analysis/shakedown.hpp"
 #include "roller/core/error.hpp"
 
 using namespace roller;
@@ -68,6 +69,39 @@ TEST_CASE(
   const ShakedownClassification above = verdict("1051.8527", 4);  // p0/k = 3.8
   INFO(above.criterion);
   CHECK(above.verdict == ShakedownVerdict::Ratchetting);
+}
+
+TEST_CASE(
+    "stationary passes at p0/k = 4.5 over 15 passes: perfectly plastic ratchets, Prager closes its cycles, "
+    "Armstrong-Frederick ratchets at a steady rate",
+    "[scenes][stationary][hardening][slow]") {
+  // docs/validation.md, Hardening laws: the net shear per pass at the depth of maximum shear
+  // (negative: against the roller's travel) stays with E_T = 0, dies out with Prager, and settles
+  // at a non-zero rate with Armstrong-Frederick (C = H', gamma = 20).
+  const std::vector<SceneOverride> many{kStationary, {"passes.count", "15"}, {"output.vtu", "false"}};
+  auto passes = [&](const std::string& scene, std::vector<SceneOverride> extra) {
+    extra.insert(extra.end(), many.begin(), many.end());
+    return test::run_scene(scene, extra).state().pass_records;
+  };
+  auto net = [](const std::vector<PassRecord>& p, int pass) { return p[pass - 1].residual_shear_increment; };
+
+  const auto epp = passes("shakedown_p45", {});
+  CHECK(classify_passes(epp).verdict == ShakedownVerdict::Ratchetting);
+  CHECK(net(epp, 15) < -3e-3);  // measured -4.24e-3
+  CHECK(std::abs(net(epp, 15) / net(epp, 14) - 1.0) < 0.02);
+
+  const auto prager = passes("shakedown_kinematic_p45", {});
+  CHECK(classify_passes(prager).verdict == ShakedownVerdict::PlasticShakedown);
+  CHECK(std::abs(net(prager, 15)) < 0.02 * std::abs(net(prager, 2)));  // measured 3.7e-5 against 4.1e-3
+  CHECK(prager.back().mean_plastic_increment > 0.2 * prager.front().mean_plastic_increment);  // still yields
+
+  const auto af = passes("shakedown_kinematic_p45", {{"material.tangent_modulus", "0"},
+                                                     {"material.hardening", "\"chaboche\""},
+                                                     {"material.chaboche_C", "[4286.0]"},
+                                                     {"material.chaboche_gamma", "[20.0]"}});
+  CHECK(classify_passes(af).verdict == ShakedownVerdict::Ratchetting);
+  CHECK(net(af, 15) < -2e-4);  // measured -5.9e-4
+  CHECK(std::abs(net(af, 15) / net(af, 14) - 1.0) < 0.05);
 }
 
 TEST_CASE("stationary passes: an elastic strip is left without residual stress or plastic strain",
