@@ -31,7 +31,7 @@ ShakedownClassification classify_passes(const std::vector<PassRecord>& passes, c
   }
   // Still falling: under a sliding traction every plastic increment shears one way, so the net
   // shear test below would call increments that die out ratchetting.
-  const PassRecord& before = passes[passes.size() - 2];
+  const PassRecord& before = passes.size() >= 2 ? passes[passes.size() - 2] : last;
   if (before.mean_plastic_increment > 0.0 &&
       last.mean_plastic_increment < c.settled_ratio * before.mean_plastic_increment) {
     out.criterion = fmt::format(
