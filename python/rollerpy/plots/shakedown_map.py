@@ -71,7 +71,7 @@ def main(argv=None):
         verdict = r.get("passes.verdict") or ""
         if r["status"] != "ok" or verdict not in STYLE:
             ax.plot(mu, float(r["passes.p0_over_k"] or "nan"), "kx", ms=9,
-                    label=None if "failed" in seen else "failed: %s" % r["status"])
+                    label=None if "failed" in seen else "no verdict: the run stopped (study.csv says why)")
             seen.add("failed")
             continue
         marker, colour, label = STYLE[verdict]
