@@ -104,10 +104,9 @@ std::string summary_json(const Simulation& sim, const RunSummary& summary, int f
   j["cuts_total"] = summary.totals.cuts;
   j["max_penetration"] = summary.totals.max_penetration;
   j["warnings"] = scene_warnings(scene, sim.model().mesh());
-  if (scene.passes.count > 1 && summary.status != RunStatus::Running) {
-    const ShakedownClassification c = classify_passes(sim.state().pass_records);
+  if (const std::optional<ShakedownClassification>& c = summary.verdict) {
     j["passes"] = {
-        {"count", sim.state().pass_records.size()}, {"verdict", enum_name(c.verdict)}, {"criterion", c.criterion}};
+        {"count", sim.state().pass_records.size()}, {"verdict", enum_name(c->verdict)}, {"criterion", c->criterion}};
     if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
   }
   return j.dump(2) + "\n";
@@ -170,6 +169,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
   summary.converged = true;
   auto finish_summary = [&] {
+    if (scene_.passes.count > 1) summary.verdict = classify_passes(state_.pass_records);
     summary.totals = state_.totals;
     summary.wall_s = seconds_since(t_start);
     summary.peak_memory_mb = peak_memory_mb();

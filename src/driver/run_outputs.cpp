@@ -82,7 +82,7 @@ void RunOutputs::write_solver_row(const Simulation::StepRecord& step, const Moni
 }
 
 void RunOutputs::write_step(const Simulation::StepRecord& step) {
-  if (step.pass_end && scene_.passes.count > 1) {
+  if (step.pass_end) {  // multi-pass runs only
     const PassRecord& r = step.pass_end->record;
     add_row(OutputTable::Passes, pass_row(step.step, r));
     for (const DepthSample& d : step.pass_end->profile)

@@ -74,10 +74,8 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
   result["summary"] = summary_dict(summary);
   result["tables"] = tables_dict(sink);
   result["fields"] = fields_list(sink);
-  if (const RunState& state = sim->state(); sim->scene().passes.count > 1) {
-    const ShakedownClassification c = classify_passes(state.pass_records);
-    result["verdict"] = py::dict(py::arg("verdict") = enum_name(c.verdict), py::arg("criterion") = c.criterion);
-  }
+  if (const std::optional<ShakedownClassification>& c = summary.verdict)
+    result["verdict"] = py::dict(py::arg("verdict") = enum_name(c->verdict), py::arg("criterion") = c->criterion);
   // What stopped the run early (Ctrl-C, or the progress callback's exception), for the wrapper
   // to raise with the results so far.
   result["error"] = sink.pending_error() ? sink.pending_error()->value() : py::none();

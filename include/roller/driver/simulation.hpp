@@ -12,6 +12,7 @@
 
 #include "roller/analysis/hertz.hpp"
 #include "roller/analysis/pass_metrics.hpp"
+#include "roller/analysis/shakedown.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/friction_history.hpp"
@@ -76,6 +77,8 @@ struct RunSummary {
   double wall_s = 0.0;
   double peak_memory_mb = 0.0;  // the process's peak resident memory so far [MiB]
   std::string message;
+  // A multi-pass run that has ended (however): the shakedown verdict of its passes.
+  std::optional<ShakedownClassification> verdict;
 };
 
 // A run stopped before its first step (the memory check while the Simulation is built): its
