@@ -28,13 +28,9 @@ std::string BackendResult::brief_report() const {
 
 // Armstrong-Frederick's recovery has no potential: a minimising backend solves with it frozen,
 // until the frozen multipliers are the solution's (docs/model.md, Hardening laws). Each solve
-// starts from the previous one's solution; the counters add up. Settled at back-stresses within
-// 1e-6 sigma_y0 of the exact update's: Ipopt's own accuracy leaves d noisy a little below that
-// (Z1: 1.7e-11 against 3e-9).
-constexpr Real kRecoveryStressTolerance = 1e-6;
-
+// starts from the previous one's solution; the counters add up.
 BackendResult ContactBackend::solve_settling_recovery(IncrementProblem& problem, const VecX& x0) {
-  RecoveryIteration recovery(problem.strip_model(), kRecoveryStressTolerance);
+  RecoveryIteration recovery(problem.strip_model(), recovery_tolerance());
   BackendResult r;
   SolveCounters counters;
   BackendDetails details;

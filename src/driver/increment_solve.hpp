@@ -6,7 +6,9 @@
 #include <optional>
 #include <vector>
 
-#include "roller/driver/increment_solver.hpp"
+#include "roller/assembly/increment_energy.hpp"
+#include "roller/driver/increment_types.hpp"
+#include "roller/io/scene.hpp"
 
 namespace roller {
 

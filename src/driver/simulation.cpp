@@ -89,9 +89,9 @@ Simulation::Simulation(Scene scene)
     : scene_(std::move(scene)),
       model_(make_strip(scene_)),
       loads_(scene_, model_->mesh()),
-      backend_(scene_.roller ? make_contact_backend(scene_.contact, scene_.newton) : nullptr),
+      backend_(make_increment_backend(scene_.roller.has_value(), scene_.contact, scene_.newton)),
       candidate_nodes_(contact_candidate_nodes(scene_, model_->mesh())),
-      solver_(scene_, backend_.get(), candidate_nodes_) {
+      solver_(scene_, *backend_, candidate_nodes_) {
   model_->set_dof_map(loads_.dof_map());
   if (!scene_.initial_state.empty()) load_state(scene_.initial_state, /*strip_only=*/true);
   Vec2 start_centre = Vec2::Zero();

@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
-#include "roller/driver/simulation.hpp"
 #include "roller/driver/steady_load.hpp"
 #include "roller_start.hpp"
 
@@ -33,50 +32,10 @@ Real contact_centre(const Scene& scene, const SteadyLoad& load) {
 
 }  // namespace
 
-// The roller's contact solved with the elastic stiffness: an elastic twin of the strip (its own
-// Simulation: the scene made linear elastic and frictionless, the roller over the contact's centre
-// under the travel force), restored at every iteration to the iterate u with the stresses
-// sigma(u) - sigma_upstream, so that its incremental energy is 1/2 du K_e du - r.du; one
-// force-controlled increment gives du and the contact forces. The twin's tangent is constant, so
-// the condensed interior-point backend keeps its factors from one iteration to the next.
-class RollerContactCorrection : public StationaryCorrection {
- public:
-  RollerContactCorrection(const Scene& scene, Real centre_x, Real force) {
-    Scene twin = elastic_frictionless_scene(scene);
-    twin.steps.n_steps = 1;
-    twin.roller->start_centre = Vec2(centre_x, scene.mesh.height + scene.roller->radius);
-    PathSegment press;
-    press.first_step = press.last_step = 1;
-    press.fy = force;
-    press.friction = 0.0;
-    twin.roller->path = {press};
-    twin_ = std::make_unique<Simulation>(std::move(twin));
-  }
-  void set_upstream(std::vector<MaterialState> spread) { upstream_ = std::move(spread); }
-  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX&) override {
-    StripModel& strip = twin_->model();
-    std::vector<MaterialState> stresses(states.size());
-    for (std::size_t p = 0; p < states.size(); ++p) stresses[p].stress = states[p].stress - upstream_[p].stress;
-    strip.restore(strip.mesh().nodes, u, std::move(stresses));
-    const IncrementReport inc = twin_->advance(0.0, 1.0);
-    if (!inc.converged()) return {VecX(), VecX(), inc.message};
-    Result out;
-    out.du = strip.dof_map().restrict_to_free(strip.total_displacement() - u);
-    out.load = VecX::Zero(u.size());
-    for (const NodeContactRecord& c : twin_->state().contact) out.load.segment<2>(2 * c.node) += c.force;
-    return out;
-  }
-  const std::vector<NodeContactRecord>& contact() const { return twin_->state().contact; }
-  RollerPose pose() const { return twin_->state().pose; }
-
- private:
-  std::unique_ptr<Simulation> twin_;
-  std::vector<MaterialState> upstream_;
-};
-
 StationaryPasses::~StationaryPasses() = default;
 
-StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
+StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
+                                   const RollerCorrectionMaker& make_roller_correction)
     : roller_y_(given_start_centre(scene).y()),
       travel_(steady_load(scene, std::nullopt).travel_sign),
       strip_(model.mesh(), model.materials(), model.options(), travel_),
@@ -131,7 +90,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
           fmt::format("{}: passes.stationary_contact = \"roller\" carries no tangential traction yet (the "
                       "travel segment slides: q = {} p); set passes.stationary_contact = \"hertz\"",
                       scene.file.string(), steady.traction));
-    roller_correction_ = std::make_unique<RollerContactCorrection>(scene, centre_x_, hertz_.load);
+    roller_correction_ = make_roller_correction(scene, centre_x_, hertz_.load);
   }
 }
 

@@ -11,6 +11,7 @@
 // small), and the displacement is the sum of the passes' permanent displacements. So the next
 // pass's upstream state, the pass metrics (measure_pass) and the state files are the transient
 // method's.
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -25,13 +26,24 @@
 
 namespace roller {
 
-class RollerContactCorrection;  // stationary_passes.cpp
+// The correction on the roller's exact contact (passes.stationary_contact = "roller"): given the
+// upstream states spread over the strip, it corrects the iterate with the roller's contact and
+// keeps that contact and the roller's pose.
+class RollerCorrection : public StationaryCorrection {
+ public:
+  virtual void set_upstream(std::vector<MaterialState> spread) = 0;
+  virtual const std::vector<NodeContactRecord>& contact() const = 0;
+  virtual RollerPose pose() const = 0;
+};
+// Makes the roller correction of the scene with the roller over x = centre_x under `force`
+// (roller_contact_correction.hpp: it solves increments, which the caller knows how to do).
+using RollerCorrectionMaker = std::function<std::unique_ptr<RollerCorrection>(const Scene&, Real centre_x, Real force)>;
 
 class StationaryPasses {
  public:
   // Throws InputError when the scene's travel segment prescribes no force (fy) or its mesh has no
   // straight rows of points.
-  StationaryPasses(const Scene& scene, const StripModel& model);
+  StationaryPasses(const Scene& scene, const StripModel& model, const RollerCorrectionMaker& make_roller_correction);
   ~StationaryPasses();
 
   struct Pass {
@@ -61,9 +73,9 @@ class StationaryPasses {
   StationaryStrip elastic_strip_;
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   std::unique_ptr<PrescribedLoadCorrection> hertz_correction_;
-  std::unique_ptr<RollerContactCorrection> roller_correction_;  // passes.stationary_contact = "roller"
-  std::optional<RollerPose> pose_;                              // the roller's, with the roller's contact
-  std::vector<Index> extraction_;                               // per streamline: its point at the extraction column
+  std::unique_ptr<RollerCorrection> roller_correction_;  // passes.stationary_contact = "roller"
+  std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
+  std::vector<Index> extraction_;                        // per streamline: its point at the extraction column
   std::vector<NodeContactRecord> contact_;
 };
 

@@ -3,13 +3,13 @@
 
 #include "roller/analysis/pass_metrics.hpp"
 #include "roller/driver/simulation.hpp"
-#include "stationary_passes.hpp"
+#include "roller_contact_correction.hpp"
 
 namespace roller {
 
 Simulation::StepRecord Simulation::advance_stationary(int step) {
   const bool built = !stationary_;  // K_e is factorised once, when the set-up is built
-  if (built) stationary_ = std::make_unique<StationaryPasses>(scene_, *model_);
+  if (built) stationary_ = std::make_unique<StationaryPasses>(scene_, *model_, make_roller_contact_correction);
   StationaryPasses& passes = *stationary_;
   StepRecord res;
   res.step = step;

@@ -5,7 +5,7 @@
 // Internal to io/scene_keys.cpp.
 #include <vector>
 
-#include "roller/io/scene_keys.hpp"
+#include "roller/io/scene_key_types.hpp"
 
 namespace roller {
 

@@ -13,4 +13,9 @@ namespace roller {
 // penalty backend's Newton iterations (the scene's [newton] table).
 std::unique_ptr<ContactBackend> make_contact_backend(const ContactOptions& options, const NewtonOptions& newton);
 
+// The backend of a run's increments: the scene's contact backend with a roller, the strip's own
+// Newton (StripBackend) without one.
+std::unique_ptr<ContactBackend> make_increment_backend(bool roller, const ContactOptions& options,
+                                                       const NewtonOptions& newton);
+
 }  // namespace roller

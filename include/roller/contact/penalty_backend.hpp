@@ -1,7 +1,7 @@
 #pragma once
 // The thesis's method (docs/model.md, Penalty backend): quadratic penalty on penetration and on
 // tangential stick slip, Coulomb return map on the tangential penalty force, Newton–Raphson with
-// the consistent (unsymmetric in slip) tangent and a residual line search.
+// the consistent (unsymmetric in slip) tangent and a residual line search (solver/newton.hpp).
 //
 // Per candidate i with penalty stiffnesses kN = factor E* l_i / h_i, kT = tangential_factor kN:
 //   F_N = kN <-g>                                   (zero when the node is off the roller)
@@ -14,7 +14,7 @@
 // law; (3) if that fails too, the penalty is raised in stages (factor 10, 1e3, 1e5, ... up to the
 // target, each stage started from the previous solution).
 #include "roller/contact/backend.hpp"
-#include "roller/solver/sparse_solver.hpp"
+#include "roller/solver/newton.hpp"
 
 namespace roller {
 
@@ -42,10 +42,8 @@ class PenaltyBackend : public ContactBackend {
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
   ContactOptions options_;
   NewtonOptions newton_;
-  // LDL^T for the symmetric Jacobian, LU for sliding friction's and as the fallback; kept
-  // between Newton iterations (MUMPS's analysis is redone only for a new pattern).
-  SparseSolver ldlt_{MumpsSolver::Symmetry::Symmetric};
-  SparseSolver lu_{MumpsSolver::Symmetry::General};
+  // Kept between solves, with its linear solvers: MUMPS's analysis is redone only for a new pattern.
+  NewtonMinimiser newton_solver_;
 };
 
 }  // namespace roller

@@ -3,61 +3,20 @@
 // couplings): placed (its motion prescribed), on its suspension (the deflection converged with
 // the contact) or under prescribed forces (the centre's offset that carries them). Pure in the run
 // state: the caller commits the solution it returns.
-#include <optional>
-#include <string>
 #include <vector>
 
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/backend.hpp"
-#include "roller/contact/friction_history.hpp"
-#include "roller/contact/increment_problem.hpp"
-#include "roller/dynamics/suspension.hpp"
+#include "roller/driver/increment_types.hpp"
 #include "roller/io/scene.hpp"
-#include "roller/solver/newton.hpp"
 
 namespace roller {
 
-// What an increment's solves did: the outcome of the last one, the work of all of them (a coupled
-// roller solves the contact several times).
-struct IncrementReport {
-  Termination status = Termination::Failed;
-  SolveCounters counters;
-  Real residual = 0.0;
-  Real max_penetration = 0.0;
-  Index n_yielded = 0;        // integration points that yielded in the committed increment
-  BackendDetails details;     // the contact solves' work summed, the rest of the last one
-  int suspension_passes = 0;  // passes coupling the suspension with the contact
-  int load_passes = 0;        // contact solves finding the height that carries the prescribed force
-  std::string message;
-  bool converged() const { return status == Termination::Converged; }
-};
-
-// What a converged increment commits.
-struct IncrementSolution {
-  VecX u;  // increment of all dofs
-  std::vector<ContactCandidate> candidates;
-  BackendResult contact;
-  Real deflection = 0.0;               // a suspended roller's deflection from its anchor
-  Vec2 load_offset = Vec2::Zero();     // force control: the centre's offset that carries the forces
-  Vec2 load_stiffness = Vec2::Zero();  // and the slopes -dF/dw there per axis (0: not force-controlled)
-};
-
-// What the increment starts from besides the strip: the roller's motion (its end as prescribed,
-// the load offset added), the forces prescribed on it, and what the run's last increments left.
-struct IncrementStart {
-  RollerMotion motion;
-  PrescribedForce force;
-  const FrictionHistory* friction = nullptr;
-  const Suspension* suspension = nullptr;
-  Vec2 load_offset = Vec2::Zero();
-  Vec2 load_stiffness = Vec2::Zero();
-  Vec2 roller_force = Vec2::Zero();  // of the strip on the roller at the start [N per mm]
-};
-
 class IncrementSolver {
  public:
-  // `backend` and `candidate_nodes` only with a roller; all outlive the solver.
-  IncrementSolver(const Scene& scene, ContactBackend* backend, const std::vector<Index>& candidate_nodes);
+  // `backend` solves the scene's increments (backend_factory.hpp: the strip's own without a
+  // roller); `candidate_nodes` are empty without a roller. All outlive the solver.
+  IncrementSolver(const Scene& scene, ContactBackend& backend, const std::vector<Index>& candidate_nodes);
 
   // Solves the increment of `energy` from `predictor` (all dofs): the solution when report.converged.
   // `motion` ends where the couplings put the roller.
@@ -65,10 +24,12 @@ class IncrementSolver {
                           IncrementReport& report);
 
  private:
+  // The strip without a roller: one solve of a problem without contact candidates.
+  IncrementSolution solve_strip(IncrementEnergy& energy, const VecX& predictor, const IncrementStart& start,
+                                IncrementReport& report);
   const Scene& scene_;
-  ContactBackend* backend_;
+  ContactBackend& backend_;
   const std::vector<Index>& candidate_nodes_;
-  NewtonMinimiser newton_;  // increments without contact
 };
 
 }  // namespace roller

@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "roller/core/error.hpp"
-#include "roller/solver/sparse_solver.hpp"
 
 namespace roller {
 
@@ -70,62 +69,75 @@ NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, 
   return s;
 }
 
-struct Evaluation {
-  VecX residual;
-  SparseMatrix jacobian;
-  std::vector<NodeContact> contact;
-  Real scale = 0.0;
-  // Residual that round-off alone produces: the gap |x - c| - R of a node at distance rho from
-  // the centre carries an absolute error ~ eps rho, which the penalty turns into a force
-  // error ~ eps rho kN. Tolerances below it cannot be met.
-  Real roundoff_floor = 0.0;
-  bool symmetric = true;
-};
-
-// Residual r = dPi/dx - (contact forces) on the free dofs, and its Jacobian when asked, into `e`;
-// false, with the strip's reason in `why`, when the strip cannot take x.
-bool evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, bool want_jacobian, Evaluation& e,
-              const std::vector<NodeContact>* frozen = nullptr, std::string* why = nullptr) {
-  const Expected<ObjectiveValue> strip = p.strip_energy(x, &e.residual, want_jacobian ? &e.jacobian : nullptr);
-  if (!strip) {
-    if (why) *why = strip.error();
-    return false;
-  }
-  const Real strip_scale = strip->force_scale;
-  e.contact.assign(p.candidates().size(), NodeContact{});
+// Residual r = dPi/dx - (contact forces) on the free dofs and, when asked, its Jacobian, with the
+// contact of every candidate at x; or why the strip cannot take x. The value's force scale is the
+// larger of the strip's and the contact forces'; its round-off floor is the residual that round-off
+// alone produces: the gap |x - c| - R of a node at distance rho from the centre carries an absolute
+// error ~ eps rho, which the penalty turns into a force error ~ eps rho kN. Tolerances below it
+// cannot be met.
+Expected<ObjectiveValue> evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, VecX& r,
+                                  SparseMatrix* jacobian, std::vector<NodeContact>& contact,
+                                  const std::vector<NodeContact>* frozen = nullptr) {
+  const Expected<ObjectiveValue> strip = p.strip_energy(x, &r, jacobian);
+  if (!strip) return strip;
+  contact.assign(p.candidates().size(), NodeContact{});
+  ObjectiveValue value;
   // Armstrong-Frederick's consistent tangent is unsymmetric (docs/model.md, Hardening laws).
-  e.symmetric = !p.strip_model().has_recovery();
+  value.symmetric = !p.strip_model().has_recovery();
   Real contact_norm2 = 0.0, floor2 = 0.0;
   Mat2 block;
   for (std::size_t i = 0; i < p.candidates().size(); ++i) {
     const ContactCandidate& c = p.candidates()[i];
-    NodeContact& s = e.contact[i];
-    s = contact_state(p, c, k[i], x, want_jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
+    NodeContact& s = contact[i];
+    s = contact_state(p, c, k[i], x, jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
     if (s.status == ContactStatus::Open) continue;
     const Real floor_i =
         10.0 * std::numeric_limits<Real>::epsilon() * k[i].normal * (p.position(c, x) - p.roller().end.centre).norm();
     floor2 += floor_i * floor_i;
     const Vec2 f = contact_force(s.normal_force, s.tangential_force, p.normal(c, x), c.tangent);
     contact_norm2 += f.squaredNorm();
-    if (s.status == ContactStatus::Slip && p.roller().friction > 0.0) e.symmetric = false;
+    if (s.status == ContactStatus::Slip && p.roller().friction > 0.0) value.symmetric = false;
     for (int a = 0; a < 2; ++a) {
       if (c.free_dof[a] < 0) continue;
-      e.residual(c.free_dof[a]) -= f(a);
-      if (!want_jacobian) continue;
+      r(c.free_dof[a]) -= f(a);
+      if (!jacobian) continue;
       for (int b = 0; b < 2; ++b)
-        if (c.free_dof[b] >= 0) e.jacobian.coeffRef(c.free_dof[a], c.free_dof[b]) += block(a, b);
+        if (c.free_dof[b] >= 0) jacobian->coeffRef(c.free_dof[a], c.free_dof[b]) += block(a, b);
     }
   }
-  e.scale = std::max(strip_scale, std::sqrt(contact_norm2));
-  e.roundoff_floor = std::sqrt(floor2);
-  return true;
+  value.force_scale = std::max(strip->force_scale, std::sqrt(contact_norm2));
+  value.roundoff_floor = std::sqrt(floor2);
+  return value;
 }
 
-// evaluate() where no step can be shortened (the start, a Newton solve's solution): a strip that
-// cannot take x ends the solve with its NumericalError (the driver cuts the step).
-void evaluate_or_throw(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, Evaluation& e) {
-  std::string why;
-  if (!evaluate(p, k, x, false, e, nullptr, &why)) throw NumericalError(why);
+// The penalty equations at fixed stiffnesses (and, with `frozen`, fixed statuses) as Newton sees
+// them. Newton evaluates the Jacobian at every iterate it accepts, so the contact kept from the
+// last such evaluation is the contact at Newton's last iterate.
+class PenaltyEquations final : public NewtonObjective {
+ public:
+  PenaltyEquations(IncrementProblem& problem, const std::vector<Stiffness>& k, const std::vector<NodeContact>* frozen)
+      : problem_(problem), k_(k), frozen_(frozen) {}
+  Expected<ObjectiveValue> evaluate(const VecX& x, VecX* r, SparseMatrix* jacobian) override {
+    if (!jacobian) return roller::evaluate(problem_, k_, x, *r, nullptr, trial_contact_, frozen_);
+    return roller::evaluate(problem_, k_, x, *r, jacobian, contact_, frozen_);
+  }
+  std::vector<NodeContact> take_contact() { return std::move(contact_); }
+
+ private:
+  IncrementProblem& problem_;
+  const std::vector<Stiffness>& k_;
+  const std::vector<NodeContact>* frozen_;
+  std::vector<NodeContact> contact_, trial_contact_;
+};
+
+// The residual and the contact at x, where no step can be shortened (the start, a Newton solve's
+// solution): a strip that cannot take x ends the solve with its NumericalError (the driver cuts
+// the step).
+ObjectiveValue evaluate_or_throw(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, VecX& r,
+                                 std::vector<NodeContact>& contact) {
+  const Expected<ObjectiveValue> value = evaluate(p, k, x, r, nullptr, contact);
+  if (!value) throw NumericalError(value.error());
+  return *value;
 }
 
 // The documented penalty rule: kN = factor E* l_i / h_i per candidate, kT = tangential_factor kN.
@@ -138,25 +150,6 @@ std::vector<Stiffness> penalty_stiffnesses(const IncrementProblem& p, Real facto
   return k;
 }
 
-// LDL^T for the symmetric Jacobian (no friction, or stick), LU for the unsymmetric one of
-// sliding friction, and LU as the fallback when LDL^T fails (solver/sparse_solver.hpp).
-// The solvers are the backend's, kept between calls so that MUMPS's symbolic analysis is redone
-// only when the Jacobian's pattern changes (it is fixed within an increment).
-bool solve_linear(const Evaluation& e, const LinearSolverOptions& linear, SparseSolver& ldlt, SparseSolver& lu,
-                  VecX& d) {
-  ldlt.configure(linear);
-  lu.configure(linear);
-  if (e.symmetric) {
-    if (ldlt.factorize(e.jacobian)) {
-      d = ldlt.solve(-e.residual);
-      if (d.allFinite()) return true;
-    }
-  }
-  if (!lu.factorize(e.jacobian)) return false;
-  d = lu.solve(-e.residual);
-  return d.allFinite();
-}
-
 }  // namespace
 
 PenaltyBackend::PenaltyBackend(ContactOptions options, NewtonOptions newton)
@@ -164,103 +157,41 @@ PenaltyBackend::PenaltyBackend(ContactOptions options, NewtonOptions newton)
 
 void PenaltyBackend::residual(IncrementProblem& problem, const VecX& x, VecX& r, SparseMatrix* jacobian) const {
   const auto k = penalty_stiffnesses(problem, options_.penalty.factor, options_.penalty.tangential_factor);
-  Evaluation e;
-  std::string why;
-  if (!evaluate(problem, k, x, jacobian != nullptr, e, nullptr, &why)) throw NumericalError(why);
-  r = e.residual;
-  if (jacobian) *jacobian = e.jacobian;
+  std::vector<NodeContact> contact;
+  const Expected<ObjectiveValue> value = evaluate(problem, k, x, r, jacobian, contact);
+  if (!value) throw NumericalError(value.error());
 }
 
-// One Newton solve at fixed penalty stiffnesses, from x (updated in place).
+// One Newton solve at fixed penalty stiffnesses, from x (updated in place): Newton on the
+// equilibrium equations with a residual merit (once friction slips no energy exists to backtrack on).
 BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std::vector<Stiffness>& k, VecX& x,
                                            Real tolerance, const std::vector<NodeContact>* frozen) {
+  NewtonOptions options = newton_;
+  options.residual_tolerance = tolerance;
+  PenaltyEquations equations(problem, k, frozen);
+  const NewtonReport newton = newton_solver_.minimise(equations, x, options, NewtonMerit::Residual);
   BackendResult result;
-  VecX d, x_trial;
-  Evaluation e, trial;
-  int full_steps = 0;  // consecutive full steps taken without a residual decrease
-  constexpr int kMaxFullSteps = 5;
-  std::string why;
-  if (!evaluate(problem, k, x, true, e, frozen, &why)) {
-    result.message = fmt::format("cannot evaluate the start of the increment: {}", why);
-    return result;
-  }
-  for (int it = 0;; ++it) {
-    const Real rnorm = e.residual.norm();
-    result.counters.iterations = it;
-    result.residual = rnorm / std::max(e.scale, 1e-300);
-    if (!std::isfinite(rnorm)) {
-      result.message =
-          "the residual is not finite: the increment diverged; use smaller steps (a larger steps.count, or "
-          "steps.max_cuts)";
-      return result;
-    }
-    if (result.residual <= tolerance || rnorm <= e.roundoff_floor) {
-      // Below the round-off floor no iteration reduces the residual further, but the floor grows
-      // with the penalty (eps |x - c| kN per node). Above kMaxRoundoffResidual of the force scale
-      // the penalty is too stiff for double precision and the contact forces are round-off
-      // noise (measured, docs/stability.md: Z1 at factor 1e12 was accepted at |r|/F ~ 1.8 with
-      // the roller force 28 % off): stop with the cause instead of accepting the increment.
-      if (result.residual > tolerance && result.residual > kMaxRoundoffResidual) {
-        result.status = Termination::LimitReached;
-        result.message = fmt::format(
-            "penalty Newton: the penalty is too stiff for double precision: round-off in the gaps "
-            "alone leaves |r|/F = {:.2e} (> {:.0e}), the contact forces are not resolved; use a "
-            "smaller contact.penalty.factor (now {:.3g}) or the ipopt backend",
-            result.residual, kMaxRoundoffResidual, options_.penalty.factor);
-        break;
-      }
-      result.status = Termination::Converged;
-      break;
-    }
-    if (it >= newton_.max_iterations) {
-      result.status = Termination::LimitReached;
-      result.message = fmt::format(
-          "penalty Newton: no convergence in {} iterations (|r|/F = {:.2e}); use smaller steps (a larger steps.count, "
-          "or steps.max_cuts), "
-          "a smaller contact.penalty.factor, or the ipopt backend",
-          it, result.residual);
-      break;
-    }
-    ++result.counters.factorizations;
-    if (!solve_linear(e, newton_.linear, ldlt_, lu_, d)) {
-      result.message =
-          "penalty Newton: the tangent matrix is singular (missing supports, or a "
-          "mechanism); check the boundary conditions";
-      return result;
-    }
-    // Backtracking on ||r||: once friction slips no energy exists to backtrack on.
-    Real alpha = 1.0;
-    bool accepted = false;
-    for (int ls = 0; ls < 20 && !accepted; ++ls, alpha *= 0.5) {
-      x_trial = x + alpha * d;
-      if (!evaluate(problem, k, x_trial, false, trial, frozen)) continue;
-      accepted = !newton_.line_search || trial.residual.norm() <= (1.0 - 1e-4 * alpha) * rnorm;
-    }
-    if (!accepted) {
-      // No decrease of ||r|| along d: the contact/stick/slip state changes along the step and
-      // ||r|| is not a reliable merit there. Take the full Newton step (a semismooth Newton
-      // step), at most a few times in a row; the iteration limit bounds the rest.
-      if (++full_steps > kMaxFullSteps) {
-        result.status = Termination::LimitReached;
-        result.message = fmt::format(
-            "penalty Newton: the line search found no decrease of the residual (|r|/F = {:.2e}); "
-            "use smaller steps (a larger steps.count, or steps.max_cuts), a smaller contact.penalty.factor, or the "
-            "ipopt backend",
-            result.residual);
-        break;
-      }
-      x_trial = x + d;
-    } else {
-      full_steps = 0;
-    }
-    x = x_trial;
-    if (!evaluate(problem, k, x, true, e, frozen, &why)) {
-      result.message = why;
-      return result;
-    }
-  }
+  result.status = newton.status;
+  result.counters = newton.counters;
+  result.residual = newton.residual;
   result.x = x;
-  result.contact = e.contact;
+  result.contact = equations.take_contact();
+  if (!newton.converged()) {
+    result.message =
+        fmt::format("penalty Newton: {}; or a smaller contact.penalty.factor, or the ipopt backend", newton.message);
+  } else if (newton.at_roundoff_floor && newton.residual > kMaxRoundoffResidual) {
+    // The round-off floor grows with the penalty (eps |x - c| kN per node). Above
+    // kMaxRoundoffResidual of the force scale the penalty is too stiff for double precision and
+    // the contact forces are round-off noise (measured, docs/stability.md: Z1 at factor 1e12 was
+    // accepted at |r|/F ~ 1.8 with the roller force 28 % off): stop with the cause instead of
+    // accepting the increment.
+    result.status = Termination::LimitReached;
+    result.message = fmt::format(
+        "penalty Newton: the penalty is too stiff for double precision: round-off in the gaps "
+        "alone leaves |r|/F = {:.2e} (> {:.0e}), the contact forces are not resolved; use a "
+        "smaller contact.penalty.factor (now {:.3g}) or the ipopt backend",
+        newton.residual, kMaxRoundoffResidual, options_.penalty.factor);
+  }
   return result;
 }
 
@@ -279,33 +210,34 @@ BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0
     // slip and its direction) frozen, then the statuses are updated from the converged state;
     // done when no status changes (then the frozen and the true Coulomb residuals coincide).
     VecX x = x0;
-    Evaluation natural;
-    evaluate_or_throw(problem, k_target, x, natural);
-    std::vector<NodeContact> status = natural.contact;
+    VecX residual;
+    std::vector<NodeContact> natural;
+    evaluate_or_throw(problem, k_target, x, residual, natural);
+    std::vector<NodeContact> status = natural;
     for (int pass = 1; pass <= kMaxActiveSetPasses; ++pass) {
       BackendResult r = newton_stage(problem, k_target, x, newton_.residual_tolerance, &status);
       spent += r.counters;
       if (!r.converged()) break;
-      evaluate_or_throw(problem, k_target, x, natural);
+      const ObjectiveValue at_x = evaluate_or_throw(problem, k_target, x, residual, natural);
       bool same = true;
       for (std::size_t i = 0; i < status.size() && same; ++i)
-        same = natural.contact[i].status == status[i].status &&
-               (natural.contact[i].status != ContactStatus::Slip ||
-                (natural.contact[i].tangential_force >= 0.0) == (status[i].tangential_force >= 0.0));
+        same = natural[i].status == status[i].status &&
+               (natural[i].status != ContactStatus::Slip ||
+                (natural[i].tangential_force >= 0.0) == (status[i].tangential_force >= 0.0));
       if (same) {
         r.counters = spent;
-        r.contact = natural.contact;
-        r.residual = natural.residual.norm() / std::max(natural.scale, 1e-300);
+        r.contact = natural;
+        r.residual = residual.norm() / std::max(at_x.force_scale, 1e-300);
         r.details.fill<PenaltyDetails>().active_set_passes = pass;
         return r;
       }
       // Update; a slip that reverses its direction goes through stick first (otherwise two
       // nodes near the no-slip point can flip back and forth for ever).
       for (std::size_t i = 0; i < status.size(); ++i) {
-        const bool reversed = status[i].status == ContactStatus::Slip &&
-                              natural.contact[i].status == ContactStatus::Slip && problem.roller().friction > 0.0 &&
-                              (natural.contact[i].tangential_force >= 0.0) != (status[i].tangential_force >= 0.0);
-        status[i] = natural.contact[i];
+        const bool reversed = status[i].status == ContactStatus::Slip && natural[i].status == ContactStatus::Slip &&
+                              problem.roller().friction > 0.0 &&
+                              (natural[i].tangential_force >= 0.0) != (status[i].tangential_force >= 0.0);
+        status[i] = natural[i];
         if (reversed) status[i].status = ContactStatus::Stick;
       }
     }

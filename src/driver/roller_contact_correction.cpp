@@ -1,0 +1,57 @@
+#include "roller_contact_correction.hpp"
+
+#include "roller/driver/simulation.hpp"
+#include "roller/driver/steady_load.hpp"
+
+namespace roller {
+
+namespace {
+
+// The roller's contact solved with the elastic stiffness: an elastic twin of the strip (its own
+// Simulation: the scene made linear elastic and frictionless, the roller over the contact's centre
+// under the travel force), restored at every iteration to the iterate u with the stresses
+// sigma(u) - sigma_upstream, so that its incremental energy is 1/2 du K_e du - r.du; one
+// force-controlled increment gives du and the contact forces. The twin's tangent is constant, so
+// the condensed interior-point backend keeps its factors from one iteration to the next.
+class RollerContactCorrection final : public RollerCorrection {
+ public:
+  RollerContactCorrection(const Scene& scene, Real centre_x, Real force) {
+    Scene twin = elastic_frictionless_scene(scene);
+    twin.steps.n_steps = 1;
+    twin.roller->start_centre = Vec2(centre_x, scene.mesh.height + scene.roller->radius);
+    PathSegment press;
+    press.first_step = press.last_step = 1;
+    press.fy = force;
+    press.friction = 0.0;
+    twin.roller->path = {press};
+    twin_ = std::make_unique<Simulation>(std::move(twin));
+  }
+  void set_upstream(std::vector<MaterialState> spread) override { upstream_ = std::move(spread); }
+  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX&) override {
+    StripModel& strip = twin_->model();
+    std::vector<MaterialState> stresses(states.size());
+    for (std::size_t p = 0; p < states.size(); ++p) stresses[p].stress = states[p].stress - upstream_[p].stress;
+    strip.restore(strip.mesh().nodes, u, std::move(stresses));
+    const IncrementReport inc = twin_->advance(0.0, 1.0);
+    if (!inc.converged()) return {VecX(), VecX(), inc.message};
+    Result out;
+    out.du = strip.dof_map().restrict_to_free(strip.total_displacement() - u);
+    out.load = VecX::Zero(u.size());
+    for (const NodeContactRecord& c : twin_->state().contact) out.load.segment<2>(2 * c.node) += c.force;
+    return out;
+  }
+  const std::vector<NodeContactRecord>& contact() const override { return twin_->state().contact; }
+  RollerPose pose() const override { return twin_->state().pose; }
+
+ private:
+  std::unique_ptr<Simulation> twin_;
+  std::vector<MaterialState> upstream_;
+};
+
+}  // namespace
+
+std::unique_ptr<RollerCorrection> make_roller_contact_correction(const Scene& scene, Real centre_x, Real force) {
+  return std::make_unique<RollerContactCorrection>(scene, centre_x, force);
+}
+
+}  // namespace roller
