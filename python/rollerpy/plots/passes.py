@@ -101,7 +101,7 @@ def plot(out):
 
 
 def run_label(out):
-    """'scene (hardening law)' of a run, from its resolved scene."""
+    """'scene, hardening law, how the passes were solved' of a run, from its resolved scene."""
     try:
         with open(os.path.join(out, "scene.resolved.toml"), "rb") as f:
             scene = tomllib.load(f)
@@ -113,7 +113,12 @@ def run_label(out):
         law += " C=%s γ=%s" % (material.get("chaboche_C"), material.get("chaboche_gamma"))
     elif law in ("isotropic", "kinematic", "mixed"):
         law += " E_T=%g" % material.get("tangent_modulus", 0.0)
-    return "%s, %s" % (scene.get("name", out), law)
+    passes = scene.get("passes", {})
+    if passes.get("method") == "stationary":
+        method = "stationary"
+    else:
+        method = scene.get("contact", {}).get("backend", "")
+    return ", ".join(x for x in (scene.get("name", out), law, method) if x)
 
 
 def plot_ratchet(outs, path):
@@ -126,6 +131,8 @@ def plot_ratchet(outs, path):
         top.plot(passes, [r["residual_shear_increment"] for r in rows], "o-", label=label)
         bottom.semilogy(passes, positive([r["mean_plastic_increment"] for r in rows]), "s-", label=label)
     top.axhline(0.0, color="k", lw=0.8)
+    # Signed and over decades (a slow ratchet's 1e-5 beside pass 1's 1e-3): linear below 1e-6.
+    top.set_yscale("symlog", linthresh=1e-6)
     top.set_ylabel("net Δγ_xy over the pass\nat the depth of max shear")
     bottom.set_ylabel("mean Δε̄ᵖ over the pass\nin the track window")
     bottom.set_xlabel("pass")
