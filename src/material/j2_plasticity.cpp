@@ -126,11 +126,11 @@ Mat4 consistent_tangent(const MaterialParams& p, const Vec4& unit_normal, Real t
 // frozen at d* (docs/model.md, Hardening laws: the interior-point backend's scheme). The flow
 // direction n is that of eta = s_trial - sum beta_i alpha_i^n.
 struct BackStressTerms {  // every field set by evaluate_back_stress_terms
-  Vec4 eta;             // s_trial - sum beta_i alpha_i^n
-  Vec4 drift;           // d eta / d d = sum gamma_i beta_i^2 alpha_i^n (0 when frozen)
-  Real modulus;         // sum C_i beta_i
-  Real slope;           // d(d * sum C_i beta_i)/d d
-  Eigen::Array4d beta;  // beta_i
+  Vec4 eta;               // s_trial - sum beta_i alpha_i^n
+  Vec4 drift;             // d eta / d d = sum gamma_i beta_i^2 alpha_i^n (0 when frozen)
+  Real modulus;           // sum C_i beta_i
+  Real slope;             // d(d * sum C_i beta_i)/d d
+  Eigen::Array4d beta;    // beta_i
 };
 
 // A committed state's back-stresses with their laws, gathered once per update so that the
