@@ -26,6 +26,16 @@ std::string BackendResult::brief_report() const {
   return s;
 }
 
+BackendResult BackendResult::of(const NewtonReport& newton, VecX x) {
+  BackendResult r;
+  r.status = newton.status;
+  r.message = newton.message;
+  r.x = std::move(x);
+  r.counters = newton.counters;
+  r.residual = newton.residual;
+  return r;
+}
+
 // Armstrong-Frederick's recovery has no potential: a minimising backend solves with it frozen,
 // until the frozen multipliers are the solution's (docs/model.md, Hardening laws). Each solve
 // starts from the previous one's solution; the counters add up.

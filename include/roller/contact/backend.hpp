@@ -43,6 +43,8 @@ struct BackendResult {
   BackendDetails details;  // the backend's own measurements (backend_details.hpp)
   bool converged() const { return status == Termination::Converged; }
   std::string brief_report() const;
+  // A Newton solve's outcome, work and last iterate `x` (no contact: the caller adds it).
+  static BackendResult of(const NewtonReport& newton, VecX x);
 };
 
 class ContactBackend {

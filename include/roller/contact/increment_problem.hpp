@@ -71,6 +71,8 @@ class IncrementProblem {
   Expected<ObjectiveValue> strip_energy(const VecX& x, VecX* gradient, SparseMatrix* hessian) {
     return strip_.evaluate(x, gradient, hessian);
   }
+  // The strip's potential itself, as Newton's objective (the problem without contact candidates).
+  IncrementEnergy& strip() { return strip_; }
   VecX full_increment(const VecX& x) const { return strip_.full_increment(x); }
   StripModel& strip_model() { return strip_.model(); }
   // The strip's tangent is the same matrix at every x (StripModel::tangent_is_constant).

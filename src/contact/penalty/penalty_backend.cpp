@@ -170,11 +170,7 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
   options.residual_tolerance = tolerance;
   PenaltyEquations equations(problem, k, frozen);
   const NewtonReport newton = newton_solver_.minimise(equations, x, options, NewtonMerit::Residual);
-  BackendResult result;
-  result.status = newton.status;
-  result.counters = newton.counters;
-  result.residual = newton.residual;
-  result.x = x;
+  BackendResult result = BackendResult::of(newton, x);
   result.contact = equations.take_contact();
   if (!newton.converged()) {
     result.message =
