@@ -1,6 +1,6 @@
 """Every shipped scene, run in full with both contact backends: each run must end with exit
-code 0 and no output file may hold nan or inf (CTest "outputs of every shipped scene",
-label slow; docs/stability.md, "No nan or inf in any output").
+code 0 and no output file may hold nan or inf (CTest "outputs of problems/<scene>.toml", one test
+per scene, label slow; docs/stability.md, "No nan or inf in any output").
 
 usage: ./rollerpy check-scene-outputs [--out build/scene_outputs]
                                      [--roller ./build/roller] [--timeout 900]
@@ -43,6 +43,10 @@ def main(argv=None):
     only = set(filter(None, args.only.split(",")))
     os.makedirs(out_root, exist_ok=True)
     scenes = sorted(glob.glob("problems/*.toml"))  # z3_data01 before z3_data02
+    unknown = only - {os.path.splitext(os.path.basename(s))[0] for s in scenes}
+    if unknown:
+        print("--only names no scene in problems/: " + ", ".join(sorted(unknown)))
+        return 2
     failures = []
     for scene in scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
