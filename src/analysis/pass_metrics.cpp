@@ -61,13 +61,15 @@ Real weighted_mean(const Mesh& mesh, Inside inside, Value value) {
 
 }  // namespace
 
-void PassTrack::observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure) {
+void PassTrack::observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure,
+                        Real step_load_half_width) {
   if (contact_x.empty()) return;
   x_min = touched ? std::min(x_min, centre_x) : centre_x;
   x_max = touched ? std::max(x_max, centre_x) : centre_x;
   touched = true;
   const auto [lo, hi] = std::minmax_element(contact_x.begin(), contact_x.end());
   half_width = std::max(half_width, 0.5 * (*hi - *lo));
+  load_half_width = std::max(load_half_width, step_load_half_width);
   for (Real p : contact_pressure) peak_pressure = std::max(peak_pressure, p);
 }
 
@@ -76,6 +78,7 @@ nlohmann::json PassTrack::save() const {
           {"x_min", x_min},
           {"x_max", x_max},
           {"half_width", half_width},
+          {"load_half_width", load_half_width},
           {"peak_pressure", peak_pressure}};
 }
 
@@ -85,6 +88,7 @@ PassTrack PassTrack::load(const nlohmann::json& j) {
   t.x_min = j.at("x_min").get<Real>();
   t.x_max = j.at("x_max").get<Real>();
   t.half_width = j.at("half_width").get<Real>();
+  t.load_half_width = j.at("load_half_width").get<Real>();
   t.peak_pressure = j.at("peak_pressure").get<Real>();
   return t;
 }
@@ -123,7 +127,7 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
   r.peak_pressure = track.peak_pressure;
   r.contact_half_width = track.half_width;
   const Mesh& mesh = strip.mesh();
-  const Real a = track.half_width;
+  const Real a = track.load_half_width;
   // The window: the middle half of the rolled stretch, or all of it when that is short.
   const Real length = track.x_max - track.x_min;
   const Real inset = length > 4.0 * a ? 0.25 * length : 0.0;

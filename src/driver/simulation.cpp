@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "roller/analysis/hertz.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/arc_predictor.hpp"
 #include "roller/contact/backend_factory.hpp"
@@ -210,12 +211,16 @@ std::string Simulation::return_for_pass(int pass) {
 std::optional<Simulation::StepRecord::PassEnd> Simulation::observe_pass(int step) {
   if (scene_.passes.count < 2) return std::nullopt;
   std::vector<Real> x, p;
+  Real force = 0.0;
   for (const auto& c : state_.contact) {
     if (c.contact.status == ContactStatus::Open) continue;
     x.push_back(c.position.x());
     p.push_back(c.contact.normal_force / c.tributary_length);
+    force += c.contact.normal_force;
   }
-  state_.pass_track.observe(state_.pose.centre.x(), x, p);
+  const Real e_star = scene_.strip_material().surface().plane_strain_modulus();  // what the roller touches
+  const Real load_half_width = force > 0.0 ? hertz_line_contact(force, scene_.roller->radius, e_star).half_width : 0.0;
+  state_.pass_track.observe(state_.pose.centre.x(), x, p, load_half_width);
   if (!program_.ends_pass(step)) return std::nullopt;
   StepRecord::PassEnd end;
   end.record =

@@ -42,6 +42,7 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   track.x_min = passes.extraction_x() - 2.0 * a;
   track.x_max = passes.extraction_x() + 2.0 * a;
   track.half_width = a;
+  track.load_half_width = a;
   track.peak_pressure = passes.hertz().peak;
   StepRecord::PassEnd end;
   end.record = measure_pass(step, *model_, scene_.mesh.height, track, baseline);

@@ -15,11 +15,14 @@ namespace roller {
 struct PassTrack {
   bool touched = false;
   Real x_min = 0.0, x_max = 0.0;  // roller centre x at the steps with contact [mm]
-  Real half_width = 0.0;          // largest contact half-width [mm]
+  Real half_width = 0.0;          // largest contact half-width, from the outermost nodes in contact [mm]
+  Real load_half_width = 0.0;     // Hertz's half-width of the largest normal contact force [mm]
   Real peak_pressure = 0.0;       // largest nodal contact pressure [MPa]
 
-  // One step: the centre's x, and the x of the nodes in contact with their pressures.
-  void observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure);
+  // One step: the centre's x, the x of the nodes in contact with their pressures, and Hertz's
+  // half-width of the step's normal contact force.
+  void observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure,
+               Real step_load_half_width);
   nlohmann::json save() const;
   static PassTrack load(const nlohmann::json& j);
 };
@@ -37,8 +40,10 @@ struct PassBaseline {
 };
 
 // The record of pass `pass` that ended with `strip`; the window is the middle half of the track
-// (all of it when the track is shorter than 4 a) down to 4 a. Passes without contact leave the
-// window empty and the increments zero.
+// (all of it when the track is shorter than 4 a) down to 4 a, a = the track's load_half_width: a
+// scale the contact force fixes, where the outermost node in contact moves a by half an element
+// when a node at the edge carries a small force or none (docs/scenes.md, passes.csv). Passes
+// without contact leave the window empty and the increments zero.
 PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, const PassTrack& track,
                         const PassBaseline& start);
 
