@@ -92,4 +92,55 @@ struct MaterialParams {
   Real plane_strain_modulus() const { return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio); }
 };
 
+// Inline: the material update calls these for every integration point (docs/benchmarks.md).
+inline Real MaterialParams::shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
+
+inline Real MaterialParams::bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
+
+inline Real MaterialParams::lame_lambda() const {
+  return youngs_modulus * poisson_ratio / ((1.0 + poisson_ratio) * (1.0 - 2.0 * poisson_ratio));
+}
+
+// From the bilinear uniaxial curve: total strain rate 1/E_T = elastic 1/E + plastic 1/H'.
+inline Real MaterialParams::plastic_modulus() const {
+  return youngs_modulus * tangent_modulus / (youngs_modulus - tangent_modulus);
+}
+
+inline Real MaterialParams::isotropic_modulus() const {
+  switch (hardening) {
+    case Hardening::Isotropic: return plastic_modulus();
+    case Hardening::Mixed: return (1.0 - kinematic_fraction) * plastic_modulus();
+    case Hardening::Kinematic:
+    case Hardening::Chaboche: return 0.0;
+  }
+  return 0.0;
+}
+
+inline int MaterialParams::n_back_stresses() const {
+  if (!plastic) return 0;
+  switch (hardening) {
+    case Hardening::Isotropic: return 0;
+    case Hardening::Kinematic:
+    case Hardening::Mixed: return 1;
+    case Hardening::Chaboche: return n_chaboche;
+  }
+  return 0;
+}
+
+inline BackStressLaw MaterialParams::back_stress_law(int i) const {
+  switch (hardening) {
+    case Hardening::Kinematic: return {plastic_modulus(), 0.0};
+    case Hardening::Mixed: return {kinematic_fraction * plastic_modulus(), 0.0};
+    case Hardening::Chaboche: return chaboche[static_cast<std::size_t>(i)];
+    case Hardening::Isotropic: break;
+  }
+  return {};
+}
+
+inline bool MaterialParams::has_potential() const {
+  for (int i = 0; i < n_back_stresses(); ++i)
+    if (back_stress_law(i).recovery != 0.0) return false;
+  return true;
+}
+
 }  // namespace roller
