@@ -40,5 +40,13 @@ def test_one_run_and_a_comparison_write_their_figures(tmp_path):
     assert passes.run_label(epp) == "shakedown_p45, isotropic E_T=0"
     assert passes.run_label(kin) == "shakedown_kinematic_p45, kinematic E_T=4200"
     assert passes.run_label(af) == "shakedown_kinematic_p45, chaboche C=[4286.0] γ=[20.0]"
-    passes.main([epp, "--compare", kin, af])
+    # A stationary run says which load it rolled with; a transient one its backend.
+    st = str(tmp_path / "st")
+    write_run(st, "shakedown_p45", 'tangent_modulus = 0.0\n[passes]\nmethod = "stationary"\n'
+              'stationary_contact = "roller"', [3e-3, -6e-4])
+    assert passes.run_label(st) == "shakedown_p45, isotropic E_T=0, stationary, roller's contact"
+    with open(os.path.join(kin, "scene.resolved.toml"), "a") as f:
+        f.write('[contact]\nbackend = "penalty"\n')
+    assert passes.run_label(kin) == "shakedown_kinematic_p45, kinematic E_T=4200, penalty"
+    passes.main([epp, "--compare", kin, af, st])
     assert os.path.getsize(os.path.join(epp, "ratchet.png")) > 10000

@@ -115,7 +115,8 @@ def run_label(out):
         law += " E_T=%g" % material.get("tangent_modulus", 0.0)
     passes = scene.get("passes", {})
     if passes.get("method") == "stationary":
-        method = "stationary"
+        contact = passes.get("stationary_contact", "hertz")
+        method = "stationary, " + ("Hertz load" if contact == "hertz" else "roller's contact")
     else:
         method = scene.get("contact", {}).get("backend", "")
     return ", ".join(x for x in (scene.get("name", out), law, method) if x)
