@@ -64,7 +64,7 @@ ForceControlSettings load_settings(const IncrementSolve& solve, const Vec2& larg
   const int k = axis == ForceAxis::Vertical ? 1 : 0;
   // Line contact is about as stiff as E* per unit length, normally and tangentially; later
   // increments use the last slopes.
-  const Real e_star = scene.strip_material().surface().plane_strain_modulus();
+  const Real e_star = scene.contact_modulus();
   s.stiffness_guess = stiffness(k) > 0.0 ? stiffness(k) : e_star;
   if (axis == ForceAxis::Vertical) {
     s.force_tolerance = 1e-6 * largest.y();

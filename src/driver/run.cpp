@@ -65,7 +65,7 @@ std::optional<Real> p0_over_k(const Scene& scene) {
     if (seg.fy) load = std::max(load, *seg.fy);
   if (!(load > 0.0)) return std::nullopt;
   // As roller.path[].p0_over_k: Hertz on the surface's E*, k of [material].
-  const Real e_star = scene.strip_material().surface().plane_strain_modulus();
+  const Real e_star = scene.contact_modulus();
   const Real p0 = hertz_line_contact(load, scene.roller->radius, e_star).peak;
   return p0 / (scene.material.yield_stress / std::sqrt(3.0));
 }

@@ -38,7 +38,7 @@ Real surface_spacing_at(const Mesh& mesh, Real x) {
 // over sqrt(2): Hertz's width for that depth is about that); nullopt without either.
 std::optional<Real> expected_half_width(const Scene& scene) {
   const RollerSpec& roller = *scene.roller;
-  const Real e_star = scene.strip_material().surface().plane_strain_modulus();  // what the roller touches
+  const Real e_star = scene.contact_modulus();
   Real force = 0.0, depth = 0.0, y = 0.0;
   for (const PathSegment& seg : roller.path) {
     if (seg.fy) force = std::max(force, *seg.fy);

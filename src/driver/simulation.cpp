@@ -218,7 +218,7 @@ std::optional<Simulation::StepRecord::PassEnd> Simulation::observe_pass(int step
     p.push_back(c.contact.normal_force / c.tributary_length);
     force += c.contact.normal_force;
   }
-  const Real e_star = scene_.strip_material().surface().plane_strain_modulus();  // what the roller touches
+  const Real e_star = scene_.contact_modulus();
   const Real load_half_width = force > 0.0 ? hertz_line_contact(force, scene_.roller->radius, e_star).half_width : 0.0;
   state_.pass_track.observe(state_.pose.centre.x(), x, p, load_half_width);
   if (!program_.ends_pass(step)) return std::nullopt;

@@ -241,6 +241,11 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
                       file.string(), j.at("step").get<int>(), scene_.total_steps(), j.at("step").get<int>()));
     load_run_state(j, scene_.passes.count > 1, state_);
     dynamics_.load(j, file.string());
+  } catch (const nlohmann::json::out_of_range& e) {
+    throw InputError(
+        fmt::format("{}: a key this roller reads is missing ({}): a state file of an older roller; run the "
+                    "scene again without --resume",
+                    file.string(), e.what()));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: damaged state file ({})", file.string(), e.what()));
   }

@@ -43,8 +43,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
       elastic_strip_(model.mesh(), elastic_materials_, model.options(), travel_) {
   const SteadyLoad steady = steady_load(scene, std::nullopt);
   const Mesh& mesh = model.mesh();
-  hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius,
-                              scene.strip_material().surface().plane_strain_modulus());
+  hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
   // Half-way between the contact's trailing edge and the strip's downstream end.
   Real x_min = mesh.nodes.front().x(), x_max = x_min;

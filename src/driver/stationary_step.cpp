@@ -1,4 +1,6 @@
 // Simulation::advance_step of the stationary method: one step is one pass (stationary_passes.hpp).
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "roller/analysis/pass_metrics.hpp"
@@ -44,6 +46,11 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   track.half_width = a;
   track.load_half_width = a;
   track.peak_pressure = passes.hertz().peak;
+  if (scene_.passes.stationary_contact == StationaryContact::Roller) {  // the pressure the roller's contact carried
+    track.peak_pressure = 0.0;
+    for (const PressureSample& s : pressure_profile(passes.contact(), passes.roller_pose()))
+      track.peak_pressure = std::max(track.peak_pressure, s.p);
+  }
   StepRecord::PassEnd end;
   end.record = measure_pass(step, *model_, scene_.mesh.height, track, baseline);
   end.profile_x = passes.extraction_x();

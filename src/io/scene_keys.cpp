@@ -247,7 +247,7 @@ void read_load_as_pressure(TomlSection& s, Scene& scene, std::size_t i, const ch
   if (seg.fy || s.has("fy") || (std::string(key) == "p0_over_k" && s.has("p0")))
     s.fail(key, "give the segment's vertical force once: fy [N/mm], p0 [MPa] or p0_over_k");
   const MaterialParams& m = scene.material;
-  const Real e_star = scene.strip_material().surface().plane_strain_modulus();  // what the roller touches
+  const Real e_star = scene.contact_modulus();
   const Real radius = scene.roller->radius;
   Real p0 = *value;
   std::string how = fmt::format("p0 = {:g} MPa", p0);

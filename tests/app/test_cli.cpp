@@ -3,11 +3,14 @@
 // completed steps kept on disk).
 #include <catch2/catch.hpp>
 
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -125,6 +128,26 @@ TEST_CASE("roller run --resume continues only the run that wrote the checkpoint,
   const Run fewer = run_roller("run problems/block_compression.toml --steps 2 --out " + out.string() + " --resume");
   CHECK(fewer.exit_code == 2);
   CHECK_THAT(fewer.output, Catch::Contains("after step 3 but the run has 2 steps"));
+  // A file of an older roller, intact but without a key this one reads: the key named, not "damaged".
+  {
+    const std::string text = roller::test::read_text(out / "checkpoint.cbor");
+    nlohmann::json doc = nlohmann::json::from_cbor(std::vector<std::uint8_t>(text.begin(), text.end()));
+    doc.erase("checksum");
+    doc.erase("last_length");
+    const std::vector<std::uint8_t> signed_bytes = nlohmann::json::to_cbor(doc);
+    std::uint64_t h = 14695981039346656037ull;  // the state file's FNV-1a checksum
+    for (const std::uint8_t b : signed_bytes) h = (h ^ b) * 1099511628211ull;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    doc["checksum"] = std::string(hex);
+    const std::vector<std::uint8_t> older = nlohmann::json::to_cbor(doc);
+    std::ofstream(out / "checkpoint.cbor", std::ios::binary)
+        .write(reinterpret_cast<const char*>(older.data()), static_cast<std::streamsize>(older.size()));
+  }
+  const Run older = run_roller("run problems/block_compression.toml --steps 5 --out " + out.string() + " --resume");
+  CHECK(older.exit_code == 2);
+  CHECK_THAT(older.output, Catch::Contains("checkpoint.cbor: a key this roller reads is missing") &&
+                               Catch::Contains("last_length") && Catch::Contains("older roller"));
   // A damaged file: one flipped byte in the middle fails the checksum.
   std::string bytes = roller::test::read_text(out / "checkpoint.cbor");
   bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x10);

@@ -119,6 +119,20 @@ TEST_CASE("stationary passes: an elastic strip is left without residual stress o
   CHECK(plastic == 0.0);
   CHECK(peak <= 1e-8 * 2307.7);  // p0: roundoff of the two solves
   CHECK(sim.state().pass_records.back().mean_plastic_increment == 0.0);
+  // passes.csv's peak pressure is the one the pass carried: Hertz's p0 for its load, the roller
+  // contact's own nodal peak (within 1 % of p0 on an elastic strip, 10 elements across a).
+  const Real peak_pressure = sim.state().pass_records.back().peak_pressure;
+  const Real p0 = 2307.6923;
+  if (contact == "hertz") {
+    CHECK(peak_pressure == Approx(p0).epsilon(1e-6));
+  } else {
+    Real nodal = 0.0;
+    for (const PressureSample& s : pressure_profile(sim.state().contact, sim.state().pose))
+      nodal = std::max(nodal, s.p);
+    CHECK(peak_pressure == nodal);
+    CHECK(peak_pressure != Approx(p0).epsilon(1e-6));
+    CHECK(peak_pressure == Approx(p0).epsilon(0.01));
+  }
 }
 
 TEST_CASE("stationary passes with the roller's contact: elastic shakedown below the limit, the contact's force P",

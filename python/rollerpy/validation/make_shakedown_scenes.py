@@ -3,7 +3,7 @@
 
 usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
                                       [--element-size 0.2] [--out problems]
-                                      [--kinematic E_T]
+                                      [--kinematic E_T] [--track 8] [--step 0.5]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -17,6 +17,10 @@ elements across 2a, 4.8e4 dofs, the strip of `rollerpy bench-passes`) and --out 
 --kinematic E_T writes problems/shakedown_kinematic_pXX.toml instead: the same strip with linear
 kinematic (Prager) hardening of tangent modulus E_T, whose cycles above Johnson's 4.0 close
 (plastic shakedown) where the perfectly plastic strip ratchets (docs/validation.md).
+--track T and --step S (in units of a) roll T a in steps of S a instead of 8a in 0.5a: the
+uniform elements then reach 2a past the travel's end, and the window is the middle half of the
+longer track (the long transient passes of docs/validation.md, "Stationary passes against
+transient passes").
 """
 import math
 import os
@@ -52,10 +56,13 @@ def graded(x0, x1, h_fine, n, fine_at_end):
     return out
 
 
-def lines(h):
+def lines(h, track):
+    """Uniform h from 2a before the press to 2a past the travel's end, graded 88 mm either side."""
+    fine = A * track + 4.0 * A
+    end = 88.0 + fine
     xs = [0.0] + graded(0.0, 88.0, h, 24, fine_at_end=True)
-    xs += [88.0 + h * i for i in range(int(round(24.0 / h)) + 1)]
-    xs += graded(112.0, 200.0, h, 24, fine_at_end=False) + [200.0]
+    xs += [88.0 + h * i for i in range(int(round(fine / h)) + 1)]
+    xs += graded(end, end + 88.0, h, 24, fine_at_end=False) + [end + 88.0]
     ys = [0.0] + graded(0.0, 94.0, h, 22, fine_at_end=True)
     ys += [94.0 + h * i for i in range(int(round(6.0 / h)) + 1)]
     return xs, ys
@@ -80,9 +87,13 @@ def hardening_lines(kinematic):
     return 'hardening = "kinematic"     # Prager: the yield surface moves, C = H\'\ntangent_modulus = %g' % kinematic
 
 
-def scene(ratio, passes, h, kinematic=None):
+def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5):
+    """The scene's name and text; track and step in units of a (the shipped scenes: 8a in 0.5a)."""
     sigma_y = math.sqrt(3.0) * P0 / ratio
-    xs, ys = lines(h)
+    xs, ys = lines(h, track)
+    rolls = int(round(track / step))
+    if rolls < 1 or abs(rolls * step - track) > 1e-9 * track:
+        raise SystemExit("make-shakedown-scenes: --track %g is not a whole number of --step %g" % (track, step))
     prefix = "shakedown_p" if kinematic is None else "shakedown_kinematic_p"
     name = prefix + "%02d" % round(10 * ratio)
     law = "elastic-perfectly plastic strip" if kinematic is None else "Prager-hardening strip"
@@ -97,7 +108,7 @@ kinematics = "small"
 
 [mesh]
 element = "Q4"
-length = 200.0
+length = {length!r}
 height = 100.0
 x_lines = {xl}
 y_lines = {yl}
@@ -110,13 +121,13 @@ yield_stress = {sy:.4f}
 {hardening}
 
 [steps]
-count = 21              # one pass
+count = {count}              # one pass
 
 [passes]
 count = {passes}
 
 [output]
-every = 21              # fields at the end of every pass
+every = {count}              # fields at the end of every pass
 
 [[displacement]]        # the half-space's far field: base bonded
 nodes = "bottom"
@@ -131,13 +142,13 @@ centre = [92.0, 200.0]  # touching the top at x = 92
 steps = [1, 3]
 fy = {load:.4f}
 
-[[roller.path]]         # roll 8a under P
-steps = [4, 19]
-dx = 16.0
+[[roller.path]]         # roll {track:g}a under P
+steps = [4, {roll_end}]
+dx = {travel!r}
 fy = {load:.4f}
 
 [[roller.path]]         # lift clear
-steps = [20, 21]
+steps = [{lift_start}, {count}]
 dy = 0.3
 
 [contact]
@@ -145,15 +156,16 @@ backend = "ipopt"
 friction = 0.0
 """.format(ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
            E=E, NU=NU, sy=sigma_y, R=R, law=law, hardening=hardening_lines(kinematic),
-           title_law="" if kinematic is None else ", kinematic hardening")
+           title_law="" if kinematic is None else ", kinematic hardening", length=round(xs[-1], 6), count=rolls + 5,
+           track=track, roll_end=rolls + 3, travel=round(A * track, 6), lift_start=rolls + 4)
 
 
-def write_scenes(loads, passes, element_size, out, kinematic=None):
+def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5):
     """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
     os.makedirs(out, exist_ok=True)
     written = []
     for ratio in loads:
-        name, text = scene(ratio, passes, element_size, kinematic)
+        name, text = scene(ratio, passes, element_size, kinematic, track, step)
         path = os.path.join(out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)
@@ -169,7 +181,10 @@ def main(argv=None):
     ap.add_argument("--out", default=PROBLEMS)
     ap.add_argument("--kinematic", type=float, default=None, metavar="E_T",
                     help="linear kinematic hardening with this tangent modulus [MPa]")
+    ap.add_argument("--track", type=float, default=8.0, help="the roller's travel under load, in units of a")
+    ap.add_argument("--step", type=float, default=0.5, help="the roller's travel per step, in units of a")
     args = ap.parse_args(argv)
     loads = [float(r) for r in args.loads.split(",")]
-    for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic):
+    for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic,
+                             args.track, args.step):
         print("wrote", path)
