@@ -18,6 +18,7 @@ COMMANDS = {
     "shakedown": ("rollerpy.validation.shakedown", "repeated rolling against Johnson's shakedown results"),
     "melan-check": ("rollerpy.validation.melan_check", "transient passes 5 % below and above Melan's limit"),
     "make-shakedown-scenes": ("rollerpy.validation.make_shakedown_scenes", "write problems/shakedown_pXX.toml"),
+    "stationary-check": ("rollerpy.validation.stationary_check", "stationary passes against long transient passes"),
     "carter": ("rollerpy.validation.carter", "steady rolling with creep against Carter's theory"),
     "cattaneo-mindlin": ("rollerpy.validation.cattaneo_mindlin", "Cattaneo's stick zone under prescribed forces"),
     "rolling-suite": ("rollerpy.validation.rolling_suite", "rolling-friction robustness suite"),

@@ -1,0 +1,203 @@
+"""Stationary passes against long transient passes (docs/validation.md, "Stationary passes
+against transient passes"). The shakedown strip at one load (make-shakedown-scenes) is rolled
+over a long track, so that the transient pass reaches its steady state, at one element size h:
+- the transient method at several step lengths (its error: the steps);
+- the stationary pass with the roller's contact, the roller's centre at several places between
+  two nodes (its error: the contact resolved at nodes that stand still under the roller);
+- the stationary pass with the Hertz load.
+Every pass is measured on the same stretch of every run's fields: 14a to 20a past the press (a
+24a track: past the start's transient, 4a before the roller stops), down to 4a: the mean
+increment of equivalent plastic strain, the band's at 0.78a, the residual sigma_xx by depth (row
+means). The stationary runs' residual strips are uniform along x, the same stretch is theirs.
+
+usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
+                                   [--phases 0,0.25,0.5] [--track 24] [--passes 2]
+                                   [--kinematic E_T] [--set KEY=VALUE ...] [--out out/stationary_check/hH]
+                                   [--roller ./build/roller] [--timeout 14400]
+
+A run whose summary.json says completed is not run again (remove its folder to rerun it).
+Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step)
+and OUT/stationary_check.png (pass 1's increment against the step; the residual sigma_xx by depth).
+"""
+import os
+import sys
+
+import numpy as np
+
+from ..command import parser
+from ..outputs import read_summary
+from ..paths import ROOT
+from ..runner import run, set_options
+from ..vtu import read_vtu
+from .make_shakedown_scenes import A, write_scenes
+
+PRESS_X = 92.0                 # the scenes' press point [mm]
+STRETCH = (14.0, 20.0)         # the measured stretch, in a past the press
+WINDOW_DEPTH, BAND_DEPTH = 4.0, 0.78
+
+
+def geometry(vtu):
+    """The elements' centroids, areas and heights in the reference configuration."""
+    nodes = vtu.reference[:, :2]
+    corners = nodes[vtu.elements]
+    centroid = corners.mean(axis=1)
+    x, y = corners[..., 0], corners[..., 1]
+    area = 0.5 * np.abs(np.sum(x * np.roll(y, -1, axis=1) - np.roll(x, -1, axis=1) * y, axis=1))
+    return centroid, area, y.max(axis=1) - y.min(axis=1)
+
+
+def stretch_metrics(fields, before, x0, x1, a):
+    """The pass between two field files on the stretch x0..x1: mean and band increments of
+    equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
+    increment integrated over the depth [mm] (the mean depends on where the rows of a graded
+    mesh cut 4a, the integral does not), and the residual sigma_xx by depth (the rows'
+    area-weighted means)."""
+    now, start = read_vtu(fields), read_vtu(before)
+    centroid, area, height = geometry(now)
+    top = now.reference[:, 1].max()
+    depth = top - centroid[:, 1]
+    inside = (centroid[:, 0] >= x0) & (centroid[:, 0] <= x1) & (depth <= WINDOW_DEPTH * a)
+    band = inside & (np.abs(depth - BAND_DEPTH * a) <= 0.25 * a)
+    increment = np.ravel(now.cell_data["eq_plastic_strain"]) - np.ravel(start.cell_data["eq_plastic_strain"])
+    sxx = np.asarray(now.cell_data["stress"])[:, 0]
+    rows = np.round(depth[inside], 6)
+    profile, integral = [], 0.0
+    for d in np.unique(rows):
+        k = rows == d
+        weights = area[inside][k]
+        profile.append((d, np.average(sxx[inside][k], weights=weights)))
+        integral += height[inside][k][0] * np.average(increment[inside][k], weights=weights)
+    return {"mean": np.average(increment[inside], weights=area[inside]),
+            "integral": integral,
+            "band": np.average(increment[band], weights=area[band]),
+            "sxx": np.array(profile)}
+
+
+def pass_fields(out, passes):
+    """The field files at the start and at the end of every pass of a finished run."""
+    steps = sorted(int(f[5:9]) for f in os.listdir(out) if f.startswith("step_") and f.endswith(".vtu"))
+    if len(steps) != passes + 1:
+        sys.exit("stationary-check: %s holds %d field files, not one a pass and the start" % (out, len(steps)))
+    return [os.path.join(out, "step_%04d.vtu" % s) for s in steps]
+
+
+def ensure_run(roller, scene, out, pairs, timeout):
+    """Runs the scene into out unless a completed run is there; exits with its log on failure."""
+    if (read_summary(out, missing_ok=True) or {}).get("status") == "completed":
+        return
+    result = run([roller, "run", scene, "--out", out, "--overwrite"] + set_options(pairs), out + ".log", timeout)
+    if result.exit_code != 0:
+        sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
+
+
+def measure(out, passes, a):
+    files = pass_fields(out, passes)
+    x0, x1 = PRESS_X + STRETCH[0] * a, PRESS_X + STRETCH[1] * a
+    return [stretch_metrics(files[k + 1], files[k], x0, x1, a) for k in range(passes)]
+
+
+def sxx_gap(run, reference):
+    """The largest difference of the residual sigma_xx by depth over the reference's peak, and
+    the depth where it is."""
+    r, s = reference["sxx"], run["sxx"]
+    gap = np.abs(s[:, 1] - r[:, 1])
+    k = int(np.argmax(gap))
+    return gap[k] / np.max(np.abs(r[:, 1])), r[k, 0]
+
+
+def table(runs, reference, passes):
+    lines = ["| run | pass | mean Δε̄ᵖ to 4a | against the reference | ∫Δε̄ᵖ dz [µm] | band at 0.78a | against | "
+             "residual σ_xx: largest gap / peak, at depth |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for label, metrics in runs:
+        for k in range(passes):
+            m, r = metrics[k], reference[k]
+            gap, depth = sxx_gap(m, r)
+            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.1f %%, %.2f mm |" % (
+                label, k + 1, m["mean"], 100 * (m["mean"] / r["mean"] - 1), 1000 * m["integral"], m["band"],
+                100 * (m["band"] / r["band"] - 1), 100 * gap, depth))
+    return "\n".join(lines) + "\n"
+
+
+def figure(path, transients, stationaries, passes):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    steps = [s for s, _ in transients]
+    left.plot(steps, [m[0]["mean"] for _, m in transients], "o-k", label="transient")
+    for (label, metrics), style in zip(stationaries, ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))):
+        left.axhline(metrics[0]["mean"], ls=style, color="C0" if "roller" in label else "C3", label=label)
+    left.set_xscale("log")
+    left.set_xlabel("transient step [a]")
+    left.set_ylabel("pass 1: mean Δε̄ᵖ to 4a")
+    left.legend(fontsize=7)
+    finest = transients[-1][1][passes - 1]["sxx"]
+    right.plot(finest[:, 1], finest[:, 0], "o-k", ms=3, label="transient, step %ga" % transients[-1][0])
+    for (label, metrics), style in zip(stationaries, ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))):
+        p = metrics[passes - 1]["sxx"]
+        right.plot(p[:, 1], p[:, 0], ls=style, color="C0" if "roller" in label else "C3", label=label)
+    right.invert_yaxis()
+    right.set_xlabel("residual σ_xx after pass %d [MPa]" % passes)
+    right.set_ylabel("depth [mm]")
+    right.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def main(argv=None):
+    ap = parser("stationary-check", __doc__)
+    ap.add_argument("--load", type=float, default=4.5, help="p0/k")
+    ap.add_argument("--element-size", type=float, default=0.4)
+    ap.add_argument("--steps", default="0.2,0.1,0.05", help="the transient's steps, in a")
+    ap.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
+    ap.add_argument("--track", type=float, default=24.0)
+    ap.add_argument("--passes", type=int, default=2)
+    ap.add_argument("--kinematic", type=float, default=None, metavar="E_T")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a scene value for every run (roller run --set), e.g. another hardening law")
+    ap.add_argument("--out", default=None)
+    ap.add_argument("--roller", default="./build/roller")
+    ap.add_argument("--timeout", type=float, default=14400.0)
+    args = ap.parse_args(argv)
+    if args.track < STRETCH[1] + 4.0:
+        sys.exit("stationary-check: --track %g is shorter than the measured stretch's end %ga plus 4a" % (
+            args.track, STRETCH[1]))
+    os.chdir(ROOT)
+    roller = os.path.abspath(args.roller)
+    h = args.element_size
+    out = args.out or os.path.join("out", "stationary_check", "h%g" % h)
+    steps = sorted((float(s) for s in args.steps.split(",")), reverse=True)
+    common = [tuple(item.split("=", 1)) for item in args.set]
+    if any(len(pair) != 2 for pair in common):
+        sys.exit("stationary-check: --set takes KEY=VALUE")
+    transients, stationaries, rows = [], [], []
+    scene = None
+    for s in steps:
+        folder = os.path.join(out, "scenes_s%g" % s)
+        scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
+        run_out = os.path.join(out, "transient_s%g" % s)
+        ensure_run(roller, scene, run_out, common, args.timeout)
+        metrics = measure(run_out, args.passes, A)
+        transients.append((s, metrics))
+        rows.append(("transient, step %ga" % s, metrics))
+        print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
+    stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
+    variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
+                 ("roller.centre", "[%r, 200.0]" % (PRESS_X + p * h))], "stationary_roller_ph%g" % p)
+                for p in (float(v) for v in args.phases.split(","))]
+    variants.append(("stationary, Hertz load", [], "stationary_hertz"))
+    for label, pairs, name in variants:
+        run_out = os.path.join(out, name)
+        ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
+        metrics = measure(run_out, args.passes, A)
+        stationaries.append((label, metrics))
+        rows.append((label, metrics))
+        print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
+    with open(os.path.join(out, "stationary_check.md"), "w") as f:
+        f.write("p0/k = %g, h = %g mm, track %ga; the reference: the transient, step %ga\n\n" % (
+            args.load, h, args.track, steps[-1]))
+        f.write(table(rows, transients[-1][1], args.passes))
+    figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes)
+    print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
+    return 0

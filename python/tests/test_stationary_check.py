@@ -1,0 +1,47 @@
+"""stationary-check's measure of a pass from the field files: over passes.csv's own window it
+gives passes.csv's numbers (roller's C++ measure_pass), for a transient run and for a stationary
+one, and a stationary run's residual strip gives the same numbers on any stretch of it."""
+import os
+
+import pytest
+
+from rollerpy.outputs import read_numbers
+from rollerpy.runner import roller_command, run, set_options
+from rollerpy.validation.make_shakedown_scenes import A, write_scenes
+from rollerpy.validation.stationary_check import pass_fields, stretch_metrics
+
+
+@pytest.fixture(scope="module")
+def runs(roller, tmp_path_factory):
+    """The shakedown strip at p0/k = 4.5 on 0.5 mm elements, 2 passes of a 6a track in steps of a,
+    with both methods (a few seconds each)."""
+    folder = str(tmp_path_factory.mktemp("stationary_check"))
+    scene, = write_scenes([4.5], 2, 0.5, folder, track=6.0, step=1.0)
+    outs = {}
+    for method, pairs in (("transient", []), ("stationary", [("passes.method", '"stationary"'),
+                                                             ("output.every", "1")])):
+        out = os.path.join(folder, method)
+        run(roller_command(roller, scene, out, *set_options(pairs)), out + ".log").check()
+        outs[method] = out
+    return outs
+
+
+@pytest.mark.parametrize("method", ["transient", "stationary"])
+def test_the_window_of_passes_csv_gives_its_numbers(runs, method):
+    rows = read_numbers(os.path.join(runs[method], "passes.csv"))
+    files = pass_fields(runs[method], 2)
+    for k, row in enumerate(rows):
+        m = stretch_metrics(files[k + 1], files[k], row["track_start"], row["track_end"], A)
+        assert m["mean"] > 1e-4  # the pass yields
+        assert m["mean"] == pytest.approx(row["mean_plastic_increment"], rel=1e-9)
+        assert m["band"] == pytest.approx(row["band_plastic_increment"], rel=1e-9)
+
+
+def test_a_stationary_residual_strip_is_the_same_on_every_stretch(runs):
+    files = pass_fields(runs["stationary"], 2)
+    near = stretch_metrics(files[1], files[0], 40.0, 48.0, A)
+    far = stretch_metrics(files[1], files[0], 60.0, 68.0, A)
+    assert near["mean"] > 1e-4
+    assert near["mean"] == pytest.approx(far["mean"], rel=1e-6)
+    assert near["integral"] == pytest.approx(far["integral"], rel=1e-6)
+    assert near["sxx"][:, 1] == pytest.approx(far["sxx"][:, 1], rel=1e-6, abs=1e-6)
