@@ -1,4 +1,4 @@
-"""Johnson's shakedown limit of a line contact (rollerpy.validation.line_contact_shakedown), which
+"""Johnson's shakedown limit of a line contact (rollerpy.line_contact_shakedown), which
 the shakedown map draws: McEwen's stresses meet the classical values (the surface tractions, the
 largest orthogonal shear 0.25 p0 at z = 0.5a and principal shear 0.30 p0 at z = 0.78a of the
 frictionless contact) and the limit is Johnson's 4.0 without friction and the surface limit 1/mu
@@ -6,7 +6,7 @@ at mu = 0.5."""
 import numpy as np
 import pytest
 
-from rollerpy.validation.line_contact_shakedown import mcewen, shakedown_limit
+from rollerpy.line_contact_shakedown import mcewen, shakedown_limit
 
 
 def test_surface_tractions():

@@ -2,7 +2,7 @@
 problems/studies/shakedown_map.toml; docs/validation.md, "Shakedown map"): every point at its
 traction coefficient mu (contact.friction) and load p0/k (passes.p0_over_k), marked by its verdict
 (elastic shakedown, plastic shakedown, ratchetting; failed points as crosses), with Johnson's
-shakedown limit over it (rollerpy.validation.line_contact_shakedown) and the surface limit 1/mu; prints a
+shakedown limit over it (rollerpy.line_contact_shakedown) and the surface limit 1/mu; prints a
 Markdown table of the points against that limit.
 
 With --melan SCENE, also the limit `roller shakedown-limit` computes for the scene's own strip
@@ -23,7 +23,7 @@ import numpy as np
 from ..command import parser
 from ..outputs import read_rows
 from ..paths import DEFAULT_ROLLER
-from ..validation.line_contact_shakedown import shakedown_limit
+from ..line_contact_shakedown import shakedown_limit
 from . import plt
 
 STYLE = {"elastic_shakedown": ("o", "C2", "elastic shakedown"),
