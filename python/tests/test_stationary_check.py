@@ -35,6 +35,7 @@ def test_the_window_of_passes_csv_gives_its_numbers(runs, method):
         assert m["mean"] > 1e-4  # the pass yields
         assert m["mean"] == pytest.approx(row["mean_plastic_increment"], rel=1e-9)
         assert m["band"] == pytest.approx(row["band_plastic_increment"], rel=1e-9)
+        assert m["net_shear"] == pytest.approx(row["residual_shear_increment"], rel=1e-9, abs=1e-15)
 
 
 def test_a_stationary_residual_strip_is_the_same_on_every_stretch(runs):

@@ -5,10 +5,11 @@ over a long track, so that the transient pass reaches its steady state, at one e
 - the stationary pass with the roller's contact, the roller's centre at several places between
   two nodes (its error: the contact resolved at nodes that stand still under the roller);
 - the stationary pass with the Hertz load.
-Every pass is measured on the same stretch of every run's fields: 14a to 20a past the press (a
-24a track: past the start's transient, 4a before the roller stops), down to 4a: the mean
-increment of equivalent plastic strain, the band's at 0.78a, the residual sigma_xx by depth (row
-means). The stationary runs' residual strips are uniform along x, the same stretch is theirs.
+Every pass of a transient run is measured on the same stretch of its fields: 14a to 20a past the
+press (a 24a track: past the start's transient, 4a before the roller stops), down to 4a: the mean
+increment of equivalent plastic strain, its depth integral, the band's at 0.78a and its net shear,
+the residual sigma_xx by depth (row means). The stationary runs' residual strips are uniform along
+x; they are measured on their own window (passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
                                    [--phases 0,0.25,0.5] [--track 24] [--passes 2]
@@ -25,7 +26,7 @@ import sys
 import numpy as np
 
 from ..command import parser
-from ..outputs import read_summary
+from ..outputs import read_numbers, read_summary
 from ..paths import ROOT
 from ..runner import run, set_options
 from ..vtu import read_vtu
@@ -50,8 +51,8 @@ def stretch_metrics(fields, before, x0, x1, a):
     """The pass between two field files on the stretch x0..x1: mean and band increments of
     equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
-    mesh cut 4a, the integral does not), and the residual sigma_xx by depth (the rows'
-    area-weighted means)."""
+    mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass, and
+    the residual sigma_xx by depth (the rows' area-weighted means)."""
     now, start = read_vtu(fields), read_vtu(before)
     centroid, area, height = geometry(now)
     top = now.reference[:, 1].max()
@@ -59,6 +60,7 @@ def stretch_metrics(fields, before, x0, x1, a):
     inside = (centroid[:, 0] >= x0) & (centroid[:, 0] <= x1) & (depth <= WINDOW_DEPTH * a)
     band = inside & (np.abs(depth - BAND_DEPTH * a) <= 0.25 * a)
     increment = np.ravel(now.cell_data["eq_plastic_strain"]) - np.ravel(start.cell_data["eq_plastic_strain"])
+    shear = 2.0 * (np.asarray(now.cell_data["strain"])[:, 3] - np.asarray(start.cell_data["strain"])[:, 3])
     sxx = np.asarray(now.cell_data["stress"])[:, 0]
     rows = np.round(depth[inside], 6)
     profile, integral = [], 0.0
@@ -70,6 +72,7 @@ def stretch_metrics(fields, before, x0, x1, a):
     return {"mean": np.average(increment[inside], weights=area[inside]),
             "integral": integral,
             "band": np.average(increment[band], weights=area[band]),
+            "net_shear": np.average(shear[band], weights=area[band]),
             "sxx": np.array(profile)}
 
 
@@ -90,31 +93,41 @@ def ensure_run(roller, scene, out, pairs, timeout):
         sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
 
 
-def measure(out, passes, a):
+def measure(out, passes, a, stationary):
+    """Every pass of a run: the transient's on the steady stretch; the stationary's on its own
+    window (passes.csv), at the extraction column: its states are uniform along x, but its
+    displacement, and with it the total strain of the net shear, is the pass's only downstream."""
     files = pass_fields(out, passes)
-    x0, x1 = PRESS_X + STRETCH[0] * a, PRESS_X + STRETCH[1] * a
-    return [stretch_metrics(files[k + 1], files[k], x0, x1, a) for k in range(passes)]
+    if stationary:
+        windows = [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
+    else:
+        windows = [(PRESS_X + STRETCH[0] * a, PRESS_X + STRETCH[1] * a)] * passes
+    return [stretch_metrics(files[k + 1], files[k], *windows[k], a) for k in range(passes)]
 
 
-def sxx_gap(run, reference):
-    """The largest difference of the residual sigma_xx by depth over the reference's peak, and
-    the depth where it is."""
+def sxx_gap(run, reference, below=0.0):
+    """The largest difference of the residual sigma_xx by depth (rows deeper than `below`) over
+    the reference's peak, and the depth where it is."""
     r, s = reference["sxx"], run["sxx"]
-    gap = np.abs(s[:, 1] - r[:, 1])
+    gap = np.where(r[:, 0] > below, np.abs(s[:, 1] - r[:, 1]), 0.0)
     k = int(np.argmax(gap))
     return gap[k] / np.max(np.abs(r[:, 1])), r[k, 0]
 
 
 def table(runs, reference, passes):
     lines = ["| run | pass | mean Δε̄ᵖ to 4a | against the reference | ∫Δε̄ᵖ dz [µm] | band at 0.78a | against | "
-             "residual σ_xx: largest gap / peak, at depth |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
+             "net Δγ_xy in the band | residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for label, metrics in runs:
         for k in range(passes):
             m, r = metrics[k], reference[k]
             gap, depth = sxx_gap(m, r)
-            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.1f %%, %.2f mm |" % (
-                label, k + 1, m["mean"], 100 * (m["mean"] / r["mean"] - 1), 1000 * m["integral"], m["band"],
-                100 * (m["band"] / r["band"] - 1), 100 * gap, depth))
+            deep_gap, deep = sxx_gap(m, r, below=0.5 * A)
+            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.2e | %.1f %%, %.2f mm | "
+                         "%.1f %%, %.2f mm |" % (
+                             label, k + 1, m["mean"], 100 * (m["mean"] / r["mean"] - 1), 1000 * m["integral"],
+                             m["band"], 100 * (m["band"] / r["band"] - 1), m["net_shear"], 100 * gap, depth,
+                             100 * deep_gap, deep))
     return "\n".join(lines) + "\n"
 
 
@@ -122,24 +135,34 @@ def figure(path, transients, stationaries, passes):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    styles = ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))
+    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(15, 4.4))
     steps = [s for s, _ in transients]
     left.plot(steps, [m[0]["mean"] for _, m in transients], "o-k", label="transient")
-    for (label, metrics), style in zip(stationaries, ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))):
-        left.axhline(metrics[0]["mean"], ls=style, color="C0" if "roller" in label else "C3", label=label)
+    finest = "transient, step %ga" % transients[-1][0]
+    numbers = range(1, passes + 1)
+    middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
+    p = transients[-1][1][passes - 1]["sxx"]
+    right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest)
+    for (label, metrics), style in zip(stationaries, styles):
+        colour = "C0" if "roller" in label else "C3"
+        left.axhline(metrics[0]["mean"], ls=style, color=colour, label=label)
+        middle.plot(numbers, [m["net_shear"] for m in metrics], ls=style, color=colour, marker=".", label=label)
+        p = metrics[passes - 1]["sxx"]
+        right.plot(p[:, 1], p[:, 0], ls=style, color=colour, label=label)
     left.set_xscale("log")
     left.set_xlabel("transient step [a]")
     left.set_ylabel("pass 1: mean Δε̄ᵖ to 4a")
-    left.legend(fontsize=7)
-    finest = transients[-1][1][passes - 1]["sxx"]
-    right.plot(finest[:, 1], finest[:, 0], "o-k", ms=3, label="transient, step %ga" % transients[-1][0])
-    for (label, metrics), style in zip(stationaries, ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))):
-        p = metrics[passes - 1]["sxx"]
-        right.plot(p[:, 1], p[:, 0], ls=style, color="C0" if "roller" in label else "C3", label=label)
+    middle.set_yscale("symlog", linthresh=1e-5)
+    middle.axhline(0.0, color="0.6", lw=0.8)
+    middle.set_xticks(list(numbers))
+    middle.set_xlabel("pass")
+    middle.set_ylabel("net Δγ_xy at 0.78a (+: along the travel)")
     right.invert_yaxis()
     right.set_xlabel("residual σ_xx after pass %d [MPa]" % passes)
     right.set_ylabel("depth [mm]")
-    right.legend(fontsize=7)
+    for ax in (left, middle, right):
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -178,7 +201,7 @@ def main(argv=None):
         scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
-        metrics = measure(run_out, args.passes, A)
+        metrics = measure(run_out, args.passes, A, stationary=False)
         transients.append((s, metrics))
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
@@ -190,7 +213,7 @@ def main(argv=None):
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
-        metrics = measure(run_out, args.passes, A)
+        metrics = measure(run_out, args.passes, A, stationary=True)
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
