@@ -5,8 +5,9 @@ over a long track, so that the transient pass reaches its steady state, at one e
 - the stationary pass with the roller's contact, the roller's centre at several places between
   two nodes (its error: the contact resolved at nodes that stand still under the roller);
 - the stationary pass with the Hertz load.
-Every pass of a transient run is measured on the same stretch of its fields: 14a to 20a past the
-press (a 24a track: past the start's transient, 4a before the roller stops), down to 4a: the mean
+Every pass of a transient run is measured on the same stretch of its fields, from 10a to 4a before
+the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
+of where the roller stops), down to 4a: the mean
 increment of equivalent plastic strain, its depth integral, the band's at 0.78a and its net shear,
 the residual sigma_xx by depth (row means). The stationary runs' residual strips are uniform along
 x; they are measured on their own window (passes.csv), where their displacement is the pass's.
@@ -33,7 +34,7 @@ from ..vtu import read_vtu
 from .make_shakedown_scenes import A, write_scenes
 
 PRESS_X = 92.0                 # the scenes' press point [mm]
-STRETCH = (14.0, 20.0)         # the measured stretch, in a past the press
+STRETCH = (10.0, 4.0)          # the measured stretch: from 10a to 4a before the track's end
 WINDOW_DEPTH, BAND_DEPTH = 4.0, 0.78
 
 
@@ -93,7 +94,7 @@ def ensure_run(roller, scene, out, pairs, timeout):
         sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
 
 
-def measure(out, passes, a, stationary):
+def measure(out, passes, a, track, stationary):
     """Every pass of a run: the transient's on the steady stretch; the stationary's on its own
     window (passes.csv), at the extraction column: its states are uniform along x, but its
     displacement, and with it the total strain of the net shear, is the pass's only downstream."""
@@ -101,7 +102,8 @@ def measure(out, passes, a, stationary):
     if stationary:
         windows = [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
     else:
-        windows = [(PRESS_X + STRETCH[0] * a, PRESS_X + STRETCH[1] * a)] * passes
+        end = PRESS_X + track * a
+        windows = [(end - STRETCH[0] * a, end - STRETCH[1] * a)] * passes
     return [stretch_metrics(files[k + 1], files[k], *windows[k], a) for k in range(passes)]
 
 
@@ -183,9 +185,9 @@ def main(argv=None):
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=14400.0)
     args = ap.parse_args(argv)
-    if args.track < STRETCH[1] + 4.0:
-        sys.exit("stationary-check: --track %g is shorter than the measured stretch's end %ga plus 4a" % (
-            args.track, STRETCH[1]))
+    if args.track < 2.0 * STRETCH[0]:
+        sys.exit("stationary-check: --track %g: the measured stretch starts %ga before the end, give at least %ga" % (
+            args.track, STRETCH[0], 2.0 * STRETCH[0]))
     os.chdir(ROOT)
     roller = os.path.abspath(args.roller)
     h = args.element_size
@@ -201,7 +203,7 @@ def main(argv=None):
         scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
-        metrics = measure(run_out, args.passes, A, stationary=False)
+        metrics = measure(run_out, args.passes, A, args.track, stationary=False)
         transients.append((s, metrics))
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
@@ -213,7 +215,7 @@ def main(argv=None):
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
-        metrics = measure(run_out, args.passes, A, stationary=True)
+        metrics = measure(run_out, args.passes, A, args.track, stationary=True)
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
