@@ -140,21 +140,34 @@ def figure(path, transients, stationaries, passes):
     styles = ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))
     fig, (left, middle, right) = plt.subplots(1, 3, figsize=(15, 4.4))
     steps = [s for s, _ in transients]
-    left.plot(steps, [m[0]["mean"] for _, m in transients], "o-k", label="transient")
     finest = "transient, step %ga" % transients[-1][0]
     numbers = range(1, passes + 1)
+    by_step = len(steps) > 1  # pass 1 against the transient's step, else every pass's increment
+    if by_step:
+        left.plot(steps, [m[0]["mean"] for _, m in transients], "o-k", label="transient")
+    else:
+        left.plot(numbers, [m["mean"] for m in transients[-1][1]], "o-k", label=finest)
     middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
     p = transients[-1][1][passes - 1]["sxx"]
     right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest)
     for (label, metrics), style in zip(stationaries, styles):
         colour = "C0" if "roller" in label else "C3"
-        left.axhline(metrics[0]["mean"], ls=style, color=colour, label=label)
+        if by_step:
+            left.axhline(metrics[0]["mean"], ls=style, color=colour, label=label)
+        else:
+            left.plot(numbers, [m["mean"] for m in metrics], ls=style, color=colour, marker=".", label=label)
         middle.plot(numbers, [m["net_shear"] for m in metrics], ls=style, color=colour, marker=".", label=label)
         p = metrics[passes - 1]["sxx"]
         right.plot(p[:, 1], p[:, 0], ls=style, color=colour, label=label)
-    left.set_xscale("log")
-    left.set_xlabel("transient step [a]")
-    left.set_ylabel("pass 1: mean Δε̄ᵖ to 4a")
+    if by_step:
+        left.set_xscale("log")
+        left.set_xlabel("transient step [a]")
+        left.set_ylabel("pass 1: mean Δε̄ᵖ to 4a")
+    else:
+        left.set_yscale("log")
+        left.set_xticks(list(numbers))
+        left.set_xlabel("pass")
+        left.set_ylabel("mean Δε̄ᵖ to 4a")
     middle.set_yscale("symlog", linthresh=1e-5)
     middle.axhline(0.0, color="0.6", lw=0.8)
     middle.set_xticks(list(numbers))
