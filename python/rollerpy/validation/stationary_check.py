@@ -7,10 +7,10 @@ over a long track, so that the transient pass reaches its steady state, at one e
 - the stationary pass with the Hertz load.
 Every pass of a transient run is measured on the same stretch of its fields, from 10a to 4a before
 the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
-of where the roller stops), down to 4a: the mean
-increment of equivalent plastic strain, its depth integral, the band's at 0.78a and its net shear,
-the residual sigma_xx by depth (row means). The stationary runs' residual strips are uniform along
-x; they are measured on their own window (passes.csv), where their displacement is the pass's.
+of where the roller stops), down to 4a: the mean increment of equivalent plastic strain, its depth
+integral, the band's at 0.78a and its net shear, the residual sigma_xx by depth (row means). The
+stationary runs' residual strips are uniform along x; they are measured on their own window
+(passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
                                    [--phases 0,0.25,0.5] [--track 24] [--passes 2]
@@ -19,7 +19,9 @@ usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.
 
 A run whose summary.json says completed is not run again (remove its folder to rerun it).
 Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step)
-and OUT/stationary_check.png (pass 1's increment against the step; the residual sigma_xx by depth).
+and OUT/stationary_check.png (pass 1's increment against the step, or with one step every pass's;
+the net shear per pass; the residual sigma_xx by depth after the last pass). Each run's progress is
+in its log beside its folder.
 """
 import os
 import sys
@@ -89,6 +91,7 @@ def ensure_run(roller, scene, out, pairs, timeout):
     """Runs the scene into out unless a completed run is there; exits with its log on failure."""
     if (read_summary(out, missing_ok=True) or {}).get("status") == "completed":
         return
+    print("stationary-check: running %s (progress in %s.log)" % (out, out), flush=True)
     result = run([roller, "run", scene, "--out", out, "--overwrite"] + set_options(pairs), out + ".log", timeout)
     if result.exit_code != 0:
         sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
@@ -221,6 +224,7 @@ def main(argv=None):
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
     stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
+    # The scenes' roller starts at (PRESS_X, 200): moved along x by a fraction of an element.
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
                  ("roller.centre", "[%r, 200.0]" % (PRESS_X + p * h))], "stationary_roller_ph%g" % p)
                 for p in (float(v) for v in args.phases.split(","))]
