@@ -164,6 +164,9 @@ def figure(path, transients, stationaries, passes):
         right.plot(p[:, 1], p[:, 0], ls=style, color=colour, label=label)
     if by_step:
         left.set_xscale("log")
+        left.set_xticks(steps)
+        left.set_xticklabels(["%g" % v for v in steps])
+        left.minorticks_off()
         left.set_xlabel("transient step [a]")
         left.set_ylabel("pass 1: mean Δε̄ᵖ to 4a")
     else:
@@ -172,6 +175,9 @@ def figure(path, transients, stationaries, passes):
         left.set_xlabel("pass")
         left.set_ylabel("mean Δε̄ᵖ to 4a")
     middle.set_yscale("symlog", linthresh=1e-5)
+    limits = middle.get_ylim()
+    middle.set_yticks([t for t in middle.get_yticks() if t == 0.0 or abs(t) >= 1e-5])  # none crowding 0
+    middle.set_ylim(limits)
     middle.axhline(0.0, color="0.6", lw=0.8)
     middle.set_xticks(list(numbers))
     middle.set_xlabel("pass")
