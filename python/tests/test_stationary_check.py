@@ -29,9 +29,9 @@ def runs(roller, tmp_path_factory):
 @pytest.mark.parametrize("method", ["transient", "stationary"])
 def test_the_window_of_passes_csv_gives_its_numbers(runs, method):
     rows = read_numbers(os.path.join(runs[method], "passes.csv"))
-    files = pass_fields(runs[method], 2)
+    fields = pass_fields(runs[method], 2)
     for k, row in enumerate(rows):
-        m = stretch_metrics(files[k + 1], files[k], row["track_start"], row["track_end"], A)
+        m = stretch_metrics(fields[k + 1], fields[k], row["track_start"], row["track_end"], A)
         assert m["mean"] > 1e-4  # the pass yields
         assert m["mean"] == pytest.approx(row["mean_plastic_increment"], rel=1e-9)
         assert m["band"] == pytest.approx(row["band_plastic_increment"], rel=1e-9)
@@ -39,9 +39,9 @@ def test_the_window_of_passes_csv_gives_its_numbers(runs, method):
 
 
 def test_a_stationary_residual_strip_is_the_same_on_every_stretch(runs):
-    files = pass_fields(runs["stationary"], 2)
-    near = stretch_metrics(files[1], files[0], 40.0, 48.0, A)
-    far = stretch_metrics(files[1], files[0], 60.0, 68.0, A)
+    fields = pass_fields(runs["stationary"], 2)
+    near = stretch_metrics(fields[1], fields[0], 40.0, 48.0, A)
+    far = stretch_metrics(fields[1], fields[0], 60.0, 68.0, A)
     assert near["mean"] > 1e-4
     assert near["mean"] == pytest.approx(far["mean"], rel=1e-6)
     assert near["integral"] == pytest.approx(far["integral"], rel=1e-6)

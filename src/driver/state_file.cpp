@@ -241,12 +241,12 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
                       file.string(), j.at("step").get<int>(), scene_.total_steps(), j.at("step").get<int>()));
     load_run_state(j, scene_.passes.count > 1, state_);
     dynamics_.load(j, file.string());
-  } catch (const nlohmann::json::out_of_range& e) {
-    throw InputError(
-        fmt::format("{}: a key this roller reads is missing ({}): a state file of an older roller; run the "
-                    "scene again without --resume",
-                    file.string(), e.what()));
   } catch (const nlohmann::json::exception& e) {
+    if (e.id == 403)  // out_of_range.403: a key not found (an index past an array's end is damage)
+      throw InputError(
+          fmt::format("{}: a key this roller reads is missing ({}): a state file of an older roller; run the "
+                      "scene again without --resume",
+                      file.string(), e.what()));
     throw InputError(fmt::format("{}: damaged state file ({})", file.string(), e.what()));
   }
 }

@@ -32,7 +32,7 @@ from ..command import parser
 from ..outputs import read_numbers, read_summary
 from ..paths import ROOT
 from ..runner import run, set_options
-from ..vtu import read_vtu
+from ..vtu import available_steps, read_vtu, vtu_path
 from .make_shakedown_scenes import A, write_scenes
 
 PRESS_X = 92.0                 # the scenes' press point [mm]
@@ -50,13 +50,12 @@ def geometry(vtu):
     return centroid, area, y.max(axis=1) - y.min(axis=1)
 
 
-def stretch_metrics(fields, before, x0, x1, a):
-    """The pass between two field files on the stretch x0..x1: mean and band increments of
+def stretch_metrics(now, start, x0, x1, a):
+    """The pass between two fields (Vtu, at its end and its start) on the stretch x0..x1: mean and band increments of
     equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
     mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass, and
     the residual sigma_xx by depth (the rows' area-weighted means)."""
-    now, start = read_vtu(fields), read_vtu(before)
     centroid, area, height = geometry(now)
     top = now.reference[:, 1].max()
     depth = top - centroid[:, 1]
@@ -80,11 +79,11 @@ def stretch_metrics(fields, before, x0, x1, a):
 
 
 def pass_fields(out, passes):
-    """The field files at the start and at the end of every pass of a finished run."""
-    steps = sorted(int(f[5:9]) for f in os.listdir(out) if f.startswith("step_") and f.endswith(".vtu"))
+    """The fields at the start and at the end of every pass of a finished run, each read once."""
+    steps = available_steps(out)
     if len(steps) != passes + 1:
         sys.exit("stationary-check: %s holds %d field files, not one a pass and the start" % (out, len(steps)))
-    return [os.path.join(out, "step_%04d.vtu" % s) for s in steps]
+    return [read_vtu(vtu_path(out, s)) for s in steps]
 
 
 def ensure_run(roller, scene, out, pairs, timeout):
@@ -101,13 +100,13 @@ def measure(out, passes, a, track, stationary):
     """Every pass of a run: the transient's on the steady stretch; the stationary's on its own
     window (passes.csv), at the extraction column: its states are uniform along x, but its
     displacement, and with it the total strain of the net shear, is the pass's only downstream."""
-    files = pass_fields(out, passes)
+    fields = pass_fields(out, passes)
     if stationary:
         windows = [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
     else:
         end = PRESS_X + track * a
         windows = [(end - STRETCH[0] * a, end - STRETCH[1] * a)] * passes
-    return [stretch_metrics(files[k + 1], files[k], *windows[k], a) for k in range(passes)]
+    return [stretch_metrics(fields[k + 1], fields[k], *windows[k], a) for k in range(passes)]
 
 
 def sxx_gap(run, reference, below=0.0):
