@@ -3,7 +3,8 @@
 // set of committed plastic states (reached by a non-proportional path) by a plastic strain
 // increment, the way the element kernel calls it; median of `repeats` sweeps. Prints one line
 // per law: name, nanoseconds per update, ratio to isotropic (docs/benchmarks.md).
-//   usage: bench_return_mapping [repeats=7] [points=200000]
+//   usage: bench_return_mapping [repeats=7] [points=200000] [law]
+// With a law's name only that law runs, its ratio against isotropic then omitted (for a profiler).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -69,10 +70,12 @@ double sweep_seconds(const MaterialParams& p, const std::vector<MaterialState>& 
 int main(int argc, char** argv) {
   const int repeats = argc > 1 ? std::atoi(argv[1]) : 7;
   const int points = argc > 2 ? std::atoi(argv[2]) : 200000;
+  const std::string only = argc > 3 ? argv[3] : "";
   double checksum = 0.0;
   double iso_ns = 0.0;
   std::printf("law ns_per_update ratio_to_isotropic\n");
   for (const auto& [name, p] : laws()) {
+    if (!only.empty() && name != only) continue;
     const Real ey = p.yield_stress / p.youngs_modulus;
     // Committed states on a non-proportional plastic path; the increment loads them further.
     std::vector<MaterialState> states(static_cast<std::size_t>(points));
@@ -87,7 +90,7 @@ int main(int argc, char** argv) {
     }
     const double ns = 1e9 * sweep_seconds(p, states, de, repeats, checksum) / points;
     if (name == "isotropic") iso_ns = ns;
-    std::printf("%s %.1f %.2f\n", name.c_str(), ns, ns / iso_ns);
+    std::printf("%s %.1f %.2f\n", name.c_str(), ns, iso_ns > 0.0 ? ns / iso_ns : 0.0);
   }
   std::fprintf(stderr, "checksum %g\n", checksum);
   return 0;

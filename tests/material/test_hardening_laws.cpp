@@ -332,6 +332,71 @@ TEST_CASE("The consistent tangent of every hardening law matches finite differen
   }
 }
 
+namespace {
+
+Vec4 deviator_of(const Vec4& stress) {
+  const Real mean = (stress(0) + stress(1) + stress(2)) / 3.0;
+  return stress - mean * Vec4(1.0, 1.0, 1.0, 0.0);
+}
+Real norm_of(const Vec4& t) { return std::sqrt(t(0) * t(0) + t(1) * t(1) + t(2) * t(2) + 2.0 * t(3) * t(3)); }
+
+// Chaboche with four back-stresses, one fast to saturate (gamma d ~ 1 to 10 over one increment).
+MaterialParams chaboche4_fast() {
+  MaterialParams p = base_steel();
+  p.hardening = Hardening::Chaboche;
+  p.n_chaboche = 4;
+  p.chaboche[0] = {1.0e6, 1.0e4};
+  p.chaboche[1] = {1.5e5, 2000.0};
+  p.chaboche[2] = {1.0e4, 60.0};
+  p.chaboche[3] = {2.0e3, 0.0};
+  p.voce_saturation = 60.0;
+  p.voce_rate = 20.0;
+  return p;
+}
+
+}  // namespace
+
+// The consistency iteration stops early (its first iterate from a model, its last Newton step taken
+// to first order; docs/model.md, Hardening laws): what it returns must still solve the
+// backward-Euler equations to round-off, from small to large plastic increments:
+//   q(xi) = sigma_Y(eps_p + dp),  xi = s - sum alpha_i,  s = s_trial - 2G deps_p,  deps_p = 3/2 dp xi/q(xi),
+//   alpha_i (1 + gamma_i dp) = alpha_i^n + 2/3 C_i deps_p.
+TEST_CASE("The return mapping of every recovery law solves the backward-Euler equations to round-off",
+          "[material][hardening]") {
+  for (const auto& [name, p] :
+       std::vector<std::pair<std::string, MaterialParams>>{{"Armstrong-Frederick", armstrong_frederick()},
+                                                           {"Chaboche", chaboche3()},
+                                                           {"Chaboche, four with Voce", chaboche4_fast()}}) {
+    const Real ey = p.yield_stress / p.youngs_modulus;
+    const Real g = p.shear_modulus();
+    const Vec4 direction(0.7, -0.2, 0.05, 0.8);
+    const MaterialUpdate onto_surface = update_material(p, 2.0 * ey * direction, prestate(p));
+    REQUIRE(onto_surface.yielded);
+    const MaterialState s = onto_surface.trial;  // on the surface, loading on along `direction`
+    for (const Real size : {1e-3, 0.03, 0.3, 1.0, 3.0, 10.0, 30.0}) {
+      INFO(name << ", increment " << size << " yield strains");
+      const Vec4 de = size * ey * direction;
+      const MaterialUpdate u = update_material(p, de, s);
+      REQUIRE(u.yielded);
+      const Real dp = u.trial.eq_plastic_strain - s.eq_plastic_strain;
+      Vec4 xi = deviator_of(u.stress);
+      for (int i = 0; i < p.n_chaboche; ++i) xi -= u.trial.back_stress[static_cast<std::size_t>(i)];
+      const Real q = std::sqrt(1.5) * norm_of(xi);
+      CHECK(std::abs(q - u.trial.yield_stress) <= 1e-12 * u.trial.yield_stress);
+      const Vec4 d_eps_p = 1.5 * dp * xi / q;
+      const Vec4 s_trial = deviator_of(s.stress + elastic_matrix(p) * de);
+      CHECK(norm_of(deviator_of(u.stress) - (s_trial - 2.0 * g * d_eps_p)) <= 1e-12 * norm_of(s_trial));
+      for (int i = 0; i < p.n_chaboche; ++i) {
+        const std::size_t k = static_cast<std::size_t>(i);
+        const BackStressLaw law = p.chaboche[k];
+        const Vec4 lhs = u.trial.back_stress[k] * (1.0 + law.recovery * dp);
+        const Vec4 rhs = s.back_stress[k] + 2.0 / 3.0 * law.modulus * d_eps_p;
+        CHECK(norm_of(lhs - rhs) <= 1e-12 * (norm_of(s.back_stress[k]) + law.modulus * norm_of(d_eps_p)));
+      }
+    }
+  }
+}
+
 TEST_CASE("Armstrong-Frederick's tangent is not symmetric, and its frozen recovery has the exact update as fixed point",
           "[material][hardening]") {
   const MaterialParams p = chaboche3();
