@@ -25,6 +25,7 @@ in its log beside its folder.
 """
 import os
 import sys
+import tomllib
 
 import numpy as np
 
@@ -35,7 +36,6 @@ from ..runner import run, set_options
 from ..vtu import available_steps, read_vtu, vtu_path
 from .make_shakedown_scenes import A, write_scenes
 
-PRESS_X = 92.0                 # the scenes' press point [mm]
 STRETCH = (10.0, 4.0)          # the measured stretch: from 10a to 4a before the track's end
 WINDOW_DEPTH, BAND_DEPTH = 4.0, 0.78
 
@@ -96,7 +96,13 @@ def ensure_run(roller, scene, out, pairs, timeout):
         sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
 
 
-def measure(out, passes, a, track, stationary):
+def roller_centre(scene):
+    """The roller's starting centre (x, y) [mm] of a scene file: x is where it presses."""
+    with open(scene, "rb") as f:
+        return tuple(tomllib.load(f)["roller"]["centre"])
+
+
+def measure(out, passes, a, track, stationary, press_x):
     """Every pass of a run: the transient's on the steady stretch; the stationary's on its own
     window (passes.csv), at the extraction column: its states are uniform along x, but its
     displacement, and with it the total strain of the net shear, is the pass's only downstream."""
@@ -104,7 +110,7 @@ def measure(out, passes, a, track, stationary):
     if stationary:
         windows = [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
     else:
-        end = PRESS_X + track * a
+        end = press_x + track * a
         windows = [(end - STRETCH[0] * a, end - STRETCH[1] * a)] * passes
     return [stretch_metrics(fields[k + 1], fields[k], *windows[k], a) for k in range(passes)]
 
@@ -222,22 +228,23 @@ def main(argv=None):
     for s in steps:
         folder = os.path.join(out, "scenes_s%g" % s)
         scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
+        press_x, centre_y = roller_centre(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
-        metrics = measure(run_out, args.passes, A, args.track, stationary=False)
+        metrics = measure(run_out, args.passes, A, args.track, stationary=False, press_x=press_x)
         transients.append((s, metrics))
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
     stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
-    # The scenes' roller starts at (PRESS_X, 200): moved along x by a fraction of an element.
+    # The roller's centre moved along x by a fraction of an element.
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
-                 ("roller.centre", "[%r, 200.0]" % (PRESS_X + p * h))], "stationary_roller_ph%g" % p)
+                 ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
                 for p in (float(v) for v in args.phases.split(","))]
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
-        metrics = measure(run_out, args.passes, A, args.track, stationary=True)
+        metrics = measure(run_out, args.passes, A, args.track, stationary=True, press_x=press_x)
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
