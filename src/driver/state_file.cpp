@@ -9,6 +9,7 @@
 #include "roller/core/json_vectors.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/atomic_file.hpp"
+#include "roller/io/checksum.hpp"
 #include "roller/io/scene_loader.hpp"
 
 namespace roller {
@@ -25,16 +26,9 @@ constexpr const char* kFormat = "roller-state";
 // 3: vectors as byte strings of doubles (core/json_vectors.hpp).
 constexpr int kVersion = 3;
 
-// FNV-1a, 64 bits: a checksum against damaged files (not against tampering).
-std::string fnv1a_hex(const std::uint8_t* data, std::size_t n) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (std::size_t k = 0; k < n; ++k) h = (h ^ data[k]) * 1099511628211ull;
-  return fmt::format("{:016x}", h);
-}
-
 std::string checksum(const nlohmann::json& j) {
   const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(j);
-  return fnv1a_hex(bytes.data(), bytes.size());
+  return fnv1a_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 // The resolved scene without what a resumed run may change (the number of steps, or of passes
@@ -47,7 +41,7 @@ std::string scene_fingerprint(const Scene& scene) {
   else
     s.steps.n_steps = 1;
   const std::string text = scene_to_toml(s);
-  return fnv1a_hex(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+  return fnv1a_hex(text);
 }
 
 // Force control's offsets and slopes: [x, y]; a single number (files written before horizontal

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <unistd.h>
@@ -18,6 +19,7 @@
 
 #include "../support/run_roller.hpp"
 #include "../support/temp_files.hpp"
+#include "roller/io/checksum.hpp"
 #include "roller/io/scene_keys.hpp"
 
 namespace fs = std::filesystem;
@@ -135,11 +137,8 @@ TEST_CASE("roller run --resume continues only the run that wrote the checkpoint,
     doc.erase("checksum");
     doc.erase("last_length");
     const std::vector<std::uint8_t> signed_bytes = nlohmann::json::to_cbor(doc);
-    std::uint64_t h = 14695981039346656037ull;  // the state file's FNV-1a checksum
-    for (const std::uint8_t b : signed_bytes) h = (h ^ b) * 1099511628211ull;
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    doc["checksum"] = std::string(hex);
+    doc["checksum"] =
+        roller::fnv1a_hex(std::string_view(reinterpret_cast<const char*>(signed_bytes.data()), signed_bytes.size()));
     const std::vector<std::uint8_t> older = nlohmann::json::to_cbor(doc);
     std::ofstream(out / "checkpoint.cbor", std::ios::binary)
         .write(reinterpret_cast<const char*>(older.data()), static_cast<std::streamsize>(older.size()));
