@@ -3,12 +3,13 @@ gives passes.csv's numbers (roller's C++ measure_pass), for a transient run and 
 one, and a stationary run's residual strip gives the same numbers on any stretch of it."""
 import os
 
+import numpy as np
 import pytest
 
 from rollerpy.outputs import read_numbers
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
-from rollerpy.validation.stationary_check import pass_fields, stretch_metrics
+from rollerpy.validation.stationary_check import SXX_DEPTHS, middle_stretch, pass_fields, stretch_metrics, sxx_table
 
 
 @pytest.fixture(scope="module")
@@ -46,3 +47,21 @@ def test_a_stationary_residual_strip_is_the_same_on_every_stretch(runs):
     assert near["mean"] == pytest.approx(far["mean"], rel=1e-6)
     assert near["integral"] == pytest.approx(far["integral"], rel=1e-6)
     assert near["sxx"][:, 1] == pytest.approx(far["sxx"][:, 1], rel=1e-6, abs=1e-6)
+
+
+def test_the_middle_stretch_and_the_residual_table(runs):
+    """The transient read on 3a either side of its track's middle (the 6a track from x = 92), and the
+    table of the residual sigma_xx at SXX_DEPTHS: the rows nearest to them, every pass."""
+    fields = pass_fields(runs["transient"], 2)
+    middle = middle_stretch(runs["transient"], 2, A, 6.0, 92.0)
+    for k in range(2):
+        direct = stretch_metrics(fields[k + 1], fields[k], 92.0, 92.0 + 6.0 * A, A)
+        assert middle[k]["mean"] == pytest.approx(direct["mean"], rel=1e-12)
+    profile = middle[0]["sxx"]
+    text = sxx_table([("transient", middle)], 2, A)
+    assert text.count("| transient |") == 2
+    for d in SXX_DEPTHS:
+        row = int(np.argmin(np.abs(profile[:, 0] - d * A)))
+        assert abs(profile[row, 0] - d * A) <= 0.5 * (profile[1, 0] - profile[0, 0]) + 1e-9  # the nearest row
+        assert ("%.2f" % profile[row, 0]) in text.splitlines()[3]
+        assert ("%.0f" % profile[row, 1]) in text.splitlines()[5]

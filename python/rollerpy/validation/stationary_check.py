@@ -18,10 +18,12 @@ usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.
                                    [--roller ./build/roller] [--timeout 14400]
 
 A run whose summary.json says completed is not run again (remove its folder to rerun it).
-Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step)
-and OUT/stationary_check.png (pass 1's increment against the step, or with one step every pass's;
-the net shear per pass; the residual sigma_xx by depth after the last pass). Each run's progress is
-in its log beside its folder.
+Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step;
+the residual sigma_xx at a few depths, with the finest transient also read on the middle of its
+track, where its ends relieve it least) and OUT/stationary_check.png (pass 1's increment against
+the step, or with one step every pass's; the net shear per pass; the residual sigma_xx by depth
+after the last pass, the finest transient's also on the middle of its track). Each run's progress
+is in its log beside its folder.
 """
 import os
 import sys
@@ -37,7 +39,9 @@ from ..vtu import available_steps, read_vtu, vtu_path
 from .make_shakedown_scenes import A, write_scenes
 
 STRETCH = (10.0, 4.0)          # the measured stretch: from 10a to 4a before the track's end
+MIDDLE = 3.0                   # the middle stretch: 3a either side of the track's middle
 WINDOW_DEPTH, BAND_DEPTH = 4.0, 0.78
+SXX_DEPTHS = (0.45, 0.65, 0.75, 0.85, 1.05, 1.45)  # the residual sigma_xx table's depths [a]
 
 
 def geometry(vtu):
@@ -115,6 +119,35 @@ def measure(out, passes, a, track, stationary, press_x):
     return [stretch_metrics(fields[k + 1], fields[k], *windows[k], a) for k in range(passes)]
 
 
+def middle_stretch(out, passes, a, track, press_x):
+    """Every pass of a transient run measured on the middle of its track, where the track's ends
+    relieve the residual stress least (docs/validation.md, "Both methods' discretisations")."""
+    fields = pass_fields(out, passes)
+    middle = press_x + 0.5 * track * a
+    return [stretch_metrics(fields[k + 1], fields[k], middle - MIDDLE * a, middle + MIDDLE * a, a)
+            for k in range(passes)]
+
+
+def sxx_at(metrics, depth):
+    """The residual sigma_xx of the row nearest to `depth` [mm], and that row's depth."""
+    profile = metrics["sxx"]
+    k = int(np.argmin(np.abs(profile[:, 0] - depth)))
+    return profile[k, 1], profile[k, 0]
+
+
+def sxx_table(rows, passes, a):
+    """The residual sigma_xx [MPa] at a few depths, every run and pass (rows: label, metrics)."""
+    depths = [sxx_at(rows[0][1][0], d * a)[1] for d in SXX_DEPTHS]
+    lines = []
+    for k in range(passes):
+        lines += ["", "Residual σ_xx [MPa] after pass %d, by depth [mm]:" % (k + 1), "",
+                  "| run | " + " | ".join("%.2f" % d for d in depths) + " |",
+                  "|---|" + "---:|" * len(depths)]
+        for label, metrics in rows:
+            lines.append("| %s | " % label + " | ".join("%.0f" % sxx_at(metrics[k], d)[0] for d in depths) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def sxx_gap(run, reference, below=0.0):
     """The largest difference of the residual sigma_xx by depth (rows deeper than `below`) over
     the reference's peak, and the depth where it is."""
@@ -141,7 +174,7 @@ def table(runs, reference, passes):
     return "\n".join(lines) + "\n"
 
 
-def figure(path, transients, stationaries, passes):
+def figure(path, transients, stationaries, passes, track_middle):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -158,6 +191,8 @@ def figure(path, transients, stationaries, passes):
     middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
     p = transients[-1][1][passes - 1]["sxx"]
     right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest)
+    p = track_middle[1][passes - 1]["sxx"]
+    right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0], zorder=0)
     for (label, metrics), style in zip(stationaries, styles):
         colour = "C0" if "roller" in label else "C3"
         if by_step:
@@ -248,10 +283,14 @@ def main(argv=None):
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
+    finest = os.path.join(out, "transient_s%g" % steps[-1])
+    middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
+              middle_stretch(finest, args.passes, A, args.track, press_x))
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the transient, step %ga\n\n" % (
             args.load, h, args.track, steps[-1]))
         f.write(table(rows, transients[-1][1], args.passes))
-    figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes)
+        f.write(sxx_table(rows[:len(transients)] + [middle] + rows[len(transients):], args.passes, A))
+    figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle)
     print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
     return 0
