@@ -65,3 +65,18 @@ def test_the_middle_stretch_and_the_residual_table(runs):
         assert abs(profile[row, 0] - d * A) <= 0.5 * (profile[1, 0] - profile[0, 0]) + 1e-9  # the nearest row
         assert ("%.2f" % profile[row, 0]) in text.splitlines()[3]
         assert ("%.0f" % profile[row, 1]) in text.splitlines()[5]
+
+
+def test_the_stationary_runs_alone(roller, tmp_path, monkeypatch):
+    """--steps none: the stationary runs without a transient, the table against the first of them."""
+    from rollerpy.validation.stationary_check import main
+    monkeypatch.chdir(os.getcwd())  # main moves to the repository's root: back after the test
+    out = str(tmp_path / "alone")
+    assert main(["--element-size", "0.5", "--track", "20", "--steps", "none", "--phases", "0",
+                 "--roller", roller, "--out", out]) == 0
+    text = open(os.path.join(out, "stationary_check.md")).read()
+    assert "the reference: the stationary, roller, centre +0h" in text
+    assert "transient" not in text
+    assert "| stationary, roller, centre +0h | 1 |" in text and "| +0.0 % |" in text
+    assert "| stationary, Hertz load | 2 |" in text
+    assert os.path.getsize(os.path.join(out, "stationary_check.png")) > 10000

@@ -181,18 +181,19 @@ def figure(path, transients, stationaries, passes, track_middle):
     styles = ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))
     fig, (left, middle, right) = plt.subplots(1, 3, figsize=(15, 4.4))
     steps = [s for s, _ in transients]
-    finest = "transient, step %ga" % transients[-1][0]
     numbers = range(1, passes + 1)
     by_step = len(steps) > 1  # pass 1 against the transient's step, else every pass's increment
     if by_step:
         left.plot(steps, [m[0]["mean"] for _, m in transients], "o-k", label="transient")
-    else:
-        left.plot(numbers, [m["mean"] for m in transients[-1][1]], "o-k", label=finest)
-    middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
-    p = transients[-1][1][passes - 1]["sxx"]
-    right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest)
-    p = track_middle[1][passes - 1]["sxx"]
-    right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0], zorder=0)
+    if transients:
+        finest = "transient, step %ga" % transients[-1][0]
+        if not by_step:
+            left.plot(numbers, [m["mean"] for m in transients[-1][1]], "o-k", label=finest)
+        middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
+        p = transients[-1][1][passes - 1]["sxx"]
+        right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest)
+        p = track_middle[1][passes - 1]["sxx"]
+        right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0], zorder=0)
     for (label, metrics), style in zip(stationaries, styles):
         colour = "C0" if "roller" in label else "C3"
         if by_step:
@@ -236,7 +237,8 @@ def main(argv=None):
     ap = parser("stationary-check", __doc__)
     ap.add_argument("--load", type=float, default=4.5, help="p0/k")
     ap.add_argument("--element-size", type=float, default=0.4)
-    ap.add_argument("--steps", default="0.2,0.1,0.05", help="the transient's steps, in a")
+    ap.add_argument("--steps", default="0.2,0.1,0.05",
+                    help="the transient's steps, in a; none: the stationary runs alone, against the first")
     ap.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
     ap.add_argument("--track", type=float, default=24.0)
     ap.add_argument("--passes", type=int, default=2)
@@ -254,12 +256,14 @@ def main(argv=None):
     roller = os.path.abspath(args.roller)
     h = args.element_size
     out = args.out or os.path.join("out", "stationary_check", "h%g" % h)
-    steps = sorted((float(s) for s in args.steps.split(",")), reverse=True)
+    steps = [] if args.steps == "none" else sorted((float(s) for s in args.steps.split(",")), reverse=True)
     common = [tuple(item.split("=", 1)) for item in args.set]
     if any(len(pair) != 2 for pair in common):
         sys.exit("stationary-check: --set takes KEY=VALUE")
     transients, stationaries, rows = [], [], []
-    scene = None
+    if not steps:  # the stationary runs' scene: its step does not enter a stationary pass
+        scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track)
+        press_x, centre_y = roller_centre(scene)
     for s in steps:
         folder = os.path.join(out, "scenes_s%g" % s)
         scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
@@ -283,14 +287,18 @@ def main(argv=None):
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
-    finest = os.path.join(out, "transient_s%g" % steps[-1])
-    middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
-              middle_stretch(finest, args.passes, A, args.track, press_x))
+    middle = None
+    if transients:
+        finest = os.path.join(out, "transient_s%g" % steps[-1])
+        middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
+                  middle_stretch(finest, args.passes, A, args.track, press_x))
+    reference = rows[len(transients) - 1] if transients else rows[0]
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
-        f.write("p0/k = %g, h = %g mm, track %ga; the reference: the transient, step %ga\n\n" % (
-            args.load, h, args.track, steps[-1]))
-        f.write(table(rows, transients[-1][1], args.passes))
-        f.write(sxx_table(rows[:len(transients)] + [middle] + rows[len(transients):], args.passes, A))
+        f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
+            args.load, h, args.track, reference[0]))
+        f.write(table(rows, reference[1], args.passes))
+        sxx_rows = rows[:len(transients)] + ([middle] if middle else []) + rows[len(transients):]
+        f.write(sxx_table(sxx_rows, args.passes, A))
     figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle)
     print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
     return 0
