@@ -140,7 +140,6 @@ struct BackStressTerms {  // every field set by evaluate_back_stress_terms
 // consistency iteration works on fixed-size arrays (entries past n are zero and add nothing).
 struct BackStressSet {
   int n = 0;
-  bool recovery_acts = false;                        // some gamma_i > 0: no potential
   Real max_recovery = 0.0;                           // max gamma_i
   Eigen::Array4d modulus = Eigen::Array4d::Zero();   // C_i
   Eigen::Array4d recovery = Eigen::Array4d::Zero();  // gamma_i
@@ -158,7 +157,6 @@ BackStressSet back_stress_set(const MaterialParams& p, const MaterialState& comm
     b.alpha.col(i) = committed.back_stress[static_cast<std::size_t>(i)];
   }
   b.max_recovery = b.recovery.maxCoeff();
-  b.recovery_acts = b.max_recovery > 0.0;
   return b;
 }
 
@@ -243,7 +241,7 @@ Real first_multiplier_guess(const MaterialParams& p, const BackStressSet& b, con
   const Eigen::Array4d c = b.modulus - b.recovery * k;
   // sigma_Y taken linear from eps_p: Voce's curvature over d moves the root by far less than m's error.
   const Real g3h = 3.0 * p.shear_modulus() + yield_slope_at(p, eps_p);
-  const Real r0 = q0 - yield_stress_at(p, eps_p);
+  const Real r0 = c0.residual;  // q0 - sigma_Y(eps_p)
   Real d = linear;
   for (int iter = 0; iter < 20; ++iter) {
     const Eigen::Array4d beta = 1.0 / (1.0 + b.recovery * d);
@@ -287,7 +285,7 @@ PlasticSolution plastic_multiplier(const MaterialParams& p, const MaterialState&
                                    std::optional<Real> frozen) {
   const Real eps_p = committed.eq_plastic_strain;
   const Consistency c0 = consistency(p, t0, q0, eps_p, 0.0);
-  const bool linear = (frozen || !b.recovery_acts) && !p.has_voce();
+  const bool linear = (frozen || p.has_potential()) && !p.has_voce();
   // Linear: the terms do not depend on d, and neither does the stiffness (no Voce term).
   if (linear) return {c0.newton_step(), t0, c0};
   Real lo = 0.0;
@@ -363,7 +361,7 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
   const Real theta_bar = 3.0 * g / stiffness - (1.0 - theta);
   u.stress = trial_stress - (1.0 - theta) * t.eta;
   u.tangent = consistent_tangent(p, n, theta, theta_bar);
-  if (!frozen && b.recovery_acts) {
+  if (!frozen && !p.has_potential()) {
     const Vec4 a_perp = t.drift - contract(n, t.drift) * n;
     u.tangent -= (1.0 - theta) * std::sqrt(1.5) * 2.0 * g / stiffness * a_perp * n.transpose();
   }
@@ -388,7 +386,7 @@ MaterialUpdate return_mapping_update(const MaterialParams& p, const Vec4& strain
   const Real isotropic_work = plastic_work_increment(p, eps_p, d);
   u.trial.plastic_work += isotropic_work + kinematic_work;
   u.trial.stress = u.stress;
-  if (frozen || !b.recovery_acts) {
+  if (frozen || p.has_potential()) {
     u.energy = isotropic_work + stored + elastic_energy_change(p, committed.stress, u.stress);
   } else {
     // Armstrong-Frederick's recovery has no potential: the trapezoidal work 1/2 (S_n + S):dE
