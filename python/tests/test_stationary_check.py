@@ -9,7 +9,8 @@ import pytest
 from rollerpy.outputs import read_numbers
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
-from rollerpy.validation.stationary_check import SXX_DEPTHS, middle_stretch, pass_fields, stretch_metrics, sxx_table
+from rollerpy.validation.stationary_check import (SXX_DEPTHS, measure, middle_windows, pass_fields, stretch_metrics,
+                                                  sxx_table)
 
 
 @pytest.fixture(scope="module")
@@ -53,7 +54,7 @@ def test_the_middle_stretch_and_the_residual_table(runs):
     """The transient read on 3a either side of its track's middle (the 6a track from x = 92), and the
     table of the residual sigma_xx at SXX_DEPTHS: the rows nearest to them, every pass."""
     fields = pass_fields(runs["transient"], 2)
-    middle = middle_stretch(runs["transient"], 2, A, 6.0, 92.0)
+    middle = measure(fields, middle_windows(2, A, 6.0, 92.0), A)
     for k in range(2):
         direct = stretch_metrics(fields[k + 1], fields[k], 92.0, 92.0 + 6.0 * A, A)
         assert middle[k]["mean"] == pytest.approx(direct["mean"], rel=1e-12)

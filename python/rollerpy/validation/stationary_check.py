@@ -106,26 +106,26 @@ def roller_centre(scene):
         return tuple(tomllib.load(f)["roller"]["centre"])
 
 
-def measure(out, passes, a, track, stationary, press_x):
-    """Every pass of a run: the transient's on the steady stretch; the stationary's on its own
+def measured_windows(out, passes, a, track, stationary, press_x):
+    """Where every pass of a run is measured: the transient's steady stretch; the stationary's own
     window (passes.csv), at the extraction column: its states are uniform along x, but its
     displacement, and with it the total strain of the net shear, is the pass's only downstream."""
-    fields = pass_fields(out, passes)
     if stationary:
-        windows = [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
-    else:
-        end = press_x + track * a
-        windows = [(end - STRETCH[0] * a, end - STRETCH[1] * a)] * passes
-    return [stretch_metrics(fields[k + 1], fields[k], *windows[k], a) for k in range(passes)]
+        return [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
+    end = press_x + track * a
+    return [(end - STRETCH[0] * a, end - STRETCH[1] * a)] * passes
 
 
-def middle_stretch(out, passes, a, track, press_x):
-    """Every pass of a transient run measured on the middle of its track, where the track's ends
-    relieve the residual stress least (docs/validation.md, "Both methods' discretisations")."""
-    fields = pass_fields(out, passes)
+def middle_windows(passes, a, track, press_x):
+    """The middle of a transient's track, where the track's ends relieve the residual stress least
+    (docs/validation.md, "Both methods' discretisations")."""
     middle = press_x + 0.5 * track * a
-    return [stretch_metrics(fields[k + 1], fields[k], middle - MIDDLE * a, middle + MIDDLE * a, a)
-            for k in range(passes)]
+    return [(middle - MIDDLE * a, middle + MIDDLE * a)] * passes
+
+
+def measure(fields, windows, a):
+    """Every pass of a run (its fields, pass_fields) on its window."""
+    return [stretch_metrics(fields[k + 1], fields[k], *window, a) for k, window in enumerate(windows)]
 
 
 def sxx_at(metrics, depth):
@@ -270,7 +270,8 @@ def main(argv=None):
         press_x, centre_y = roller_centre(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
-        metrics = measure(run_out, args.passes, A, args.track, stationary=False, press_x=press_x)
+        fields = pass_fields(run_out, args.passes)  # the last, the finest step's, measured again below
+        metrics = measure(fields, measured_windows(run_out, args.passes, A, args.track, False, press_x), A)
         transients.append((s, metrics))
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
@@ -283,15 +284,15 @@ def main(argv=None):
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
-        metrics = measure(run_out, args.passes, A, args.track, stationary=True, press_x=press_x)
+        metrics = measure(pass_fields(run_out, args.passes),
+                          measured_windows(run_out, args.passes, A, args.track, True, press_x), A)
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
     middle = None
-    if transients:
-        finest = os.path.join(out, "transient_s%g" % steps[-1])
+    if transients:  # `fields`: the finest transient's
         middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
-                  middle_stretch(finest, args.passes, A, args.track, press_x))
+                  measure(fields, middle_windows(args.passes, A, args.track, press_x), A))
     reference = rows[len(transients) - 1] if transients else rows[0]
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
