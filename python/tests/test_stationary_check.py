@@ -9,8 +9,8 @@ import pytest
 from rollerpy.outputs import read_numbers
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
-from rollerpy.validation.stationary_check import (SXX_DEPTHS, measure, middle_windows, pass_fields, stretch_metrics,
-                                                  sxx_table)
+from rollerpy.validation.stationary_check import (SXX_DEPTHS, long_track_sxx, measure, middle_windows, pass_fields,
+                                                  stretch_metrics, sxx_table)
 
 
 @pytest.fixture(scope="module")
@@ -59,13 +59,30 @@ def test_the_middle_stretch_and_the_residual_table(runs):
         direct = stretch_metrics(fields[k + 1], fields[k], 92.0, 92.0 + 6.0 * A, A)
         assert middle[k]["mean"] == pytest.approx(direct["mean"], rel=1e-12)
     profile = middle[0]["sxx"]
-    text = sxx_table([("transient", middle)], 2, A)
+    text = sxx_table([("transient", middle, "sxx")], 2, A)
     assert text.count("| transient |") == 2
     for d in SXX_DEPTHS:
         row = int(np.argmin(np.abs(profile[:, 0] - d * A)))
         assert abs(profile[row, 0] - d * A) <= 0.5 * (profile[1, 0] - profile[0, 0]) + 1e-9  # the nearest row
         assert ("%.2f" % profile[row, 0]) in text.splitlines()[3]
         assert ("%.0f" % profile[row, 1]) in text.splitlines()[5]
+
+
+def test_the_long_track_stress_of_a_plastic_strain():
+    """long_track_sxx reads the plastic strain from the stress and the total strain of a finite
+    strip and gives the closed form of a long track's: -E (ep_xx + nu ep_zz) / (1 - nu^2)."""
+    young, nu = 210000.0, 0.3
+    lam, g = young * nu / ((1 + nu) * (1 - 2 * nu)), young / (2 * (1 + nu))
+    plastic = np.array([[1.3e-3, -0.4e-3, -0.9e-3, 0.7e-3], [-2e-4, 5e-4, -3e-4, 0.0]])
+    total = np.array([[2.1e-4, -0.6e-3, 0.0, 0.95e-3], [-1e-4, 3e-4, 0.0, 1e-4]])
+    elastic = total - plastic
+    stress = 2 * g * elastic
+    stress[:, :3] += lam * elastic[:, :3].sum(axis=1)[:, None]
+
+    class Fields:
+        cell_data = {"stress": np.c_[stress, np.zeros((2, 2))], "strain": np.c_[total, np.zeros((2, 2))]}
+    expected = -young * (plastic[:, 0] + nu * plastic[:, 2]) / (1 - nu * nu)
+    assert long_track_sxx(Fields, (young, nu)) == pytest.approx(expected, rel=1e-12)
 
 
 def test_the_stationary_runs_alone(roller, tmp_path, monkeypatch):

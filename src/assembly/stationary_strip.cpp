@@ -1,6 +1,7 @@
 #include "roller/assembly/stationary_strip.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -67,17 +68,45 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
                         s.points[i] / points_per_element_ + 1));
     streamlines_.push_back(std::move(s));
   }
+  streamline_of_.resize(n_points());
+  for (std::size_t s = 0; s < streamlines_.size(); ++s)
+    for (const Index p : streamlines_[s].points) streamline_of_[p] = static_cast<Index>(s);
+  // The ends: the upstream one lies ahead of the roller, at the largest travel * x.
+  Real lo = mesh.nodes.front().x(), hi = lo;
+  for (const Vec2& x : mesh.nodes) lo = std::min(lo, x.x()), hi = std::max(hi, x.x());
+  const Real upstream_x = travel > 0.0 ? hi : lo, downstream_x = travel > 0.0 ? lo : hi;
+  for (Index a = 0; a < mesh.n_nodes(); ++a) {
+    if (mesh.nodes[a].x() == upstream_x) end_nodes_[0].push_back(a);
+    if (mesh.nodes[a].x() == downstream_x) end_nodes_[1].push_back(a);
+  }
+  for (Index e = 0; e < mesh.n_elements(); ++e)
+    for (int end = 0; end < 2; ++end) {
+      const Real x = end == 0 ? upstream_x : downstream_x;
+      const auto& element = mesh.elements[e];
+      if (std::any_of(element.begin(), element.end(), [&](Index a) { return mesh.nodes[a].x() == x; }))
+        end_elements_[end].push_back(e);
+    }
+}
+
+std::vector<Vec4> StationaryStrip::element_strains_of(const VecX& u, Index e) const {
+  const auto& element = mesh_.elements[e];
+  ElementVector ue(2 * element.size());
+  for (std::size_t a = 0; a < element.size(); ++a) ue.segment<2>(2 * a) = u.segment<2>(2 * element[a]);
+  return element_strains(options_, mesh_.element_type, geometry_[e], ue);
 }
 
 std::vector<Vec4> StationaryStrip::strains(const VecX& u) const {
   std::vector<Vec4> out(n_points());
   for (Index e = 0; e < mesh_.n_elements(); ++e) {
-    const auto& element = mesh_.elements[e];
-    ElementVector ue(2 * element.size());
-    for (std::size_t a = 0; a < element.size(); ++a) ue.segment<2>(2 * a) = u.segment<2>(2 * element[a]);
-    const std::vector<Vec4> eps = element_strains(options_, mesh_.element_type, geometry_[e], ue);
+    const std::vector<Vec4> eps = element_strains_of(u, e);
     std::copy(eps.begin(), eps.end(), out.begin() + e * points_per_element_);
   }
+  return out;
+}
+
+std::vector<Vec4> StationaryStrip::strains(const VecX& u, const std::vector<Index>& points) const {
+  std::vector<Vec4> out;
+  for (const Index p : points) out.push_back(element_strains_of(u, p / points_per_element_)[p % points_per_element_]);
   return out;
 }
 
@@ -117,8 +146,24 @@ VecX StationaryStrip::forces(const std::vector<MaterialState>& states) const {
 
 std::vector<MaterialState> StationaryStrip::spread(const std::vector<MaterialState>& upstream) const {
   std::vector<MaterialState> out(n_points());
-  for (std::size_t s = 0; s < streamlines_.size(); ++s)
-    for (const Index p : streamlines_[s].points) out[p] = upstream[s];
+  for (Index p = 0; p < n_points(); ++p) out[p] = upstream[streamline_of_[p]];
+  return out;
+}
+
+VecX StationaryStrip::end_forces(const std::vector<MaterialState>& states, End end) const {
+  ROLLER_ASSERT(states.size() == streamlines_.size(), "one state per streamline");
+  const int which = end == End::Upstream ? 0 : 1;
+  VecX f = VecX::Zero(mesh_.n_dofs());
+  std::array<Vec4, 4> stress;
+  for (const Index e : end_elements_[which]) {
+    for (int q = 0; q < points_per_element_; ++q)
+      stress[q] = states[streamline_of_[e * points_per_element_ + q]].stress;
+    const ElementVector fe = element_forces(options_, mesh_.element_type, geometry_[e], stress.data());
+    const auto& element = mesh_.elements[e];
+    for (std::size_t a = 0; a < element.size(); ++a) f.segment<2>(2 * element[a]) += fe.segment<2>(2 * a);
+  }
+  VecX out = VecX::Zero(mesh_.n_dofs());  // the end's nodes only: the elements' inner nodes are held inside
+  for (const Index a : end_nodes_[which]) out.segment<2>(2 * a) = f.segment<2>(2 * a);
   return out;
 }
 

@@ -220,6 +220,10 @@ StripEvaluation StripModel::evaluate_states(const VecX& u, VecX* gradient, Spars
       }
     }
   }
+  if (dead_load_.size() > 0) {
+    energy -= dead_load_.dot(u);
+    if (gradient) *gradient -= dead_load_;
+  }
   if (!std::isfinite(energy))
     throw NumericalError(
         "the strain energy is not finite: the increment is too large; use smaller steps (a larger steps.count, or "

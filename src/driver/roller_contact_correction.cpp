@@ -9,8 +9,8 @@ namespace {
 
 // The roller's contact solved with the elastic stiffness: an elastic twin of the strip (its own
 // Simulation: the scene made linear elastic and frictionless, the roller over the contact's centre
-// under the travel force), restored at every iteration to the iterate u with the stresses
-// sigma(u) - sigma_upstream, so that its incremental energy is 1/2 du K_e du - r.du; one
+// under the travel force), restored at every iteration to the iterate u without stress and with
+// the residual r as a dead load, so that its incremental energy is 1/2 du K_e du - r.du; one
 // force-controlled increment gives du and the contact forces. The twin's tangent is constant, so
 // the condensed interior-point backend keeps its factors from one iteration to the next.
 class RollerContactCorrection final : public RollerCorrection {
@@ -26,12 +26,12 @@ class RollerContactCorrection final : public RollerCorrection {
     twin.roller->path = {press};
     twin_ = std::make_unique<Simulation>(std::move(twin));
   }
-  void set_upstream(std::vector<MaterialState> spread) override { upstream_ = std::move(spread); }
-  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX&) override {
+  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override {
     StripModel& strip = twin_->model();
-    std::vector<MaterialState> stresses(states.size());
-    for (std::size_t p = 0; p < states.size(); ++p) stresses[p].stress = states[p].stress - upstream_[p].stress;
-    strip.restore(strip.mesh().nodes, u, std::move(stresses));
+    strip.restore(strip.mesh().nodes, u, std::vector<MaterialState>(states.size()));
+    VecX load = VecX::Zero(u.size());
+    strip.dof_map().scatter_free(r, load);
+    strip.set_dead_load(std::move(load));
     const IncrementReport inc = twin_->advance(0.0, 1.0);
     if (!inc.converged()) return {VecX(), VecX(), inc.message};
     Result out;
@@ -45,7 +45,6 @@ class RollerContactCorrection final : public RollerCorrection {
 
  private:
   std::unique_ptr<Simulation> twin_;
-  std::vector<MaterialState> upstream_;
 };
 
 }  // namespace

@@ -54,10 +54,16 @@ class Anderson {
 
 StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs,
                                            StationaryCorrection& correction, const std::vector<MaterialState>& upstream,
-                                           const StationarySettings& settings) {
+                                           const StationarySettings& settings, const LeavingStates& leaving) {
   StationaryPassResult out;
-  const VecX carried = strip.forces(strip.spread(upstream));  // f(sigma_upstream)
+  // f(sigma_upstream): the strip beyond both ends holds the mesh with the upstream states; with
+  // `leaving`, the downstream end's share becomes the leaving states'.
+  const VecX upstream_forces = strip.forces(strip.spread(upstream));
+  const VecX upstream_downstream_end =
+      leaving ? strip.end_forces(upstream, StationaryStrip::End::Downstream) : VecX::Zero(upstream_forces.size());
+  VecX carried = upstream_forces;
   out.displacement = VecX::Zero(carried.size());
+  out.load = VecX::Zero(carried.size());
   Anderson anderson(kAndersonDepth);
   // Stagnation: the best residual so far and the iteration at which it last halved.
   Real mark = std::numeric_limits<Real>::infinity();
@@ -66,6 +72,9 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
     SweepReport report;
     out.states = strip.sweep(strip.strains(out.displacement), upstream, &report);
     out.n_yielded = report.n_yielded;
+    if (leaving)
+      carried = upstream_forces - upstream_downstream_end +
+                strip.end_forces(leaving(out.displacement, out.states, out.load), StationaryStrip::End::Downstream);
     const VecX r = dofs.restrict_to_free(carried - strip.forces(out.states));
     const StationaryCorrection::Result c = correction.correct(out.displacement, out.states, r);
     out.iterations = k;

@@ -8,6 +8,8 @@
 
 #include "roller/core/error.hpp"
 #include "roller/driver/steady_load.hpp"
+#include "roller/material/j2_plasticity.hpp"
+#include "roller/material/long_track_state.hpp"
 #include "roller_start.hpp"
 
 namespace roller {
@@ -30,6 +32,23 @@ Real contact_centre(const Scene& scene, const SteadyLoad& load) {
   return roller_pose(*scene.roller, given_start_centre(scene), mid).centre.x();
 }
 
+// The residual strip is a long track's on a base held in x and y (material/long_track_state.hpp):
+// an InputError when some node of the strip's bottom row is free in x or y.
+void require_held_base(const Scene& scene, const StripModel& model) {
+  const Mesh& mesh = model.mesh();
+  Real bottom = mesh.nodes.front().y();
+  for (const Vec2& p : mesh.nodes) bottom = std::min(bottom, p.y());
+  for (Index a = 0; a < mesh.n_nodes(); ++a) {
+    if (mesh.nodes[a].y() != bottom) continue;
+    if (model.dof_map().is_constrained(2 * a) && model.dof_map().is_constrained(2 * a + 1)) continue;
+    throw InputError(
+        fmt::format("{}: passes.method = \"stationary\" needs the strip's base held in x and y (a [[displacement]] "
+                    "with x = 0.0 and y = 0.0 on nodes = \"bottom\"): its residual strip is a long track's, whose "
+                    "state on such a base is known; the node at ({}, {}) is free. Use passes.method = \"transient\"",
+                    scene.file.string(), mesh.nodes[a].x(), mesh.nodes[a].y()));
+  }
+}
+
 }  // namespace
 
 StationaryPasses::~StationaryPasses() = default;
@@ -39,8 +58,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
     : roller_y_(given_start_centre(scene).y()),
       travel_(steady_load(scene, std::nullopt).travel_sign),
       strip_(model.mesh(), model.materials(), model.options(), travel_),
-      elastic_materials_(linear_elastic(model.materials())),
-      elastic_strip_(model.mesh(), elastic_materials_, model.options(), travel_) {
+      elastic_materials_(linear_elastic(model.materials())) {
+  require_held_base(scene, model);
   const SteadyLoad steady = steady_load(scene, std::nullopt);
   const Mesh& mesh = model.mesh();
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
@@ -106,35 +125,50 @@ std::vector<MaterialState> StationaryPasses::upstream_of(const StripModel& strip
   return out;
 }
 
+std::vector<MaterialState> StationaryPasses::leaving(const DofMap& dofs, const VecX& u,
+                                                     const std::vector<MaterialState>& states, const VecX& load,
+                                                     VecX& elastic) {
+  if (elastic_load_.size() != load.size() || elastic_load_ != load) {  // the Hertz load: once a pass
+    elastic_load_ = load;
+    elastic_displacement_ = VecX::Zero(load.size());
+    if (load.any()) dofs.scatter_free(solver_.solve(dofs.restrict_to_free(load)), elastic_displacement_);
+  }
+  elastic = elastic_displacement_;
+  // The roller lifts (unloading is elastic): its field comes off; then what the mesh's ends
+  // relieved (the pass's xx strain) comes off too.
+  const std::vector<Vec4> load_strain = strip_.strains(elastic, extraction_);
+  const std::vector<Vec4> residual_strain = strip_.strains(u - elastic, extraction_);
+  std::vector<MaterialState> out;
+  for (std::size_t s = 0; s < extraction_.size(); ++s) {
+    const Index p = extraction_[s];
+    const MaterialParams& m = elastic_materials_.of(p / strip_.points_per_element());
+    MaterialState state = states[p];
+    state.stress -= update_material(m, load_strain[s], initial_state(m)).trial.stress;
+    out.push_back(long_track_state(state, residual_strain[s], m));
+  }
+  return out;
+}
+
 StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostream* progress) {
   StationarySettings settings;
   settings.progress = progress;
   Pass out;
   const std::vector<MaterialState> upstream = upstream_of(strip);
   StationaryCorrection* correction = hertz_correction_.get();
-  if (roller_correction_) {
-    roller_correction_->set_upstream(strip_.spread(upstream));
-    correction = roller_correction_.get();
-  }
-  out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings);
+  if (roller_correction_) correction = roller_correction_.get();
+  VecX elastic;
+  const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
+    return leaving(strip.dof_map(), u, states, load, elastic);
+  };
+  out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings, leaving_states);
   if (!out.solve.converged()) return out;
   if (roller_correction_) {
     contact_ = roller_correction_->contact();
     pose_ = roller_correction_->pose();
   }
-  // The roller lifts: the elastic response to the load the pass carried comes off. The state
-  // leaving the pass, unloaded, is then every point's of its streamline.
-  PrescribedLoadCorrection lift(strip.dof_map(), solver_, out.solve.load);
-  const StationaryPassResult unloading = solve_stationary_pass(elastic_strip_, strip.dof_map(), lift,
-                                                               elastic_strip_.virgin_upstream(), StationarySettings{});
-  std::vector<MaterialState> leaving;
-  for (const Index p : extraction_) {
-    MaterialState s = out.solve.states[p];
-    s.stress -= unloading.states[p].stress;
-    leaving.push_back(s);
-  }
-  out.residual = strip_.spread(leaving);
-  out.permanent_displacement = out.solve.displacement - unloading.displacement;
+  out.residual =
+      strip_.spread(leaving(strip.dof_map(), out.solve.displacement, out.solve.states, out.solve.load, elastic));
+  out.permanent_displacement = out.solve.displacement - elastic;
   return out;
 }
 

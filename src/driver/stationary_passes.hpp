@@ -6,11 +6,12 @@
 // unloads the state leaving a pass (the roller lifted).
 //
 // The strip between passes is the residual strip: every point holds the residual state of its
-// streamline as it leaves the pass, read at the extraction column (downstream, half-way between
-// the contact and the strip's end, where the roller's field is subtracted and the free end's is
-// small), and the displacement is the sum of the passes' permanent displacements. So the next
-// pass's upstream state, the pass metrics (measure_pass) and the state files are the transient
-// method's.
+// streamline as it leaves the pass, a long track's (material/long_track_state.hpp), read at the
+// extraction column (downstream, half-way between the contact and the strip's end, with the
+// roller's elastic field subtracted); the strip beyond the mesh's downstream end holds it with
+// that state while the pass is solved. The displacement is the sum of the passes' permanent
+// displacements. So the next pass's upstream state, the pass metrics (measure_pass) and the state
+// files are the transient method's.
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -26,12 +27,10 @@
 
 namespace roller {
 
-// The correction on the roller's exact contact (passes.stationary_contact = "roller"): given the
-// upstream states spread over the strip, it corrects the iterate with the roller's contact and
-// keeps that contact and the roller's pose.
+// The correction on the roller's exact contact (passes.stationary_contact = "roller"): it
+// corrects the iterate with the roller's contact and keeps that contact and the roller's pose.
 class RollerCorrection : public StationaryCorrection {
  public:
-  virtual void set_upstream(std::vector<MaterialState> spread) = 0;
   virtual const std::vector<NodeContactRecord>& contact() const = 0;
   virtual RollerPose pose() const = 0;
 };
@@ -64,19 +63,23 @@ class StationaryPasses {
 
  private:
   std::vector<MaterialState> upstream_of(const StripModel& strip) const;
+  // The long track's state each streamline leaves with, from the iterate (u, its states) and the
+  // load it carried, and the elastic displacement of that load (all dofs), which the lift takes off.
+  std::vector<MaterialState> leaving(const DofMap& dofs, const VecX& u, const std::vector<MaterialState>& states,
+                                     const VecX& load, VecX& elastic);
 
   Real roller_y_ = 0.0;  // the centre's height at the start (the pose written beside the load)
   HertzSolution hertz_;
   Real centre_x_ = 0.0, extraction_x_ = 0.0, travel_ = 1.0;
   StationaryStrip strip_;
   ElementMaterials elastic_materials_;
-  StationaryStrip elastic_strip_;
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   std::unique_ptr<PrescribedLoadCorrection> hertz_correction_;
   std::unique_ptr<RollerCorrection> roller_correction_;  // passes.stationary_contact = "roller"
   std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
   std::vector<Index> extraction_;                        // per streamline: its point at the extraction column
   std::vector<NodeContactRecord> contact_;
+  VecX elastic_load_, elastic_displacement_;  // the last load leaving() unloaded, and its displacement
 };
 
 }  // namespace roller

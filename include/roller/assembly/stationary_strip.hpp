@@ -40,6 +40,8 @@ class StationaryStrip {
 
   // The strain of the displacement u (all dofs, from the upstream configuration) at every point.
   std::vector<Vec4> strains(const VecX& u) const;
+  // The same at a few points only (in their order).
+  std::vector<Vec4> strains(const VecX& u, const std::vector<Index>& points) const;
   // Each streamline's states from its upstream state (one per streamline, in streamlines()' order):
   // the return mapping from point to point with the strain between them.
   std::vector<MaterialState> sweep(const std::vector<Vec4>& strains, const std::vector<MaterialState>& upstream,
@@ -48,10 +50,20 @@ class StationaryStrip {
   VecX forces(const std::vector<MaterialState>& states) const;
   // The states of a strip in which every streamline holds its upstream state.
   std::vector<MaterialState> spread(const std::vector<MaterialState>& upstream) const;
+
+  // The mesh's two cut ends: where the material enters and where it leaves.
+  enum class End { Upstream, Downstream };
+  // The nodal forces (all dofs) with which the strip beyond one cut end holds the mesh when every
+  // streamline holds `states` there (one per streamline): the forces of those states at that
+  // end's nodes. Inside the mesh a state uniform along x, with no sigma_yy and sigma_xy, exerts
+  // none, so forces(spread(states)) is the sum of both ends'.
+  VecX end_forces(const std::vector<MaterialState>& states, End end) const;
   // Each streamline's virgin state (initial_state of its material).
   std::vector<MaterialState> virgin_upstream() const;
 
  private:
+  std::vector<Vec4> element_strains_of(const VecX& u, Index e) const;
+
   const Mesh& mesh_;
   const ElementMaterials& materials_;
   ElementOptions options_;
@@ -59,6 +71,9 @@ class StationaryStrip {
   std::vector<std::vector<PointGeometry>> geometry_;  // per element, in the initial mesh
   std::vector<Vec2> positions_;                       // per point
   std::vector<Streamline> streamlines_;
+  std::vector<Index> streamline_of_;    // per point
+  std::vector<Index> end_elements_[2];  // per End: the elements with a node on it
+  std::vector<Index> end_nodes_[2];     // per End: its nodes
 };
 
 }  // namespace roller

@@ -68,6 +68,11 @@ class StripModel {
   // sizes do not fit this mesh, NumericalError when an element is inverted.
   void restore(std::vector<Vec2> reference, VecX total_displacement, std::vector<MaterialState> states);
 
+  // Nodal forces (all dofs; empty: none) that do not follow the increment: the energy of an
+  // increment u gains -load.u and its gradient -load. The stationary pass's contact correction
+  // carries its residual with them (driver/roller_contact_correction.cpp).
+  void set_dead_load(VecX load) { dead_load_ = std::move(load); }
+
   // Armstrong-Frederick's recovery for the minimisers (docs/model.md, Hardening laws): whether the
   // law has a recovery term (no incremental potential), and evaluate() with each point's recovery
   // frozen at the given plastic multipliers (one per integration point; empty: the exact update).
@@ -130,6 +135,7 @@ class StripModel {
   VecX total_displacement_;
   std::vector<MaterialState> committed_;
   std::vector<Real> frozen_recovery_;  // per integration point, or empty (freeze_recovery)
+  VecX dead_load_;                     // all dofs, or empty (set_dead_load)
 
   DofMap dofs_;
   // Sparsity of the Hessian over the free dofs (compressed columns, full symmetric storage).

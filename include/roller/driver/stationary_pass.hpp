@@ -7,6 +7,7 @@
 // and the fixed point u = u + du accelerated by Anderson's mixing of the last 20 corrections;
 // converged when |r + f_c| <= tolerance |f_c|. The upstream term makes an unloaded strip keep its
 // upstream state (r = 0 at u = 0).
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <utility>
@@ -67,9 +68,17 @@ struct StationaryPassResult {
   bool converged() const { return status == Termination::Converged; }
 };
 
-// `upstream`: one state per streamline. Constrained dofs stay at zero.
+// The state each streamline leaves the pass with (one per streamline), from the iterate u (all
+// dofs), its states and the load it carried: the strip beyond the mesh's downstream end holds the
+// mesh with it, as a long track's does.
+using LeavingStates = std::function<std::vector<MaterialState>(const VecX& u, const std::vector<MaterialState>& states,
+                                                               const VecX& load)>;
+
+// `upstream`: one state per streamline. Constrained dofs stay at zero. Without `leaving` the strip
+// beyond the downstream end holds the upstream states; with it, the leaving states of the last
+// iterate (the load: the last correction's).
 StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs,
                                            StationaryCorrection& correction, const std::vector<MaterialState>& upstream,
-                                           const StationarySettings& settings);
+                                           const StationarySettings& settings, const LeavingStates& leaving = {});
 
 }  // namespace roller

@@ -54,12 +54,27 @@ def geometry(vtu):
     return centroid, area, y.max(axis=1) - y.min(axis=1)
 
 
-def stretch_metrics(now, start, x0, x1, a):
+def long_track_sxx(vtu, elastic):
+    """The residual sigma_xx a long track would hold with these points' plastic strain: on a base
+    held in x and y a state uniform along x has no total xx strain and carries no sigma_yy, so
+    sigma_xx = -E (ep_xx + nu ep_zz) / (1 - nu^2) (material/long_track_state.hpp). A finite track's
+    ends relieve the rolled layer instead, more the shorter the track."""
+    young, nu = elastic
+    stress, strain = np.asarray(vtu.cell_data["stress"]), np.asarray(vtu.cell_data["strain"])
+    sxx, syy, szz = stress[:, 0], stress[:, 1], stress[:, 2]
+    plastic_xx = strain[:, 0] - (sxx - nu * (syy + szz)) / young
+    plastic_zz = strain[:, 2] - (szz - nu * (sxx + syy)) / young
+    return -young * (plastic_xx + nu * plastic_zz) / (1.0 - nu * nu)
+
+
+def stretch_metrics(now, start, x0, x1, a, elastic=None):
     """The pass between two fields (Vtu, at its end and its start) on the stretch x0..x1: mean and band increments of
     equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
     mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass, and
-    the residual sigma_xx by depth (the rows' area-weighted means)."""
+    the residual sigma_xx by depth (the rows' area-weighted means): as read, and the long track's
+    of the same plastic strain (long_track_sxx, with `elastic` = (E, nu); without it, a
+    stationary run's, which holds the long track's already)."""
     centroid, area, height = geometry(now)
     top = now.reference[:, 1].max()
     depth = top - centroid[:, 1]
@@ -68,18 +83,21 @@ def stretch_metrics(now, start, x0, x1, a):
     increment = np.ravel(now.cell_data["eq_plastic_strain"]) - np.ravel(start.cell_data["eq_plastic_strain"])
     shear = 2.0 * (np.asarray(now.cell_data["strain"])[:, 3] - np.asarray(start.cell_data["strain"])[:, 3])
     sxx = np.asarray(now.cell_data["stress"])[:, 0]
+    sxx_long = sxx if elastic is None else long_track_sxx(now, elastic)
     rows = np.round(depth[inside], 6)
-    profile, integral = [], 0.0
+    profile, profile_long, integral = [], [], 0.0
     for d in np.unique(rows):
         k = rows == d
         weights = area[inside][k]
         profile.append((d, np.average(sxx[inside][k], weights=weights)))
+        profile_long.append((d, np.average(sxx_long[inside][k], weights=weights)))
         integral += height[inside][k][0] * np.average(increment[inside][k], weights=weights)
     return {"mean": np.average(increment[inside], weights=area[inside]),
             "integral": integral,
             "band": np.average(increment[band], weights=area[band]),
             "net_shear": np.average(shear[band], weights=area[band]),
-            "sxx": np.array(profile)}
+            "sxx": np.array(profile),
+            "sxx_long": np.array(profile_long)}
 
 
 def pass_fields(out, passes):
@@ -98,6 +116,24 @@ def ensure_run(roller, scene, out, pairs, timeout):
     result = run([roller, "run", scene, "--out", out, "--overwrite"] + set_options(pairs), out + ".log", timeout)
     if result.exit_code != 0:
         sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
+
+
+def elastic_constants(scene):
+    """(E, nu) of a scene file's strip."""
+    with open(scene, "rb") as f:
+        material = tomllib.load(f)["material"]
+    return material["E"], material["nu"]
+
+
+def sxx_rows(transients, middle, stationaries):
+    """The residual sigma_xx table's rows (sxx_table): every transient's as read and a long
+    track's, the finest one's track middle as read, the stationary runs' (a long track's)."""
+    out = []
+    for label, metrics in transients:
+        out += [(label + ", as read", metrics, "sxx"), (label + ", a long track's", metrics, "sxx_long")]
+    if middle:
+        out.append((middle[0] + ", as read", middle[1], "sxx"))
+    return out + [(label, metrics, "sxx_long") for label, metrics in stationaries]
 
 
 def roller_centre(scene):
@@ -123,35 +159,37 @@ def middle_windows(passes, a, track, press_x):
     return [(middle - MIDDLE * a, middle + MIDDLE * a)] * passes
 
 
-def measure(fields, windows, a):
-    """Every pass of a run (its fields, pass_fields) on its window."""
-    return [stretch_metrics(fields[k + 1], fields[k], *window, a) for k, window in enumerate(windows)]
+def measure(fields, windows, a, elastic=None):
+    """Every pass of a run (its fields, pass_fields) on its window (elastic: stretch_metrics)."""
+    return [stretch_metrics(fields[k + 1], fields[k], *window, a, elastic) for k, window in enumerate(windows)]
 
 
-def sxx_at(metrics, depth):
-    """The residual sigma_xx of the row nearest to `depth` [mm], and that row's depth."""
-    profile = metrics["sxx"]
+def sxx_at(metrics, depth, key="sxx"):
+    """The residual sigma_xx (key: as read, sxx, or the long track's, sxx_long) of the row nearest
+    to `depth` [mm], and that row's depth."""
+    profile = metrics[key]
     k = int(np.argmin(np.abs(profile[:, 0] - depth)))
     return profile[k, 1], profile[k, 0]
 
 
 def sxx_table(rows, passes, a):
-    """The residual sigma_xx [MPa] at a few depths, every run and pass (rows: label, metrics)."""
+    """The residual sigma_xx [MPa] at a few depths, every run and pass (rows: label, metrics, key
+    of sxx_at)."""
     depths = [sxx_at(rows[0][1][0], d * a)[1] for d in SXX_DEPTHS]
     lines = []
     for k in range(passes):
         lines += ["", "Residual σ_xx [MPa] after pass %d, by depth [mm]:" % (k + 1), "",
                   "| run | " + " | ".join("%.2f" % d for d in depths) + " |",
                   "|---|" + "---:|" * len(depths)]
-        for label, metrics in rows:
-            lines.append("| %s | " % label + " | ".join("%.0f" % sxx_at(metrics[k], d)[0] for d in depths) + " |")
+        for label, metrics, key in rows:
+            lines.append("| %s | " % label + " | ".join("%.0f" % sxx_at(metrics[k], d, key)[0] for d in depths) + " |")
     return "\n".join(lines) + "\n"
 
 
 def sxx_gap(run, reference, below=0.0):
-    """The largest difference of the residual sigma_xx by depth (rows deeper than `below`) over
-    the reference's peak, and the depth where it is."""
-    r, s = reference["sxx"], run["sxx"]
+    """The largest difference of the long track's residual sigma_xx by depth (rows deeper than
+    `below`) over the reference's peak, and the depth where it is."""
+    r, s = reference["sxx_long"], run["sxx_long"]
     gap = np.where(r[:, 0] > below, np.abs(s[:, 1] - r[:, 1]), 0.0)
     k = int(np.argmax(gap))
     return gap[k] / np.max(np.abs(r[:, 1])), r[k, 0]
@@ -159,7 +197,7 @@ def sxx_gap(run, reference, below=0.0):
 
 def table(runs, reference, passes):
     lines = ["| run | pass | mean Δε̄ᵖ to 4a | against the reference | ∫Δε̄ᵖ dz [µm] | band at 0.78a | against | "
-             "net Δγ_xy in the band | residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
+             "net Δγ_xy in the band | long track's residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for label, metrics in runs:
         for k in range(passes):
@@ -190,10 +228,12 @@ def figure(path, transients, stationaries, passes, track_middle):
         if not by_step:
             left.plot(numbers, [m["mean"] for m in transients[-1][1]], "o-k", label=finest)
         middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
+        p = transients[-1][1][passes - 1]["sxx_long"]
+        right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest + ", a long track's")
         p = transients[-1][1][passes - 1]["sxx"]
-        right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest)
+        right.plot(p[:, 1], p[:, 0], "--", color="0.3", lw=1, label=finest + ", as read")
         p = track_middle[1][passes - 1]["sxx"]
-        right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0], zorder=0)
+        right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0] + ", as read", zorder=0)
     for (label, metrics), style in zip(stationaries, styles):
         colour = "C0" if "roller" in label else "C3"
         if by_step:
@@ -201,7 +241,7 @@ def figure(path, transients, stationaries, passes, track_middle):
         else:
             left.plot(numbers, [m["mean"] for m in metrics], ls=style, color=colour, marker=".", label=label)
         middle.plot(numbers, [m["net_shear"] for m in metrics], ls=style, color=colour, marker=".", label=label)
-        p = metrics[passes - 1]["sxx"]
+        p = metrics[passes - 1]["sxx_long"]
         right.plot(p[:, 1], p[:, 0], ls=style, color=colour, label=label)
     if by_step:
         left.set_xscale("log")
@@ -268,10 +308,11 @@ def main(argv=None):
         folder = os.path.join(out, "scenes_s%g" % s)
         scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
         press_x, centre_y = roller_centre(scene)
+        elastic = elastic_constants(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
         fields = pass_fields(run_out, args.passes)  # the last, the finest step's, measured again below
-        metrics = measure(fields, measured_windows(run_out, args.passes, A, args.track, False, press_x), A)
+        metrics = measure(fields, measured_windows(run_out, args.passes, A, args.track, False, press_x), A, elastic)
         transients.append((s, metrics))
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
@@ -292,14 +333,13 @@ def main(argv=None):
     middle = None
     if transients:  # `fields`: the finest transient's
         middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
-                  measure(fields, middle_windows(args.passes, A, args.track, press_x), A))
+                  measure(fields, middle_windows(args.passes, A, args.track, press_x), A, elastic))
     reference = rows[len(transients) - 1] if transients else rows[0]
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
             args.load, h, args.track, reference[0]))
         f.write(table(rows, reference[1], args.passes))
-        sxx_rows = rows[:len(transients)] + ([middle] if middle else []) + rows[len(transients):]
-        f.write(sxx_table(sxx_rows, args.passes, A))
+        f.write(sxx_table(sxx_rows(rows[:len(transients)], middle, rows[len(transients):]), args.passes, A))
     figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle)
     print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
     return 0

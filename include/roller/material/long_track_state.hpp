@@ -1,0 +1,20 @@
+#pragma once
+// The residual state a long rolled track leaves, with a point's plastic history (docs/model.md,
+// "Stationary pass", Between passes). Far from the track's ends the state is uniform along x; on
+// a base held in x and y its displacement then does not depend on x, so its total strain has no
+// xx part (nor zz: plane strain, and B-bar's zz part vanishes with the gradient along x), and
+// equilibrium with the free surface asks sigma_yy = sigma_xy = 0. A finite strip's ends relieve
+// the rolled layer's compression instead (an xx strain of 1e-4 to 3e-4 on the shakedown scenes,
+// up to 15 % of the peak residual stress); this takes that relief off elastically.
+#include "roller/material/material_params.hpp"
+#include "roller/material/material_state.hpp"
+
+namespace roller {
+
+// `leaving`: the state of a point of a finite strip after a pass, whose total strain of that pass
+// (as the material update sees it: [xx, yy, zz, 2xy], B-bar applied) is `pass_strain` (small
+// kinematics, plane strain). The result keeps its plastic strain, equivalent plastic strain, work
+// and back-stresses, and has the long track's stress.
+MaterialState long_track_state(const MaterialState& leaving, const Vec4& pass_strain, const MaterialParams& material);
+
+}  // namespace roller
