@@ -4,7 +4,7 @@ initial yield stress scaled so that its own load lies a fraction below and above
 limit scales with the yield stresses at a fixed load, which keeps the contact's shape), and the
 passes' verdicts are compared: elastic shakedown below, none above.
 
-usage: ./rollerpy melan-check SCENE [--margin 0.05] [--passes 5] [--out out/melan_check/NAME]
+usage: ./rollerpy melan-check SCENE [--margin 0.05] [--passes 8] [--out out/melan_check/NAME]
                               [--traction Q] [--roller ./build/roller] [--timeout 7200]
 
 Writes OUT/limit.json (the shakedown-limit), OUT/below/ and OUT/above/ (the runs, with their
@@ -46,7 +46,7 @@ def main(argv=None):
     ap = parser("melan-check", __doc__)
     ap.add_argument("scene")
     ap.add_argument("--margin", type=float, default=0.05, help="below and above the limit by this fraction")
-    ap.add_argument("--passes", type=int, default=5)
+    ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--traction", type=float, default=None, help="q/p (default: the scene's)")
     ap.add_argument("--out", default=None)
     ap.add_argument("--roller", default="./build/roller")
