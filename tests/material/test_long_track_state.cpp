@@ -20,7 +20,7 @@ Vec4 hooke(const MaterialParams& m, const Vec4& elastic_strain) {
 }  // namespace
 
 TEST_CASE("long track state: a finite strip's state with the plastic strain of a long track's", "[material]") {
-  const MaterialParams m;  // E = 210000 MPa, nu = 0.3
+  const MaterialParams m;                                // E = 210000 MPa, nu = 0.3
   const Vec4 plastic(1.3e-3, -0.4e-3, -0.9e-3, 0.7e-3);  // deviatoric: xx + yy + zz = 0
   // The finite strip's total strain: an xx part its ends left, a zz part of B-bar, any yy and shear.
   const Vec4 total(2.1e-4, -0.6e-3, 0.3e-4, 0.95e-3);
