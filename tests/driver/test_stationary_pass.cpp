@@ -2,6 +2,7 @@
 // one; an unloaded strip keeps its upstream state; the pass of a shakedown scene converges.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -57,6 +58,34 @@ TEST_CASE("stationary strip: the sweep's nodal forces of an elastic strip are th
   const StationaryStrip strip(model.mesh(), elastic, model.options(), 1.0);
   const VecX f = strip.forces(strip.sweep(strip.strains(u), strip.virgin_upstream()));
   CHECK((f - gradient).cwiseAbs().maxCoeff() <= 1e-10 * gradient.cwiseAbs().maxCoeff());
+}
+
+TEST_CASE("stationary strip: a state uniform along x holds the mesh at its two ends only", "[stationary]") {
+  // sigma_xx and sigma_zz by depth, no sigma_yy or sigma_xy (a long track's residual strip): the
+  // nodal forces of the spread states are the sum of the two ends' (StationaryStrip::end_forces);
+  // the two ends' forces balance in x.
+  Setup s("hertz", 100.0, 1000.0);
+  const StationaryStrip& strip = s.strip;
+  std::vector<MaterialState> states = strip.virgin_upstream();
+  for (std::size_t i = 0; i < states.size(); ++i) states[i].stress = Vec4(-400.0 + 7.0 * i, 0.0, -120.0 + 2.0 * i, 0.0);
+  const VecX all = strip.forces(strip.spread(states));
+  const VecX up = strip.end_forces(states, StationaryStrip::End::Upstream);
+  const VecX down = strip.end_forces(states, StationaryStrip::End::Downstream);
+  const Real scale = all.cwiseAbs().maxCoeff();
+  REQUIRE(scale > 0.0);
+  CHECK((all - up - down).cwiseAbs().maxCoeff() <= 1e-9 * scale);
+  CHECK(up.cwiseAbs().maxCoeff() > 0.1 * scale);
+  Real fx_up = 0.0, fx_down = 0.0;
+  for (Index a = 0; 2 * a < up.size(); ++a) fx_up += up[2 * a], fx_down += down[2 * a];
+  CHECK(fx_up == Approx(-fx_down).epsilon(1e-9));
+  // The roller travels towards +x (travel 1): the material enters at the largest x.
+  const Mesh& mesh = s.sim.model().mesh();
+  Real x_min = mesh.nodes.front().x(), x_max = x_min;
+  for (const Vec2& p : mesh.nodes) x_min = std::min(x_min, p.x()), x_max = std::max(x_max, p.x());
+  for (Index a = 0; a < mesh.n_nodes(); ++a) {
+    if (up.segment<2>(2 * a).any()) CHECK(mesh.nodes[a].x() == x_max);
+    if (down.segment<2>(2 * a).any()) CHECK(mesh.nodes[a].x() == x_min);
+  }
 }
 
 TEST_CASE("stationary pass: an unloaded strip keeps its upstream state, an elastic one is solved by one correction",
