@@ -76,3 +76,20 @@ TEST_CASE("assembled Hessian over free dofs equals central differences of the gr
     CHECK((MatX(h) - dense).cwiseAbs().maxCoeff() == 0.0);
   }
 }
+
+TEST_CASE("a dead load adds -f.u to the increment's energy and -f to its gradient, nothing to its Hessian",
+          "[assembly]") {
+  StripModel model = plastic_strip(ElementType::Q4);
+  const Index n = model.n_dofs();
+  model.set_dof_map(DofMap(std::vector<bool>(n, false)));
+  VecX u(n), f(n);
+  for (Index i = 0; i < n; ++i) u(i) = 0.2 * std::sin(1.7 * i + 0.3), f(i) = 30.0 * std::cos(0.9 * i);
+  VecX g0, g1;
+  SparseMatrix h0, h1;
+  const Real e0 = model.evaluate(u, &g0, &h0).energy;
+  model.set_dead_load(f);
+  const Real e1 = model.evaluate(u, &g1, &h1).energy;
+  CHECK(e1 - e0 == Approx(-f.dot(u)).epsilon(0.0).margin(1e-12 * std::abs(e0)));  // e0 ~ 1e4: roundoff
+  CHECK((g1 - g0 + f).cwiseAbs().maxCoeff() <= 1e-12 * f.cwiseAbs().maxCoeff());
+  CHECK(MatX(h1) == MatX(h0));
+}
