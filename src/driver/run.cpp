@@ -232,7 +232,12 @@ RunSummary Simulation::run(const RunOptions& options) {
   finish_summary();
   if (summary.status != RunStatus::Interrupted)
     summary.status = summary.converged ? RunStatus::Completed : RunStatus::StepFailed;
-  if (summary.status == RunStatus::Completed) summary.message = fmt::format("{} steps converged", summary.steps_done);
+  if (summary.status == RunStatus::Completed)
+    summary.message =
+        summary.decided
+            ? fmt::format("{} steps converged; the verdict was decided after pass {} of {} (passes.until_verdict)",
+                          summary.steps_done, state_.pass_records.size(), scene_.passes.count)
+            : fmt::format("{} steps converged", summary.steps_done);
   if (files) write_summary(summary_file, *this, summary, first_step, options.resume);
   return summary;
 }
@@ -250,6 +255,7 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
       break;
     }
     const auto t_step = Clock::now();
+    const std::size_t passes_before = state_.pass_records.size();
     const StepRecord res = advance_step(step);
     const double wall = seconds_since(t_step);
     state_.totals.iterations += res.counters.iterations;
@@ -267,6 +273,11 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     if (options.write_files)
       save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
     if (options.progress) print_progress(*options.progress, scene_, res, wall);
+    if (scene_.passes.until_verdict && state_.pass_records.size() > passes_before &&
+        classify_passes(state_.pass_records).verdict != ShakedownVerdict::Undetermined) {
+      summary.decided = true;
+      break;
+    }
   }
 }
 

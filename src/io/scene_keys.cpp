@@ -758,6 +758,9 @@ std::vector<SceneKey> make_keys() {
           "passes.stationary_contact", [](auto& s) -> auto& { return s.passes.stationary_contact; },
           "the stationary pass's load: hertz, the Hertz pressure of the travel force (q = mu p when it slides); "
           "roller, the rigid roller's frictionless contact solved in every iteration"),
+      key(
+          "passes.until_verdict", [](auto& s) -> auto& { return s.passes.until_verdict; },
+          "stop after the first pass that decides the shakedown verdict (at most count passes)"),
 
       // [newton]
       key(

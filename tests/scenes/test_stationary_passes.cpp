@@ -218,6 +218,35 @@ TEST_CASE("stationary passes with the roller's contact: elastic shakedown below 
   CHECK(-force == Approx(7249.8292).epsilon(1e-6));
 }
 
+TEST_CASE("passes.until_verdict: the run stops after the pass that decides the verdict", "[scenes][stationary]") {
+  // shakedown_p45 stationary: pass 3 adds 0.96 of pass 2's (settled) with a net shear of 0.7 of
+  // its plastic shear, ratchetting; shakedown_p37 leaves no plastic strain after pass 1, elastic
+  // shakedown as soon as three passes allow a verdict.
+  const auto [scene, verdict] = GENERATE(table<std::string, ShakedownVerdict>(
+      {{"shakedown_p45", ShakedownVerdict::Ratchetting}, {"shakedown_p37", ShakedownVerdict::ElasticShakedown}}));
+  auto run = [&](bool until) {
+    Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml",
+                              {kStationary, {"passes.count", "12"}, {"passes.until_verdict", until ? "true" : "false"}}));
+    RunOptions options;
+    options.write_files = false;
+    const RunSummary summary = sim.run(options);
+    REQUIRE(summary.status == RunStatus::Completed);
+    REQUIRE(summary.verdict);
+    return std::make_pair(summary, sim.state().pass_records.size());
+  };
+  const auto [until, passes] = run(true);
+  INFO(until.message);
+  CHECK(until.decided);
+  CHECK(passes == 3);
+  CHECK(until.steps_done == 3);
+  CHECK(until.verdict->verdict == verdict);
+  CHECK_THAT(until.message, Catch::Contains("decided after pass 3 of 12"));
+  const auto [all, all_passes] = run(false);
+  CHECK_FALSE(all.decided);
+  CHECK(all_passes == 12);
+  CHECK(all.verdict->verdict == verdict);
+}
+
 TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", "[scenes][stationary]") {
   test::TempDir dir("roller_stationary");
   const fs::path whole = dir.path() / "whole", split = dir.path() / "split";

@@ -77,6 +77,7 @@ struct RunSummary {
   double wall_s = 0.0;
   double peak_memory_mb = 0.0;  // the process's peak resident memory so far [MiB]
   std::string message;
+  bool decided = false;  // passes.until_verdict stopped the run after the pass that decided
   // A multi-pass run that has ended (however): the shakedown verdict of its passes.
   std::optional<ShakedownClassification> verdict;
 };

@@ -51,6 +51,7 @@ struct PassSpec {
   PassDirection direction = PassDirection::Same;
   PassMethod method = PassMethod::Transient;
   StationaryContact stationary_contact = StationaryContact::Hertz;
+  bool until_verdict = false;  // stop after the first pass that decides the shakedown verdict
 };
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
