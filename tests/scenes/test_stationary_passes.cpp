@@ -225,8 +225,9 @@ TEST_CASE("passes.until_verdict: the run stops after the pass that decides the v
   const auto [scene, verdict] = GENERATE(table<std::string, ShakedownVerdict>(
       {{"shakedown_p45", ShakedownVerdict::Ratchetting}, {"shakedown_p37", ShakedownVerdict::ElasticShakedown}}));
   auto run = [&](bool until) {
-    Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml",
-                              {kStationary, {"passes.count", "12"}, {"passes.until_verdict", until ? "true" : "false"}}));
+    Simulation sim(
+        load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml",
+                   {kStationary, {"passes.count", "12"}, {"passes.until_verdict", until ? "true" : "false"}}));
     RunOptions options;
     options.write_files = false;
     const RunSummary summary = sim.run(options);
