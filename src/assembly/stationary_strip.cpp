@@ -74,18 +74,15 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
   // The ends: the upstream one lies ahead of the roller, at the largest travel * x.
   Real lo = mesh.nodes.front().x(), hi = lo;
   for (const Vec2& x : mesh.nodes) lo = std::min(lo, x.x()), hi = std::max(hi, x.x());
-  const Real upstream_x = travel > 0.0 ? hi : lo, downstream_x = travel > 0.0 ? lo : hi;
-  for (Index a = 0; a < mesh.n_nodes(); ++a) {
-    if (mesh.nodes[a].x() == upstream_x) end_nodes_[0].push_back(a);
-    if (mesh.nodes[a].x() == downstream_x) end_nodes_[1].push_back(a);
+  end_x_[0] = travel > 0.0 ? hi : lo;
+  end_x_[1] = travel > 0.0 ? lo : hi;
+  for (int end = 0; end < 2; ++end) {
+    auto on_end = [&](Index a) { return mesh.nodes[a].x() == end_x_[end]; };
+    for (Index a = 0; a < mesh.n_nodes(); ++a)
+      if (on_end(a)) end_nodes_[end].push_back(a);
+    for (Index e = 0; e < mesh.n_elements(); ++e)
+      if (std::any_of(mesh.elements[e].begin(), mesh.elements[e].end(), on_end)) end_elements_[end].push_back(e);
   }
-  for (Index e = 0; e < mesh.n_elements(); ++e)
-    for (int end = 0; end < 2; ++end) {
-      const Real x = end == 0 ? upstream_x : downstream_x;
-      const auto& element = mesh.elements[e];
-      if (std::any_of(element.begin(), element.end(), [&](Index a) { return mesh.nodes[a].x() == x; }))
-        end_elements_[end].push_back(e);
-    }
 }
 
 std::vector<Vec4> StationaryStrip::element_strains_of(const VecX& u, Index e) const {

@@ -65,10 +65,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
   // Half-way between the contact's trailing edge and the strip's downstream end.
-  Real x_min = mesh.nodes.front().x(), x_max = x_min;
-  for (const Vec2& p : mesh.nodes) x_min = std::min(x_min, p.x()), x_max = std::max(x_max, p.x());
-  const Real downstream_end = travel_ > 0.0 ? x_min : x_max;
-  extraction_x_ = 0.5 * (centre_x_ - travel_ * hertz_.half_width + downstream_end);
+  extraction_x_ = 0.5 * (centre_x_ - travel_ * hertz_.half_width + strip_.end_x(StationaryStrip::End::Downstream));
   for (const Streamline& s : strip_.streamlines())
     extraction_.push_back(*std::min_element(s.points.begin(), s.points.end(), [&](Index a, Index b) {
       return std::abs(strip_.point_position(a).x() - extraction_x_) <
@@ -125,15 +122,17 @@ std::vector<MaterialState> StationaryPasses::upstream_of(const StripModel& strip
   return out;
 }
 
-std::vector<MaterialState> StationaryPasses::leaving(const DofMap& dofs, const VecX& u,
-                                                     const std::vector<MaterialState>& states, const VecX& load,
-                                                     VecX& elastic) {
+const VecX& StationaryPasses::elastic_displacement(const DofMap& dofs, const VecX& load) {
   if (elastic_load_.size() != load.size() || elastic_load_ != load) {  // the Hertz load: once a pass
     elastic_load_ = load;
     elastic_displacement_ = VecX::Zero(load.size());
     if (load.any()) dofs.scatter_free(solver_.solve(dofs.restrict_to_free(load)), elastic_displacement_);
   }
-  elastic = elastic_displacement_;
+  return elastic_displacement_;
+}
+
+std::vector<MaterialState> StationaryPasses::leaving(const VecX& u, const std::vector<MaterialState>& states,
+                                                     const VecX& elastic) const {
   // The roller lifts (unloading is elastic): its field comes off; then what the mesh's ends
   // relieved (the pass's xx strain) comes off too.
   const std::vector<Vec4> load_strain = strip_.strains(elastic, extraction_);
@@ -156,9 +155,8 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
   const std::vector<MaterialState> upstream = upstream_of(strip);
   StationaryCorrection* correction = hertz_correction_.get();
   if (roller_correction_) correction = roller_correction_.get();
-  VecX elastic;
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
-    return leaving(strip.dof_map(), u, states, load, elastic);
+    return leaving(u, states, elastic_displacement(strip.dof_map(), load));
   };
   out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings, leaving_states);
   if (!out.solve.converged()) return out;
@@ -166,8 +164,8 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
     contact_ = roller_correction_->contact();
     pose_ = roller_correction_->pose();
   }
-  out.residual =
-      strip_.spread(leaving(strip.dof_map(), out.solve.displacement, out.solve.states, out.solve.load, elastic));
+  const VecX& elastic = elastic_displacement(strip.dof_map(), out.solve.load);
+  out.residual = strip_.spread(leaving(out.solve.displacement, out.solve.states, elastic));
   out.permanent_displacement = out.solve.displacement - elastic;
   return out;
 }

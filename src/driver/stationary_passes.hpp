@@ -63,10 +63,13 @@ class StationaryPasses {
 
  private:
   std::vector<MaterialState> upstream_of(const StripModel& strip) const;
+  // The elastic displacement of a load (all dofs), which the lift takes off; kept for the load
+  // last asked for (the Hertz load's is solved once).
+  const VecX& elastic_displacement(const DofMap& dofs, const VecX& load);
   // The long track's state each streamline leaves with, from the iterate (u, its states) and the
-  // load it carried, and the elastic displacement of that load (all dofs), which the lift takes off.
-  std::vector<MaterialState> leaving(const DofMap& dofs, const VecX& u, const std::vector<MaterialState>& states,
-                                     const VecX& load, VecX& elastic);
+  // elastic displacement of the load it carried.
+  std::vector<MaterialState> leaving(const VecX& u, const std::vector<MaterialState>& states,
+                                     const VecX& elastic) const;
 
   Real roller_y_ = 0.0;  // the centre's height at the start (the pose written beside the load)
   HertzSolution hertz_;
@@ -79,7 +82,7 @@ class StationaryPasses {
   std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
   std::vector<Index> extraction_;                        // per streamline: its point at the extraction column
   std::vector<NodeContactRecord> contact_;
-  VecX elastic_load_, elastic_displacement_;  // the last load leaving() unloaded, and its displacement
+  VecX elastic_load_, elastic_displacement_;  // elastic_displacement()'s last load, and its displacement
 };
 
 }  // namespace roller

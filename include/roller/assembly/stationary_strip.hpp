@@ -58,6 +58,8 @@ class StationaryStrip {
   // end's nodes. Inside the mesh a state uniform along x, with no sigma_yy and sigma_xy, exerts
   // none, so forces(spread(states)) is the sum of both ends'.
   VecX end_forces(const std::vector<MaterialState>& states, End end) const;
+  // The x of that end's nodes [mm].
+  Real end_x(End end) const { return end_x_[end == End::Upstream ? 0 : 1]; }
   // Each streamline's virgin state (initial_state of its material).
   std::vector<MaterialState> virgin_upstream() const;
 
@@ -72,6 +74,7 @@ class StationaryStrip {
   std::vector<Vec2> positions_;                       // per point
   std::vector<Streamline> streamlines_;
   std::vector<Index> streamline_of_;    // per point
+  Real end_x_[2] = {0.0, 0.0};          // per End (Upstream, Downstream)
   std::vector<Index> end_elements_[2];  // per End: the elements with a node on it
   std::vector<Index> end_nodes_[2];     // per End: its nodes
 };
