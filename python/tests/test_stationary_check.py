@@ -1,6 +1,8 @@
 """stationary-check's measure of a pass from the field files: over passes.csv's own window it
 gives passes.csv's numbers (roller's C++ measure_pass), for a transient run and for a stationary
-one, and a stationary run's residual strip gives the same numbers on any stretch of it."""
+one, and a stationary run's residual strip, a long track's, gives the same numbers on any stretch
+of it, its total shear is its plastic shear and its sigma_xx the long track's of its plastic
+strain."""
 import os
 
 import numpy as np
@@ -9,8 +11,9 @@ import pytest
 from rollerpy.outputs import read_numbers
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
-from rollerpy.validation.stationary_check import (SXX_DEPTHS, long_track_sxx, measure, middle_windows, pass_fields,
-                                                  stretch_metrics, sxx_table)
+from rollerpy.validation.stationary_check import (SXX_DEPTHS, elastic_constants, long_track_sxx, measure,
+                                                  middle_windows, pass_fields, plastic_shear, stretch_metrics,
+                                                  sxx_table)
 
 
 @pytest.fixture(scope="module")
@@ -25,6 +28,7 @@ def runs(roller, tmp_path_factory):
         out = os.path.join(folder, method)
         run(roller_command(roller, scene, out, *set_options(pairs)), out + ".log").check()
         outs[method] = out
+    outs["elastic"] = elastic_constants(scene)
     return outs
 
 
@@ -33,7 +37,7 @@ def test_the_window_of_passes_csv_gives_its_numbers(runs, method):
     rows = read_numbers(os.path.join(runs[method], "passes.csv"))
     fields = pass_fields(runs[method], 2)
     for k, row in enumerate(rows):
-        m = stretch_metrics(fields[k + 1], fields[k], row["track_start"], row["track_end"], A)
+        m = stretch_metrics(fields[k + 1], fields[k], row["track_start"], row["track_end"], A, runs["elastic"])
         assert m["mean"] > 1e-4  # the pass yields
         assert m["mean"] == pytest.approx(row["mean_plastic_increment"], rel=1e-9)
         assert m["band"] == pytest.approx(row["band_plastic_increment"], rel=1e-9)
@@ -42,21 +46,31 @@ def test_the_window_of_passes_csv_gives_its_numbers(runs, method):
 
 def test_a_stationary_residual_strip_is_the_same_on_every_stretch(runs):
     fields = pass_fields(runs["stationary"], 2)
-    near = stretch_metrics(fields[1], fields[0], 40.0, 48.0, A)
-    far = stretch_metrics(fields[1], fields[0], 60.0, 68.0, A)
-    assert near["mean"] > 1e-4
-    assert near["mean"] == pytest.approx(far["mean"], rel=1e-6)
-    assert near["integral"] == pytest.approx(far["integral"], rel=1e-6)
-    assert near["sxx"][:, 1] == pytest.approx(far["sxx"][:, 1], rel=1e-6, abs=1e-6)
+    for k in range(2):
+        near = stretch_metrics(fields[k + 1], fields[k], 40.0, 48.0, A, runs["elastic"])
+        far = stretch_metrics(fields[k + 1], fields[k], 60.0, 68.0, A, runs["elastic"])
+        assert near["mean"] > 1e-4
+        assert near["mean"] == pytest.approx(far["mean"], rel=1e-6)
+        assert near["integral"] == pytest.approx(far["integral"], rel=1e-6)
+        assert near["sxx"][:, 1] == pytest.approx(far["sxx"][:, 1], rel=1e-6, abs=1e-6)
+        # The displacement is the long track's too: the net shear is the same everywhere, and it is
+        # the plastic shear (no sigma_xy), as the residual sigma_xx is the long track's of its
+        # plastic strain.
+        assert abs(near["net_shear"]) > 1e-5
+        assert near["net_shear"] == pytest.approx(far["net_shear"], rel=1e-6)
+        assert near["net_plastic_shear"] == pytest.approx(near["net_shear"], rel=1e-9)
+        assert near["sxx_long"][:, 1] == pytest.approx(near["sxx"][:, 1], rel=1e-6, abs=1e-6)
+    assert plastic_shear(fields[2], runs["elastic"]) == pytest.approx(2.0 * fields[2].cell_data["strain"][:, 3],
+                                                                      rel=1e-9, abs=1e-15)
 
 
 def test_the_middle_stretch_and_the_residual_table(runs):
     """The transient read on 3a either side of its track's middle (the 6a track from x = 92), and the
     table of the residual sigma_xx at SXX_DEPTHS: the rows nearest to them, every pass."""
     fields = pass_fields(runs["transient"], 2)
-    middle = measure(fields, middle_windows(2, A, 6.0, 92.0), A)
+    middle = measure(fields, middle_windows(2, A, 6.0, 92.0), A, runs["elastic"])
     for k in range(2):
-        direct = stretch_metrics(fields[k + 1], fields[k], 92.0, 92.0 + 6.0 * A, A)
+        direct = stretch_metrics(fields[k + 1], fields[k], 92.0, 92.0 + 6.0 * A, A, runs["elastic"])
         assert middle[k]["mean"] == pytest.approx(direct["mean"], rel=1e-12)
     profile = middle[0]["sxx"]
     text = sxx_table([("transient", middle, "sxx")], 2, A)

@@ -164,6 +164,39 @@ VecX StationaryStrip::end_forces(const std::vector<MaterialState>& states, End e
   return out;
 }
 
+VecX StationaryStrip::uniform_displacement(const std::vector<Vec4>& strains) const {
+  ROLLER_ASSERT(strains.size() == streamlines_.size(), "one strain per streamline");
+  // The node rows' heights, from the base up, and each row of elements' mean strain.
+  const Real tolerance = kRowTolerance * smallest_height(mesh_);
+  std::vector<Real> heights;
+  for (const Vec2& x : mesh_.nodes) heights.push_back(x.y());
+  std::sort(heights.begin(), heights.end());
+  heights.erase(std::unique(heights.begin(), heights.end(), [&](Real a, Real b) { return b - a <= tolerance; }),
+                heights.end());
+  const std::size_t n_rows = heights.size() - 1;
+  std::vector<Vec4> row_strain(n_rows, Vec4::Zero());
+  std::vector<int> row_count(n_rows, 0);
+  for (std::size_t s = 0; s < streamlines_.size(); ++s) {
+    const auto above = std::upper_bound(heights.begin(), heights.end(), streamlines_[s].y);
+    ROLLER_ASSERT(above != heights.begin() && above != heights.end(), "a streamline lies inside the strip");
+    const std::size_t row = static_cast<std::size_t>(above - heights.begin()) - 1;
+    row_strain[row] += strains[s];
+    ++row_count[row];
+  }
+  // u at each node row, integrated from the base.
+  std::vector<Vec2> column(heights.size(), Vec2::Zero());
+  for (std::size_t j = 0; j < n_rows; ++j) {
+    const Vec4 eps = row_count[j] > 0 ? Vec4(row_strain[j] / row_count[j]) : Vec4::Zero();
+    column[j + 1] = column[j] + (heights[j + 1] - heights[j]) * Vec2(eps(3), eps(1));
+  }
+  VecX u = VecX::Zero(mesh_.n_dofs());
+  for (Index a = 0; a < mesh_.n_nodes(); ++a) {
+    const auto row = std::lower_bound(heights.begin(), heights.end(), mesh_.nodes[a].y() - tolerance);
+    u.segment<2>(2 * a) = column[static_cast<std::size_t>(row - heights.begin())];
+  }
+  return u;
+}
+
 std::vector<MaterialState> StationaryStrip::virgin_upstream() const {
   std::vector<MaterialState> out;
   for (const Streamline& s : streamlines_)

@@ -131,13 +131,13 @@ const VecX& StationaryPasses::elastic_displacement(const DofMap& dofs, const Vec
   return elastic_displacement_;
 }
 
-std::vector<MaterialState> StationaryPasses::leaving(const VecX& u, const std::vector<MaterialState>& states,
-                                                     const VecX& elastic) const {
+std::vector<LongTrackState> StationaryPasses::leaving(const VecX& u, const std::vector<MaterialState>& states,
+                                                      const VecX& elastic) const {
   // The roller lifts (unloading is elastic): its field comes off; then what the mesh's ends
   // relieved (the pass's xx strain) comes off too.
   const std::vector<Vec4> load_strain = strip_.strains(elastic, extraction_);
   const std::vector<Vec4> residual_strain = strip_.strains(u - elastic, extraction_);
-  std::vector<MaterialState> out;
+  std::vector<LongTrackState> out;
   for (std::size_t s = 0; s < extraction_.size(); ++s) {
     const Index p = extraction_[s];
     const MaterialParams& m = elastic_materials_.of(p / strip_.points_per_element());
@@ -148,6 +148,22 @@ std::vector<MaterialState> StationaryPasses::leaving(const VecX& u, const std::v
   return out;
 }
 
+namespace {
+
+std::vector<MaterialState> states_of(const std::vector<LongTrackState>& track) {
+  std::vector<MaterialState> out;
+  for (const LongTrackState& t : track) out.push_back(t.state);
+  return out;
+}
+
+std::vector<Vec4> strains_of(const std::vector<LongTrackState>& track) {
+  std::vector<Vec4> out;
+  for (const LongTrackState& t : track) out.push_back(t.pass_strain);
+  return out;
+}
+
+}  // namespace
+
 StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostream* progress) {
   StationarySettings settings;
   settings.progress = progress;
@@ -156,7 +172,7 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
   StationaryCorrection* correction = hertz_correction_.get();
   if (roller_correction_) correction = roller_correction_.get();
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
-    return leaving(u, states, elastic_displacement(strip.dof_map(), load));
+    return states_of(leaving(u, states, elastic_displacement(strip.dof_map(), load)));
   };
   out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings, leaving_states);
   if (!out.solve.converged()) return out;
@@ -165,8 +181,9 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
     pose_ = roller_correction_->pose();
   }
   const VecX& elastic = elastic_displacement(strip.dof_map(), out.solve.load);
-  out.residual = strip_.spread(leaving(out.solve.displacement, out.solve.states, elastic));
-  out.permanent_displacement = out.solve.displacement - elastic;
+  const std::vector<LongTrackState> track = leaving(out.solve.displacement, out.solve.states, elastic);
+  out.residual = strip_.spread(states_of(track));
+  out.permanent_displacement = strip_.uniform_displacement(strains_of(track));
   return out;
 }
 

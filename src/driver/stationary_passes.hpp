@@ -9,8 +9,8 @@
 // streamline as it leaves the pass, a long track's (material/long_track_state.hpp), read at the
 // extraction column (downstream, half-way between the contact and the strip's end, with the
 // roller's elastic field subtracted); the strip beyond the mesh's downstream end holds it with
-// that state while the pass is solved. The displacement is the sum of the passes' permanent
-// displacements. So the next pass's upstream state, the pass metrics (measure_pass) and the state
+// that state while the pass is solved. The displacement is the sum of the passes' long-track
+// displacements (uniform along x: the plastic shear and the yy strain integrated from the base). So the next pass's upstream state, the pass metrics (measure_pass) and the state
 // files are the transient method's.
 #include <functional>
 #include <iosfwd>
@@ -24,6 +24,7 @@
 #include "roller/driver/run_state.hpp"
 #include "roller/driver/stationary_pass.hpp"
 #include "roller/io/scene.hpp"
+#include "roller/material/long_track_state.hpp"
 
 namespace roller {
 
@@ -48,7 +49,7 @@ class StationaryPasses {
   struct Pass {
     StationaryPassResult solve;
     std::vector<MaterialState> residual;  // the residual strip's states (every point)
-    VecX permanent_displacement;          // u - u_elastic of the pass (all dofs)
+    VecX permanent_displacement;          // the long track's displacement of the pass (all dofs)
   };
   // The pass from the residual strip `strip` (or the initial state before the first pass).
   Pass run(const StripModel& strip, std::ostream* progress);
@@ -66,10 +67,10 @@ class StationaryPasses {
   // The elastic displacement of a load (all dofs), which the lift takes off; kept for the load
   // last asked for (the Hertz load's is solved once).
   const VecX& elastic_displacement(const DofMap& dofs, const VecX& load);
-  // The long track's state each streamline leaves with, from the iterate (u, its states) and the
-  // elastic displacement of the load it carried.
-  std::vector<MaterialState> leaving(const VecX& u, const std::vector<MaterialState>& states,
-                                     const VecX& elastic) const;
+  // The long track's state each streamline leaves with, and its strain of the pass, from the
+  // iterate (u, its states) and the elastic displacement of the load it carried.
+  std::vector<LongTrackState> leaving(const VecX& u, const std::vector<MaterialState>& states,
+                                      const VecX& elastic) const;
 
   Real roller_y_ = 0.0;  // the centre's height at the start (the pose written beside the load)
   HertzSolution hertz_;

@@ -88,6 +88,36 @@ TEST_CASE("stationary strip: a state uniform along x holds the mesh at its two e
   }
 }
 
+TEST_CASE("stationary strip: a long track's strains by depth give a displacement uniform along x that carries them",
+          "[stationary]") {
+  // StationaryStrip::uniform_displacement: every point's strain (B-bar, as the material update sees
+  // it) is its streamline's when both streamlines of a row carry the same, the base stays put, and
+  // u does not depend on x: the plastic shear of a long track is its total shear.
+  Setup s("hertz", 100.0, 1000.0);
+  const StationaryStrip& strip = s.strip;
+  const std::vector<Streamline>& lines = strip.streamlines();
+  const Mesh& mesh = s.sim.model().mesh();
+  std::vector<Real> heights;  // the node rows
+  for (const Vec2& p : mesh.nodes) heights.push_back(p.y());
+  std::sort(heights.begin(), heights.end());
+  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+  std::vector<Vec4> strains(lines.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {  // one strain per row of elements
+    const auto row = static_cast<Real>(std::upper_bound(heights.begin(), heights.end(), lines[i].y) - heights.begin());
+    strains[i] = Vec4(0.0, -2e-4 + 1e-5 * row, 0.0, 3e-4 * std::cos(0.3 * row));
+  }
+  const VecX u = strip.uniform_displacement(strains);
+  Real bottom = mesh.nodes.front().y();
+  for (const Vec2& p : mesh.nodes) bottom = std::min(bottom, p.y());
+  for (Index a = 0; a < mesh.n_nodes(); ++a)
+    if (mesh.nodes[a].y() == bottom) CHECK(u.segment<2>(2 * a).norm() == 0.0);
+  const std::vector<Vec4> back = strip.strains(u);
+  Real worst = 0.0;
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    for (const Index p : lines[i].points) worst = std::max(worst, (back[p] - strains[i]).cwiseAbs().maxCoeff());
+  CHECK(worst <= 1e-12);
+}
+
 TEST_CASE("stationary pass: an unloaded strip keeps its upstream state, an elastic one is solved by one correction",
           "[stationary]") {
   Setup s("hertz", 100.0, 1000.0);

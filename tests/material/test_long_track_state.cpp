@@ -8,11 +8,12 @@ using namespace roller;
 
 namespace {
 
-// Hooke's law in plane strain on [xx, yy, zz, xy] (tensor shear).
+// Hooke's law in plane strain on the material update's strains [xx, yy, zz, 2xy].
 Vec4 hooke(const MaterialParams& m, const Vec4& elastic_strain) {
   const Real lambda = m.lame_lambda(), g = m.shear_modulus();
   const Real trace = elastic_strain(0) + elastic_strain(1) + elastic_strain(2);
   Vec4 s = 2.0 * g * elastic_strain;
+  s(3) = g * elastic_strain(3);
   s.head<3>().array() += lambda * trace;
   return s;
 }
@@ -31,7 +32,8 @@ TEST_CASE("long track state: a finite strip's state with the plastic strain of a
   leaving.yield_stress = 900.0;
   leaving.back_stress[0] = Vec4(10.0, -4.0, -6.0, 3.0);
 
-  const MaterialState s = long_track_state(leaving, total, m);
+  const LongTrackState track = long_track_state(leaving, total, m);
+  const MaterialState& s = track.state;
   const Real e = m.youngs_modulus, nu = m.poisson_ratio;
   const Real sxx = -e * (plastic(0) + nu * plastic(2)) / (1.0 - nu * nu);
   CHECK(s.stress(0) == Approx(sxx).epsilon(1e-12));
@@ -42,8 +44,14 @@ TEST_CASE("long track state: a finite strip's state with the plastic strain of a
   CHECK(s.plastic_work == leaving.plastic_work);
   CHECK(s.yield_stress == leaving.yield_stress);
   CHECK(s.back_stress[0] == leaving.back_stress[0]);
+  // The long track's strain of the pass: no xx or zz part, the plastic shear, and in yy the
+  // plastic strain with the elastic strain of the long track's stress.
+  CHECK(std::abs(track.pass_strain(0)) <= 1e-18);
+  CHECK(std::abs(track.pass_strain(2)) <= 1e-18);
+  CHECK(track.pass_strain(3) == Approx(plastic(3)).epsilon(1e-12));
+  CHECK(track.pass_strain(1) == Approx(plastic(1) - nu * (s.stress(0) + s.stress(2)) / e).epsilon(1e-12));
 
   // A state that is already a long track's stays as it is.
-  const MaterialState again = long_track_state(s, Vec4::Zero(), m);
+  const MaterialState again = long_track_state(s, Vec4::Zero(), m).state;
   CHECK((again.stress - s.stress).cwiseAbs().maxCoeff() <= 1e-12 * std::abs(sxx));
 }

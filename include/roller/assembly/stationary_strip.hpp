@@ -51,6 +51,12 @@ class StationaryStrip {
   // The states of a strip in which every streamline holds its upstream state.
   std::vector<MaterialState> spread(const std::vector<MaterialState>& upstream) const;
 
+  // The displacement (all dofs) of a strip uniform along x on a base held at u = 0 whose
+  // streamlines carry the strains `strains` (one per streamline, [xx, yy, zz, 2xy]; xx and zz
+  // must vanish, as a long track's do): u depends on y alone, du_x/dy = 2 eps_xy and du_y/dy =
+  // eps_yy, each row of elements taking the mean of its streamlines' strains.
+  VecX uniform_displacement(const std::vector<Vec4>& strains) const;
+
   // The mesh's two cut ends: where the material enters and where it leaves.
   enum class End { Upstream, Downstream };
   // The nodal forces (all dofs) with which the strip beyond one cut end holds the mesh when every

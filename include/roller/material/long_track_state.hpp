@@ -11,10 +11,17 @@
 
 namespace roller {
 
+struct LongTrackState {
+  MaterialState state;  // the long track's: the plastic history kept, sigma_yy = sigma_xy = 0
+  // The pass's total strain [xx, yy, zz, 2xy] on the long track: no xx and no zz part; its yy and
+  // shear are the finite strip's with the elastic strain of the stress taken off, so the shear is
+  // the pass's plastic shear, which the long track's displacement carries (its ratchet).
+  Vec4 pass_strain = Vec4::Zero();
+};
+
 // `leaving`: the state of a point of a finite strip after a pass, whose total strain of that pass
 // (as the material update sees it: [xx, yy, zz, 2xy], B-bar applied) is `pass_strain` (small
-// kinematics, plane strain). The result keeps its plastic strain, equivalent plastic strain, work
-// and back-stresses, and has the long track's stress.
-MaterialState long_track_state(const MaterialState& leaving, const Vec4& pass_strain, const MaterialParams& material);
+// kinematics, plane strain).
+LongTrackState long_track_state(const MaterialState& leaving, const Vec4& pass_strain, const MaterialParams& material);
 
 }  // namespace roller

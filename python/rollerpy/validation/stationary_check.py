@@ -67,14 +67,23 @@ def long_track_sxx(vtu, elastic):
     return -young * (plastic_xx + nu * plastic_zz) / (1.0 - nu * nu)
 
 
-def stretch_metrics(now, start, x0, x1, a, elastic=None):
+def plastic_shear(vtu, elastic):
+    """Each element's plastic shear strain 2 ep_xy = 2 eps_xy - sigma_xy / G: the ratchet, which a
+    finite track's ends overlay with the elastic shear of the stress they leave (a long track's
+    sigma_xy vanishes: there the total shear is the plastic one)."""
+    young, nu = elastic
+    strain, stress = np.asarray(vtu.cell_data["strain"]), np.asarray(vtu.cell_data["stress"])
+    return 2.0 * strain[:, 3] - stress[:, 3] * 2.0 * (1.0 + nu) / young
+
+
+def stretch_metrics(now, start, x0, x1, a, elastic):
     """The pass between two fields (Vtu, at its end and its start) on the stretch x0..x1: mean and band increments of
     equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
-    mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass, and
-    the residual sigma_xx by depth (the rows' area-weighted means): as read, and the long track's
-    of the same plastic strain (long_track_sxx, with `elastic` = (E, nu); without it, a
-    stationary run's, which holds the long track's already)."""
+    mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass and its
+    plastic part (plastic_shear), and the residual sigma_xx by depth (the rows' area-weighted
+    means): as read, and the long track's of the same plastic strain (long_track_sxx; `elastic` =
+    (E, nu)), which a stationary run's residual strip holds already."""
     centroid, area, height = geometry(now)
     top = now.reference[:, 1].max()
     depth = top - centroid[:, 1]
@@ -82,8 +91,9 @@ def stretch_metrics(now, start, x0, x1, a, elastic=None):
     band = inside & (np.abs(depth - BAND_DEPTH * a) <= 0.25 * a)
     increment = np.ravel(now.cell_data["eq_plastic_strain"]) - np.ravel(start.cell_data["eq_plastic_strain"])
     shear = 2.0 * (np.asarray(now.cell_data["strain"])[:, 3] - np.asarray(start.cell_data["strain"])[:, 3])
+    plastic = plastic_shear(now, elastic) - plastic_shear(start, elastic)
     sxx = np.asarray(now.cell_data["stress"])[:, 0]
-    sxx_long = sxx if elastic is None else long_track_sxx(now, elastic)
+    sxx_long = long_track_sxx(now, elastic)
     rows = np.round(depth[inside], 6)
     profile, profile_long, integral = [], [], 0.0
     for d in np.unique(rows):
@@ -96,6 +106,7 @@ def stretch_metrics(now, start, x0, x1, a, elastic=None):
             "integral": integral,
             "band": np.average(increment[band], weights=area[band]),
             "net_shear": np.average(shear[band], weights=area[band]),
+            "net_plastic_shear": np.average(plastic[band], weights=area[band]),
             "sxx": np.array(profile),
             "sxx_long": np.array(profile_long)}
 
@@ -159,7 +170,7 @@ def middle_windows(passes, a, track, press_x):
     return [(middle - MIDDLE * a, middle + MIDDLE * a)] * passes
 
 
-def measure(fields, windows, a, elastic=None):
+def measure(fields, windows, a, elastic):
     """Every pass of a run (its fields, pass_fields) on its window (elastic: stretch_metrics)."""
     return [stretch_metrics(fields[k + 1], fields[k], *window, a, elastic) for k, window in enumerate(windows)]
 
@@ -197,18 +208,18 @@ def sxx_gap(run, reference, below=0.0):
 
 def table(runs, reference, passes):
     lines = ["| run | pass | mean Δε̄ᵖ to 4a | against the reference | ∫Δε̄ᵖ dz [µm] | band at 0.78a | against | "
-             "net Δγ_xy in the band | long track's residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "net Δγ_xy in the band | its plastic part | long track's residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for label, metrics in runs:
         for k in range(passes):
             m, r = metrics[k], reference[k]
             gap, depth = sxx_gap(m, r)
             deep_gap, deep = sxx_gap(m, r, below=0.5 * A)
-            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.2e | %.1f %%, %.2f mm | "
+            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.2e | %.2e | %.1f %%, %.2f mm | "
                          "%.1f %%, %.2f mm |" % (
                              label, k + 1, m["mean"], 100 * (m["mean"] / r["mean"] - 1), 1000 * m["integral"],
-                             m["band"], 100 * (m["band"] / r["band"] - 1), m["net_shear"], 100 * gap, depth,
-                             100 * deep_gap, deep))
+                             m["band"], 100 * (m["band"] / r["band"] - 1), m["net_shear"], m["net_plastic_shear"],
+                             100 * gap, depth, 100 * deep_gap, deep))
     return "\n".join(lines) + "\n"
 
 
@@ -326,7 +337,8 @@ def main(argv=None):
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
         metrics = measure(pass_fields(run_out, args.passes),
-                          measured_windows(run_out, args.passes, A, args.track, True, press_x), A)
+                          measured_windows(run_out, args.passes, A, args.track, True, press_x), A,
+                          elastic_constants(scene))
         stationaries.append((label, metrics))
         rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
