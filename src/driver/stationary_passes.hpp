@@ -10,8 +10,8 @@
 // extraction column (downstream, half-way between the contact and the strip's end, with the
 // roller's elastic field subtracted); the strip beyond the mesh's downstream end holds it with
 // that state while the pass is solved. The displacement is the sum of the passes' long-track
-// displacements (uniform along x: the plastic shear and the yy strain integrated from the base). So the next pass's upstream state, the pass metrics (measure_pass) and the state
-// files are the transient method's.
+// displacements (uniform along x: the plastic shear and the yy strain integrated from the base). So the next pass's
+// upstream state, the pass metrics (measure_pass) and the state files are the transient method's.
 #include <functional>
 #include <iosfwd>
 #include <memory>
