@@ -208,7 +208,8 @@ def sxx_gap(run, reference, below=0.0):
 
 def table(runs, reference, passes):
     lines = ["| run | pass | mean Δε̄ᵖ to 4a | against the reference | ∫Δε̄ᵖ dz [µm] | band at 0.78a | against | "
-             "net Δγ_xy in the band | its plastic part | long track's residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
+             "net Δγ_xy in the band | its plastic part | long track's residual σ_xx: largest gap / peak, at depth | "
+             "the same below a/2 |",
              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for label, metrics in runs:
         for k in range(passes):
