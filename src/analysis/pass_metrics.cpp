@@ -134,10 +134,12 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
   r.track_start = track.x_min + inset;
   r.track_end = track.x_max - inset;
   const Real x_mid = 0.5 * (track.x_min + track.x_max);
-  // The mid-track surface node: the top node nearest x_mid in the initial mesh.
+  // The mid-track surface node: the top node nearest x_mid in the initial mesh. A periodic strip's
+  // track may pass its right edge: every x is taken at its image nearest the track's middle.
+  auto near_track = [&](Real x) { return nearest_image_x(mesh, x, x_mid); };
   const std::vector<Index>& top = mesh.node_set("top");
   const Index surface = *std::min_element(top.begin(), top.end(), [&](Index p, Index q) {
-    return std::abs(mesh.nodes[p].x() - x_mid) < std::abs(mesh.nodes[q].x() - x_mid);
+    return std::abs(near_track(mesh.nodes[p].x()) - x_mid) < std::abs(near_track(mesh.nodes[q].x()) - x_mid);
   });
   const VecX& u = strip.total_displacement();
   r.surface_ux = u(2 * surface);
@@ -151,8 +153,9 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
   std::vector<bool> in_window(mesh.n_elements());
   for (Index e = 0; e < mesh.n_elements(); ++e) {
     const Vec2 c = centroid(mesh, e);
+    const Real x = near_track(c.x());
     depth[e] = strip_height - c.y();
-    in_window[e] = c.x() >= r.track_start && c.x() <= r.track_end && depth[e] <= kWindowDepth * a;
+    in_window[e] = x >= r.track_start && x <= r.track_end && depth[e] <= kWindowDepth * a;
     plastic_increment[e] = mean_plastic_strain(strip, e) - start.plastic_strain[e];
     if (in_window[e]) r.max_plastic_increment = std::max(r.max_plastic_increment, plastic_increment[e]);
   }
@@ -170,6 +173,11 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
 
 std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_height, Real x) {
   const Mesh& mesh = strip.mesh();
+  if (mesh.period > 0.0) {  // the image of x on the mesh
+    Real left = mesh.nodes.front().x();
+    for (const Vec2& p : mesh.nodes) left = std::min(left, p.x());
+    x = nearest_image_x(mesh, x, left + 0.5 * mesh.period);
+  }
   std::vector<DepthSample> out;
   for (Index e = 0; e < mesh.n_elements(); ++e) {
     Real lo = mesh.nodes[mesh.elements[e][0]].x(), hi = lo;

@@ -37,7 +37,7 @@ Expected<ObjectiveValue> IncrementEnergy::evaluate(const VecX& x, VecX* gradient
   VecX full_gradient;
   try {
     const ObjectiveValue v = evaluate_all(x, full_gradient, hessian);
-    if (gradient) *gradient = model_.dof_map().restrict_to_free(full_gradient);
+    if (gradient) *gradient = model_.dof_map().gather_free(full_gradient);
     return v;
   } catch (const NumericalError& error) {
     return Unexpected{error.what()};

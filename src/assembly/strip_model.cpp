@@ -67,20 +67,22 @@ void StripModel::check_not_inverted(const std::vector<Vec2>& coordinates) const 
   for (Index e = 0; e < mesh_.n_elements(); ++e) point_geometry(e, coordinates);
 }
 
-// Nodes sharing an element with each node (itself included), sorted: offsets `start` (n_nodes
-// + 1) into `adjacent`. Built by counting then filling, so the memory is one Index per
-// node-node coupling, not the 16 bytes per element-matrix entry a triplet list would need.
-static void node_adjacency(const Mesh& mesh, std::vector<Index>& start, std::vector<Index>& adjacent) {
+// Nodes sharing an element with each node (itself included), sorted, every node counted as its
+// master (a periodic strip's right edge as its left edge): offsets `start` (n_nodes + 1) into
+// `adjacent`. Built by counting then filling, so the memory is one Index per node-node coupling,
+// not the 16 bytes per element-matrix entry a triplet list would need.
+static void node_adjacency(const Mesh& mesh, const std::vector<Index>& masters, std::vector<Index>& start,
+                           std::vector<Index>& adjacent) {
   const Index n = mesh.n_nodes();
   std::vector<Index> bound(n + 1, 0);
   for (const auto& element : mesh.elements)
-    for (Index a : element) bound[a + 1] += static_cast<Index>(element.size());
+    for (Index a : element) bound[masters[a] + 1] += static_cast<Index>(element.size());
   for (Index a = 0; a < n; ++a) bound[a + 1] += bound[a];
   adjacent.assign(bound[n], 0);
   std::vector<Index> fill(bound.begin(), bound.end() - 1);
   for (const auto& element : mesh.elements)
     for (Index a : element)
-      for (Index c : element) adjacent[fill[a]++] = c;
+      for (Index c : element) adjacent[fill[masters[a]]++] = masters[c];
   start.assign(n + 1, 0);
   Index kept = 0;
   for (Index a = 0; a < n; ++a) {
@@ -96,8 +98,11 @@ static void node_adjacency(const Mesh& mesh, std::vector<Index>& start, std::vec
 
 void StripModel::set_dof_map(DofMap dofs) {
   dofs_ = std::move(dofs);
+  std::vector<Index> masters(static_cast<std::size_t>(mesh_.n_nodes()));
+  for (Index a = 0; a < mesh_.n_nodes(); ++a) masters[a] = a;
+  if (dofs_.has_masters()) masters = node_masters(mesh_);
   std::vector<Index> start, adjacent;
-  node_adjacency(mesh_, start, adjacent);
+  node_adjacency(mesh_, masters, start, adjacent);
 
   // Compressed columns over the free dofs. Free indices grow with the dof number and the
   // neighbours of a node are sorted, so each column's rows come out sorted.

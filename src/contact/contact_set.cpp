@@ -42,13 +42,26 @@ std::vector<Real> element_depths(const StripModel& model, const std::vector<Inde
 std::vector<ContactCandidate> make_contact_candidates(const StripModel& model, const std::vector<Index>& nodes,
                                                       const VecX& prescribed, const VecX& predictor,
                                                       const Vec2& roller_end_centre, Real radius, Real reach) {
-  const std::vector<Vec2> x = model.current_coordinates();
-  const std::vector<Real> lengths = tributary_lengths(x, nodes);
+  const Mesh& mesh = model.mesh();
+  std::vector<Vec2> x = model.current_coordinates();
+  std::vector<Real> lengths = tributary_lengths(x, nodes);
   const std::vector<Real> depths = element_depths(model, nodes);
+  // A periodic strip (docs/model.md, Periodic strip): a node of the right edge is its left edge's
+  // node, which takes its share of the surface; every node is seen at its image nearest the roller.
+  std::vector<Index> masters;
+  if (mesh.period > 0.0) {
+    masters = node_masters(mesh);
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+      if (masters[nodes[k]] != nodes[k])
+        for (std::size_t j = 0; j < nodes.size(); ++j)
+          if (nodes[j] == masters[nodes[k]]) lengths[j] += lengths[k];
+    for (const Index n : nodes) x[n].x() = nearest_image_x(mesh, x[n].x(), roller_end_centre.x());
+  }
   const DofMap& dofs = model.dof_map();
   std::vector<ContactCandidate> out;
   for (std::size_t k = 0; k < nodes.size(); ++k) {
     const Index n = nodes[k];
+    if (!masters.empty() && masters[n] != n) continue;
     if ((x[n] - roller_end_centre).norm() - radius > reach) continue;
     ContactCandidate c;
     c.node = n;

@@ -32,6 +32,21 @@ LoadProgram::LoadProgram(const Scene& scene, const Mesh& mesh) : n_dofs_(mesh.n_
       if (bc.y) add_prescribed(2 * node + 1, *bc.y, ctx + ".y");
     }
   }
+  if (mesh.period > 0.0) {
+    masters_ = node_masters(mesh);
+    for (Index d = 0; d < n_dofs_; ++d) {
+      const Index m = 2 * masters_[d / 2] + d % 2;
+      if (m == d) continue;
+      const auto mine = seen.find(d), master = seen.find(m);
+      if (mine != seen.end() && (master == seen.end() || master->second.first != mine->second.first))
+        throw InputError(fmt::format(
+            "{}: node {} lies on the right edge of a periodic strip ([mesh] periodic = true), where it is node {} of "
+            "the left edge; prescribe {} there{}",
+            mine->second.second, d / 2 + 1, m / 2 + 1, d % 2 ? "y" : "x",
+            master == seen.end() ? "" : fmt::format(" (it is prescribed differently by {})", master->second.second)));
+      if (master != seen.end() && mine == seen.end()) add_prescribed(d, master->second.first, master->second.second);
+    }
+  }
   for (std::size_t i = 0; i < scene.loads.size(); ++i) {
     const auto& load = scene.loads[i];
     for (Index node : resolve_nodes(load.nodes, mesh, fmt::format("load[{}].nodes", i))) {
@@ -44,7 +59,7 @@ LoadProgram::LoadProgram(const Scene& scene, const Mesh& mesh) : n_dofs_(mesh.n_
 DofMap LoadProgram::dof_map() const {
   std::vector<bool> constrained(n_dofs_, false);
   for (const auto& e : prescribed_) constrained[e.dof] = true;
-  return DofMap(constrained);
+  return masters_.empty() ? DofMap(constrained) : DofMap(constrained, masters_);
 }
 
 Real LoadProgram::ramp_value(const Ramp& r, Real s) {

@@ -36,7 +36,7 @@ void add_traction(StripModel& strip, const std::vector<NodeContactRecord>& conta
   SparseSolver solver(MumpsSolver::Symmetry::Symmetric);
   if (!solver.factorize(k)) throw NumericalError("shakedown-limit: the elastic strip's stiffness is singular");
   VecX u = VecX::Zero(strip.n_dofs());
-  dofs.scatter_free(solver.solve(dofs.restrict_to_free(force)), u);
+  dofs.scatter_free(solver.solve(dofs.gather_free(force)), u);
   strip.commit(u);  // linear and small strain: the stresses add
 }
 

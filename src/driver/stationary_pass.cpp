@@ -75,7 +75,7 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
     if (leaving)
       carried = upstream_forces - upstream_downstream_end +
                 strip.end_forces(leaving(out.displacement, out.states, out.load), StationaryStrip::End::Downstream);
-    const VecX r = dofs.restrict_to_free(carried - strip.forces(out.states));
+    const VecX r = dofs.gather_free(carried - strip.forces(out.states));
     const StationaryCorrection::Result c = correction.correct(out.displacement, out.states, r);
     out.iterations = k;
     if (c.du.size() == 0) {
@@ -85,7 +85,7 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
     }
     out.load = c.load;
     const Real reference = std::max(c.load.cwiseAbs().maxCoeff(), 1e-300);
-    out.residual = (r + dofs.restrict_to_free(c.load)).cwiseAbs().maxCoeff() / reference;
+    out.residual = (r + dofs.gather_free(c.load)).cwiseAbs().maxCoeff() / reference;
     if (!std::isfinite(out.residual)) {
       out.status = Termination::Failed;
       out.message = fmt::format("the stationary iteration diverged (residual not finite after {} iterations)", k);

@@ -126,7 +126,7 @@ const VecX& StationaryPasses::elastic_displacement(const DofMap& dofs, const Vec
   if (elastic_load_.size() != load.size() || elastic_load_ != load) {  // the Hertz load: once a pass
     elastic_load_ = load;
     elastic_displacement_ = VecX::Zero(load.size());
-    if (load.any()) dofs.scatter_free(solver_.solve(dofs.restrict_to_free(load)), elastic_displacement_);
+    if (load.any()) dofs.scatter_free(solver_.solve(dofs.gather_free(load)), elastic_displacement_);
   }
   return elastic_displacement_;
 }

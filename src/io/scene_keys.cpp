@@ -701,6 +701,10 @@ std::vector<SceneKey> make_keys() {
       key(
           "mesh.refine", [](auto& s) -> auto& { return s.mesh.refine; },
           "every interval split into refine equal parts (--refine)", at_least(1)),
+      key(
+          "mesh.periodic", [](auto& s) -> auto& { return s.mesh.periodic; },
+          "the right edge is the left edge: the strip repeats along x with period length (an endless track, a "
+          "ring's rolled surface; no track ends)"),
       custom(
           "mesh.grading_x", "{ ratio, focus }", "uniform", "ratio >= 1",
           "geometric grading along x: largest/smallest interval ratio, finest at coordinate focus",
@@ -1125,6 +1129,10 @@ std::vector<SceneTable> make_tables() {
     if (scene.total_steps() > 1e7)
       s.fail("count", fmt::format("count x steps.count = {} steps: at most 1e7", scene.total_steps()));
     if (scene.passes.method != PassMethod::Stationary) return;
+    if (scene.mesh.periodic)
+      s.fail("method",
+             "the stationary method solves a pass on a strip with two ends (its residual strip a long track's): set "
+             "mesh.periodic = false, or method = \"transient\" to roll the periodic strip");
     if (scene.element.kinematics != Kinematics::Small)
       s.fail("method", "the stationary method is small-strain: set kinematics = \"small\" (or method = \"transient\")");
     if (scene.dynamics.strip_inertia)

@@ -1,6 +1,7 @@
 #include "roller/mesh/mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,22 @@ const std::vector<Index>& Mesh::node_set(const std::string& name) const {
   if (!guess.empty()) message += " (did you mean '" + guess + "'?)";
   message += "; known node sets: " + known_names(node_sets);
   throw InputError(message);
+}
+
+std::vector<Index> node_masters(const Mesh& mesh) {
+  std::vector<Index> masters(static_cast<std::size_t>(mesh.n_nodes()));
+  for (Index a = 0; a < mesh.n_nodes(); ++a) masters[a] = a;
+  if (mesh.period <= 0.0) return masters;
+  const std::vector<Index>& left = mesh.node_set("left");
+  const std::vector<Index>& right = mesh.node_set("right");
+  ROLLER_ASSERT(left.size() == right.size(), "a periodic mesh's two edges have as many nodes");
+  for (std::size_t k = 0; k < right.size(); ++k) masters[right[k]] = left[k];
+  return masters;
+}
+
+Real nearest_image_x(const Mesh& mesh, Real x, Real near) {
+  if (mesh.period <= 0.0) return x;
+  return x + mesh.period * std::round((near - x) / mesh.period);
 }
 
 }  // namespace roller

@@ -459,6 +459,7 @@ Mesh make_strip_mesh(const StripMeshSpec& spec) {
   mesh.nodes = strip_nodes(xs, ys);
   mesh.elements = strip_elements(grid, spec.element, spec.diagonal);
   mesh.node_sets = strip_node_sets(grid);
+  if (spec.periodic) mesh.period = spec.length;
   return mesh;
 }
 

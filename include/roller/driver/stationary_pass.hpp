@@ -38,7 +38,7 @@ class StationaryCorrection {
 class PrescribedLoadCorrection : public StationaryCorrection {
  public:
   PrescribedLoadCorrection(const DofMap& dofs, SparseSolver& elastic, VecX external)
-      : elastic_(elastic), external_(std::move(external)), external_free_(dofs.restrict_to_free(external_)) {}
+      : elastic_(elastic), external_(std::move(external)), external_free_(dofs.gather_free(external_)) {}
   Result correct(const VecX&, const std::vector<MaterialState>&, const VecX& r) override {
     return {elastic_.solve(r + external_free_), external_, {}};
   }

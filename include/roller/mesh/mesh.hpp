@@ -34,6 +34,10 @@ struct Mesh {
   //  "contact"                            contact candidates (default: the top edge)
   //  "all"                                every node
   std::map<std::string, std::vector<Index>> node_sets;
+  // A periodic strip ([mesh] periodic, docs/model.md, Periodic strip): its right edge is its left
+  // edge moved by `period` along x, so a node of the right edge is the left edge's node at the
+  // same height (node_masters). 0: the strip has two free ends.
+  Real period = 0.0;
 
   Index n_nodes() const { return static_cast<Index>(nodes.size()); }
   Index n_elements() const { return static_cast<Index>(elements.size()); }
@@ -42,5 +46,13 @@ struct Mesh {
   // Node set by name, or throws InputError listing the known names.
   const std::vector<Index>& node_set(const std::string& name) const;
 };
+
+// Each node's master: the node itself, or for a periodic mesh's right edge the left edge's node
+// at the same height (the "left" and "right" sets, both sorted by y).
+std::vector<Index> node_masters(const Mesh& mesh);
+
+// x moved by a whole number of periods to lie within half a period of `near` (a periodic mesh);
+// x itself when the mesh is not periodic.
+Real nearest_image_x(const Mesh& mesh, Real x, Real near);
 
 }  // namespace roller

@@ -46,6 +46,9 @@ struct StripMeshSpec {
   std::vector<Real> pinned_y;
   Diagonal diagonal = Diagonal::Rising;
   int refine = 1;  // every interval is split into `refine` equal parts (>= 1)
+  // The right edge is the left edge: the strip repeats along x with period `length` (a ring, an
+  // endless track; Mesh::period).
+  bool periodic = false;
 
   bool is_valid(std::string* why) const;
 };
