@@ -11,9 +11,9 @@
 
 #include "roller/assembly/dof_map.hpp"
 #include "roller/core/error.hpp"
-#include "roller/mesh/strip_mesher.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/mesh/strip_mesher.hpp"
 
 using namespace roller;
 

@@ -3,7 +3,7 @@
 
 usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
                                       [--element-size 0.2] [--out problems]
-                                      [--kinematic E_T] [--track 8] [--step 0.5]
+                                      [--kinematic E_T] [--track 8] [--step 0.5] [--periodic]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -20,7 +20,10 @@ kinematic (Prager) hardening of tangent modulus E_T, whose cycles above Johnson'
 --track T and --step S (in units of a) roll T a in steps of S a instead of 8a in 0.5a: the
 uniform elements then reach 2a past the travel's end, and the window is the middle half of the
 longer track (the long transient passes of docs/validation.md, "Stationary passes against
-transient passes").
+transient passes"). --periodic makes the strip one period of an endless track, the track itself
+(uniform elements over 2a T, `[mesh] periodic`): the roller presses in its middle, rolls the whole
+period over the seam and lifts where it pressed, so no stretch is left unrolled and the rolled
+layer has no ends to relieve it.
 """
 import math
 import os
@@ -87,10 +90,22 @@ def hardening_lines(kinematic):
     return 'hardening = "kinematic"     # Prager: the yield surface moves, C = H\'\ntangent_modulus = %g' % kinematic
 
 
-def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5):
-    """The scene's name and text; track and step in units of a (the shipped scenes: 8a in 0.5a)."""
+def periodic_lines(h, track):
+    """A periodic strip of one period, the track: uniform h along x, y as lines()'s."""
+    n = int(round(A * track / h))
+    if n < 2 or abs(n * h - A * track) > 1e-9 * A * track:
+        raise SystemExit("make-shakedown-scenes: --track %g a is not a whole number of elements of %g mm" % (track, h))
+    return [h * i for i in range(n + 1)], lines(h, track)[1]
+
+
+def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False):
+    """The scene's name and text; track and step in units of a (the shipped scenes: 8a in 0.5a).
+    periodic: the strip is one period of an endless track, the track itself (docs/model.md,
+    Periodic strip): the roller presses in its middle, rolls the whole period over the seam and
+    lifts where it pressed, and no stretch of the strip is left unrolled."""
     sigma_y = math.sqrt(3.0) * P0 / ratio
-    xs, ys = lines(h, track)
+    xs, ys = periodic_lines(h, track) if periodic else lines(h, track)
+    press_x = 0.5 * A * track if periodic else 92.0
     rolls = int(round(track / step))
     if rolls < 1 or abs(rolls * step - track) > 1e-9 * track:
         raise SystemExit("make-shakedown-scenes: --track %g is not a whole number of --step %g" % (track, step))
@@ -109,7 +124,7 @@ kinematics = "small"
 [mesh]
 element = "Q4"
 length = {length!r}
-height = 100.0
+height = 100.0{periodic}
 x_lines = {xl}
 y_lines = {yl}
 q4_formulation = "bbar"
@@ -136,7 +151,7 @@ y = 0.0
 
 [roller]
 radius = {R}
-centre = [92.0, 200.0]  # touching the top at x = 92
+centre = [{press_x!r}, 200.0]  # touching the top at x = {press_x:g}
 
 [[roller.path]]         # press to P
 steps = [1, 3]
@@ -157,15 +172,16 @@ friction = 0.0
 """.format(ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
            E=E, NU=NU, sy=sigma_y, R=R, law=law, hardening=hardening_lines(kinematic),
            title_law="" if kinematic is None else ", kinematic hardening", length=round(xs[-1], 6), count=rolls + 5,
-           track=track, roll_end=rolls + 3, travel=round(A * track, 6), lift_start=rolls + 4)
+           track=track, roll_end=rolls + 3, travel=round(A * track, 6), lift_start=rolls + 4, press_x=press_x,
+           periodic="\nperiodic = true        # one period of an endless track" if periodic else "")
 
 
-def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5):
+def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5, periodic=False):
     """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
     os.makedirs(out, exist_ok=True)
     written = []
     for ratio in loads:
-        name, text = scene(ratio, passes, element_size, kinematic, track, step)
+        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic)
         path = os.path.join(out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)
@@ -183,8 +199,10 @@ def main(argv=None):
                     help="linear kinematic hardening with this tangent modulus [MPa]")
     ap.add_argument("--track", type=float, default=8.0, help="the roller's travel under load, in units of a")
     ap.add_argument("--step", type=float, default=0.5, help="the roller's travel per step, in units of a")
+    ap.add_argument("--periodic", action="store_true",
+                    help="the strip one period (the track) of an endless track: no track ends")
     args = ap.parse_args(argv)
     loads = [float(r) for r in args.loads.split(",")]
     for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic,
-                             args.track, args.step):
+                             args.track, args.step, args.periodic):
         print("wrote", path)

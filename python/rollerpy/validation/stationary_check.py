@@ -7,14 +7,17 @@ over a long track, so that the transient pass reaches its steady state, at one e
 - the stationary pass with the Hertz load.
 Every pass of a transient run is measured on the same stretch of its fields, from 10a to 4a before
 the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
-of where the roller stops), down to 4a: the mean increment of equivalent plastic strain, its depth
+of where the roller stops), down to 4a (with --periodic, the transient runs on a periodic strip of
+one period, the track, docs/model.md, Periodic strip, and is measured on the half of the period
+opposite the press, its passes.csv window): the mean increment of equivalent plastic strain, its depth
 integral, the band's at 0.78a and its net shear, the residual sigma_xx by depth (row means). The
 stationary runs' residual strips are uniform along x; they are measured on their own window
 (passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
                                    [--phases 0,0.25,0.5] [--track 24] [--passes 2]
-                                   [--kinematic E_T] [--set KEY=VALUE ...] [--out out/stationary_check/hH]
+                                   [--kinematic E_T] [--periodic] [--set KEY=VALUE ...]
+                                   [--out out/stationary_check/hH]
                                    [--roller ./build/roller] [--timeout 14400]
 
 A run whose summary.json says completed is not run again (remove its folder to rerun it).
@@ -76,15 +79,19 @@ def plastic_shear(vtu, elastic):
     return 2.0 * strain[:, 3] - stress[:, 3] * 2.0 * (1.0 + nu) / young
 
 
-def stretch_metrics(now, start, x0, x1, a, elastic):
+def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
     """The pass between two fields (Vtu, at its end and its start) on the stretch x0..x1: mean and band increments of
     equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
     mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass and its
     plastic part (plastic_shear), and the residual sigma_xx by depth (the rows' area-weighted
     means): as read, and the long track's of the same plastic strain (long_track_sxx; `elastic` =
-    (E, nu)), which a stationary run's residual strip holds already."""
+    (E, nu)), which a stationary run's residual strip holds already. `period`: a periodic strip's
+    ([mesh] periodic), whose elements are taken at their images nearest the stretch."""
     centroid, area, height = geometry(now)
+    if period:
+        middle = 0.5 * (x0 + x1)
+        centroid[:, 0] += period * np.round((middle - centroid[:, 0]) / period)
     top = now.reference[:, 1].max()
     depth = top - centroid[:, 1]
     inside = (centroid[:, 0] >= x0) & (centroid[:, 0] <= x1) & (depth <= WINDOW_DEPTH * a)
@@ -153,11 +160,11 @@ def roller_centre(scene):
         return tuple(tomllib.load(f)["roller"]["centre"])
 
 
-def measured_windows(out, passes, a, track, stationary, press_x):
-    """Where every pass of a run is measured: the transient's steady stretch; the stationary's own
-    window (passes.csv), at the extraction column: its states are uniform along x, but its
-    displacement, and with it the total strain of the net shear, is the pass's only downstream."""
-    if stationary:
+def measured_windows(out, passes, a, track, own, press_x):
+    """Where every pass of a run is measured: the transient's steady stretch, or with `own` the
+    run's own window (passes.csv): the stationary's, at the extraction column (its residual strip
+    is uniform along x), and a periodic transient's, the half of the period opposite the press."""
+    if own:
         return [(r["track_start"], r["track_end"]) for r in read_numbers(os.path.join(out, "passes.csv"))]
     end = press_x + track * a
     return [(end - STRETCH[0] * a, end - STRETCH[1] * a)] * passes
@@ -170,9 +177,9 @@ def middle_windows(passes, a, track, press_x):
     return [(middle - MIDDLE * a, middle + MIDDLE * a)] * passes
 
 
-def measure(fields, windows, a, elastic):
-    """Every pass of a run (its fields, pass_fields) on its window (elastic: stretch_metrics)."""
-    return [stretch_metrics(fields[k + 1], fields[k], *window, a, elastic) for k, window in enumerate(windows)]
+def measure(fields, windows, a, elastic, period=None):
+    """Every pass of a run (its fields, pass_fields) on its window (elastic, period: stretch_metrics)."""
+    return [stretch_metrics(fields[k + 1], fields[k], *window, a, elastic, period) for k, window in enumerate(windows)]
 
 
 def sxx_at(metrics, depth, key="sxx"):
@@ -295,6 +302,8 @@ def main(argv=None):
     ap.add_argument("--track", type=float, default=24.0)
     ap.add_argument("--passes", type=int, default=2)
     ap.add_argument("--kinematic", type=float, default=None, metavar="E_T")
+    ap.add_argument("--periodic", action="store_true",
+                    help="the transient runs on a periodic strip of one track's period (no track ends)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a scene value for every run (roller run --set), e.g. another hardening law")
     ap.add_argument("--out", default=None)
@@ -313,21 +322,23 @@ def main(argv=None):
     if any(len(pair) != 2 for pair in common):
         sys.exit("stationary-check: --set takes KEY=VALUE")
     transients, stationaries, rows = [], [], []
-    if not steps:  # the stationary runs' scene: its step does not enter a stationary pass
-        scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track)
-        press_x, centre_y = roller_centre(scene)
+    period = A * args.track if args.periodic else None
     for s in steps:
         folder = os.path.join(out, "scenes_s%g" % s)
-        scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s)
+        scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s, args.periodic)
         press_x, centre_y = roller_centre(scene)
         elastic = elastic_constants(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
         fields = pass_fields(run_out, args.passes)  # the last, the finest step's, measured again below
-        metrics = measure(fields, measured_windows(run_out, args.passes, A, args.track, False, press_x), A, elastic)
+        windows = measured_windows(run_out, args.passes, A, args.track, args.periodic, press_x)
+        metrics = measure(fields, windows, A, elastic, period)
         transients.append((s, metrics))
         rows.append(("transient, step %ga" % s, metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
+    if not steps or args.periodic:  # the stationary runs' scene (its step does not enter a stationary pass)
+        scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track)
+        press_x, centre_y = roller_centre(scene)
     stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
     # The roller's centre moved along x by a fraction of an element.
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
@@ -345,8 +356,9 @@ def main(argv=None):
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
     middle = None
     if transients:  # `fields`: the finest transient's
+        transient_press = roller_centre(os.path.join(out, "scenes_s%g" % steps[-1], os.path.basename(scene)))[0]
         middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
-                  measure(fields, middle_windows(args.passes, A, args.track, press_x), A, elastic))
+                  measure(fields, middle_windows(args.passes, A, args.track, transient_press), A, elastic, period))
     reference = rows[len(transients) - 1] if transients else rows[0]
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
