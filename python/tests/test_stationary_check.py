@@ -60,6 +60,10 @@ def test_a_stationary_residual_strip_is_the_same_on_every_stretch(runs):
         assert near["net_shear"] == pytest.approx(far["net_shear"], rel=1e-6)
         assert near["net_plastic_shear"] == pytest.approx(near["net_shear"], rel=1e-9)
         assert near["sxx_long"][:, 1] == pytest.approx(near["sxx"][:, 1], rel=1e-6, abs=1e-6)
+        # and its surface moves alike everywhere, by passes.csv's surface_dux
+        row = read_numbers(os.path.join(runs["stationary"], "passes.csv"))[k]
+        assert near["surface_dux"] == pytest.approx(far["surface_dux"], rel=1e-9)
+        assert near["surface_dux"] == pytest.approx(row["surface_dux"], rel=1e-9)
     assert plastic_shear(fields[2], runs["elastic"]) == pytest.approx(2.0 * fields[2].cell_data["strain"][:, 3],
                                                                       rel=1e-9, abs=1e-15)
 
@@ -134,5 +138,6 @@ def test_a_periodic_transient_is_read_across_its_seam(roller, tmp_path):
         assert m["mean"] == pytest.approx(row["mean_plastic_increment"], rel=1e-9)
         assert m["band"] == pytest.approx(row["band_plastic_increment"], rel=1e-9)
         assert m["net_shear"] == pytest.approx(row["residual_shear_increment"], rel=1e-9, abs=1e-15)
+        assert abs(m["surface_dux"]) > 1e-5
         unwrapped = stretch_metrics(fields[k + 1], fields[k], row["track_start"], row["track_end"], A, elastic)
         assert unwrapped["mean"] != pytest.approx(m["mean"], rel=1e-3)

@@ -84,7 +84,8 @@ def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
     equivalent plastic strain (area-weighted, elements whose centroid lies in it, to 4a), the
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
     mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass and its
-    plastic part (plastic_shear), and the residual sigma_xx by depth (the rows' area-weighted
+    plastic part (plastic_shear), the surface's horizontal displacement over the pass [mm] (the
+    top nodes' mean: the layer's ratchet, the plastic shear integrated over the depth), and the residual sigma_xx by depth (the rows' area-weighted
     means): as read, and the long track's of the same plastic strain (long_track_sxx; `elastic` =
     (E, nu)), which a stationary run's residual strip holds already. `period`: a periodic strip's
     ([mesh] periodic), whose elements are taken at their images nearest the stretch."""
@@ -101,6 +102,12 @@ def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
     plastic = plastic_shear(now, elastic) - plastic_shear(start, elastic)
     sxx = np.asarray(now.cell_data["stress"])[:, 0]
     sxx_long = long_track_sxx(now, elastic)
+    # The surface's horizontal displacement over the pass, the ratchet of the layer above the
+    # base (the depth integral of the plastic shear on a long track): the top nodes' mean.
+    ref = now.reference
+    xs = ref[:, 0] + (period * np.round((0.5 * (x0 + x1) - ref[:, 0]) / period) if period else 0.0)
+    on_top = (np.abs(ref[:, 1] - top) <= 1e-9 * max(1.0, abs(top))) & (xs >= x0) & (xs <= x1)
+    surface_dux = np.mean(now.point_data["displacement"][on_top, 0] - start.point_data["displacement"][on_top, 0])
     rows = np.round(depth[inside], 6)
     profile, profile_long, integral = [], [], 0.0
     for d in np.unique(rows):
@@ -114,6 +121,7 @@ def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
             "band": np.average(increment[band], weights=area[band]),
             "net_shear": np.average(shear[band], weights=area[band]),
             "net_plastic_shear": np.average(plastic[band], weights=area[band]),
+            "surface_dux": surface_dux,
             "sxx": np.array(profile),
             "sxx_long": np.array(profile_long)}
 
@@ -215,19 +223,19 @@ def sxx_gap(run, reference, below=0.0):
 
 def table(runs, reference, passes):
     lines = ["| run | pass | mean Δε̄ᵖ to 4a | against the reference | ∫Δε̄ᵖ dz [µm] | band at 0.78a | against | "
-             "net Δγ_xy in the band | its plastic part | long track's residual σ_xx: largest gap / peak, at depth | "
-             "the same below a/2 |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "net Δγ_xy in the band | its plastic part | surface Δu_x [µm] | "
+             "long track's residual σ_xx: largest gap / peak, at depth | the same below a/2 |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for label, metrics in runs:
         for k in range(passes):
             m, r = metrics[k], reference[k]
             gap, depth = sxx_gap(m, r)
             deep_gap, deep = sxx_gap(m, r, below=0.5 * A)
-            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.2e | %.2e | %.1f %%, %.2f mm | "
-                         "%.1f %%, %.2f mm |" % (
+            lines.append("| %s | %d | %.3e | %+.1f %% | %.2f | %.3e | %+.1f %% | %.2e | %.2e | %.2f | "
+                         "%.1f %%, %.2f mm | %.1f %%, %.2f mm |" % (
                              label, k + 1, m["mean"], 100 * (m["mean"] / r["mean"] - 1), 1000 * m["integral"],
                              m["band"], 100 * (m["band"] / r["band"] - 1), m["net_shear"], m["net_plastic_shear"],
-                             100 * gap, depth, 100 * deep_gap, deep))
+                             1000 * m["surface_dux"], 100 * gap, depth, 100 * deep_gap, deep))
     return "\n".join(lines) + "\n"
 
 
