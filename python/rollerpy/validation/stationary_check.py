@@ -85,9 +85,10 @@ def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
     increment integrated over the depth [mm] (the mean depends on where the rows of a graded
     mesh cut 4a, the integral does not), the band's net shear strain 2 eps_xy over the pass and its
     plastic part (plastic_shear), the surface's horizontal displacement over the pass [mm] (the
-    top nodes' mean: the layer's ratchet, the plastic shear integrated over the depth), and the residual sigma_xx by depth (the rows' area-weighted
-    means): as read, and the long track's of the same plastic strain (long_track_sxx; `elastic` =
-    (E, nu)), which a stationary run's residual strip holds already. `period`: a periodic strip's
+    top nodes' mean: the layer's ratchet, the plastic shear integrated over the depth), and the
+    residual sigma_xx by depth (the rows' area-weighted means): as read, and the long track's of the
+    same plastic strain (long_track_sxx; `elastic` = (E, nu)), which a stationary run's residual
+    strip holds already. `period`: a periodic strip's
     ([mesh] periodic), whose elements are taken at their images nearest the stretch."""
     centroid, area, height = geometry(now)
     if period:
