@@ -24,7 +24,8 @@ A run whose summary.json says completed is not run again (remove its folder to r
 Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step;
 the residual sigma_xx at a few depths, with the finest transient also read on the middle of its
 track, where its ends relieve it least) and OUT/stationary_check.png (pass 1's increment against
-the step, or with one step every pass's; the net shear per pass; the residual sigma_xx by depth
+the step, or with one step every pass's; the net shear per pass; the surface's horizontal
+displacement per pass; the residual sigma_xx by depth
 after the last pass, the finest transient's also on the middle of its track). Each run's progress
 is in its log beside its folder.
 """
@@ -240,22 +241,23 @@ def table(runs, reference, passes):
     return "\n".join(lines) + "\n"
 
 
-def figure(path, transients, stationaries, passes, track_middle):
+def figure(path, transients, stationaries, passes, track_middle, label_of_finest=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     styles = ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))
-    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(15, 4.4))
+    fig, (left, middle, surface, right) = plt.subplots(1, 4, figsize=(19, 4.4))
     steps = [s for s, _ in transients]
     numbers = range(1, passes + 1)
     by_step = len(steps) > 1  # pass 1 against the transient's step, else every pass's increment
     if by_step:
         left.plot(steps, [m[0]["mean"] for _, m in transients], "o-k", label="transient")
     if transients:
-        finest = "transient, step %ga" % transients[-1][0]
+        finest = label_of_finest
         if not by_step:
             left.plot(numbers, [m["mean"] for m in transients[-1][1]], "o-k", label=finest)
         middle.plot(numbers, [m["net_shear"] for m in transients[-1][1]], "o-k", label=finest)
+        surface.plot(numbers, [1000 * m["surface_dux"] for m in transients[-1][1]], "o-k", label=finest)
         p = transients[-1][1][passes - 1]["sxx_long"]
         right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest + ", a long track's")
         p = transients[-1][1][passes - 1]["sxx"]
@@ -269,6 +271,8 @@ def figure(path, transients, stationaries, passes, track_middle):
         else:
             left.plot(numbers, [m["mean"] for m in metrics], ls=style, color=colour, marker=".", label=label)
         middle.plot(numbers, [m["net_shear"] for m in metrics], ls=style, color=colour, marker=".", label=label)
+        surface.plot(numbers, [1000 * m["surface_dux"] for m in metrics], ls=style, color=colour, marker=".",
+                     label=label)
         p = metrics[passes - 1]["sxx_long"]
         right.plot(p[:, 1], p[:, 0], ls=style, color=colour, label=label)
     if by_step:
@@ -291,10 +295,15 @@ def figure(path, transients, stationaries, passes, track_middle):
     middle.set_xticks(list(numbers))
     middle.set_xlabel("pass")
     middle.set_ylabel("net Δγ_xy at 0.78a (+: along the travel)")
+    surface.set_yscale("symlog", linthresh=0.1)
+    surface.axhline(0.0, color="0.6", lw=0.8)
+    surface.set_xticks(list(numbers))
+    surface.set_xlabel("pass")
+    surface.set_ylabel("surface Δu_x over the pass [µm] (+: along the travel)")
     right.invert_yaxis()
     right.set_xlabel("residual σ_xx after pass %d [MPa]" % passes)
     right.set_ylabel("depth [mm]")
-    for ax in (left, middle, right):
+    for ax in (left, middle, surface, right):
         ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -343,7 +352,7 @@ def main(argv=None):
         windows = measured_windows(run_out, args.passes, A, args.track, args.periodic, press_x)
         metrics = measure(fields, windows, A, elastic, period)
         transients.append((s, metrics))
-        rows.append(("transient, step %ga" % s, metrics))
+        rows.append(("transient%s, step %ga" % (", periodic" if args.periodic else "", s), metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
     if not steps or args.periodic:  # the stationary runs' scene (its step does not enter a stationary pass)
         scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track)
@@ -374,6 +383,7 @@ def main(argv=None):
             args.load, h, args.track, reference[0]))
         f.write(table(rows, reference[1], args.passes))
         f.write(sxx_table(sxx_rows(rows[:len(transients)], middle, rows[len(transients):]), args.passes, A))
-    figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle)
+    figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle,
+           rows[len(transients) - 1][0] if transients else None)
     print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
     return 0
