@@ -174,8 +174,7 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
 std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_height, Real x) {
   const Mesh& mesh = strip.mesh();
   if (mesh.period > 0.0) {  // the image of x on the mesh
-    Real left = mesh.nodes.front().x();
-    for (const Vec2& p : mesh.nodes) left = std::min(left, p.x());
+    const Real left = mesh.nodes[mesh.node_set("left").front()].x();
     x = nearest_image_x(mesh, x, left + 0.5 * mesh.period);
   }
   std::vector<DepthSample> out;

@@ -4,16 +4,18 @@
 
 namespace roller {
 
-DofMap::DofMap(const std::vector<bool>& constrained) : free_index_(constrained.size(), -1) {
-  for (std::size_t d = 0; d < constrained.size(); ++d) {
-    if (constrained[d]) {
-      constrained_dofs_.push_back(static_cast<Index>(d));
-    } else {
-      free_index_[d] = static_cast<Index>(free_dofs_.size());
-      free_dofs_.push_back(static_cast<Index>(d));
-    }
-  }
+namespace {
+
+// Every node its own master.
+std::vector<Index> own_masters(std::size_t n_dofs) {
+  std::vector<Index> masters(n_dofs / 2);
+  for (std::size_t a = 0; a < masters.size(); ++a) masters[a] = static_cast<Index>(a);
+  return masters;
 }
+
+}  // namespace
+
+DofMap::DofMap(const std::vector<bool>& constrained) : DofMap(constrained, own_masters(constrained.size())) {}
 
 DofMap::DofMap(const std::vector<bool>& constrained, const std::vector<Index>& masters)
     : free_index_(constrained.size(), -1) {
