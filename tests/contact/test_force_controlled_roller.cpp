@@ -164,7 +164,7 @@ TEST_CASE("force control: Cattaneo's tangential load under a prescribed fx match
 }
 
 TEST_CASE("force control: the Cattaneo-Mindlin protocol under both forces gives Cattaneo's stick zone",
-          "[contact][force][cattaneo]") {
+          "[contact][force][cattaneo][slow]") {
   // problems/cattaneo_mindlin.toml: pressed frictionlessly to P, then Q = mu P / 2 with mu and P
   // held, the rotation blocked: both offsets are unknowns of every increment of steps 5-8.
   for (const std::string backend : {"ipopt", "penalty"}) {

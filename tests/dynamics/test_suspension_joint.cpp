@@ -88,7 +88,7 @@ TEST_CASE("Suspended roller: the penalty backend couples by passes whatever the 
 }
 
 TEST_CASE("Force-loaded roller: one joint solve per increment on the strip equals the force passes",
-          "[contact][force]") {
+          "[contact][force][slow]") {
   // Burnishing's first pass at refine 1: pressed to P = 420 N/mm (steps 1-3, frictionless), then
   // rolled under P with mu = 0.1. From the second increment on the strip the height is an unknown
   // of the contact solve; the passes find it by a root search to 1e-6 of P.

@@ -167,7 +167,7 @@ std::vector<MaterialState> column_states(const Simulation& sim, Real x) {
 }  // namespace
 
 TEST_CASE("stationary passes: the residual strip is a long track's, however far the mesh reaches downstream",
-          "[scenes][stationary]") {
+          "[scenes][stationary][slow]") {
   // docs/model.md, Stationary pass: the state leaving a pass is a long track's and holds the mesh's
   // downstream end. The shipped strip against the same strip 80 mm longer downstream (two coarse
   // elements before x = 0, the roller moved with it): when the residual strip was read from the
@@ -218,7 +218,7 @@ TEST_CASE("stationary passes with the roller's contact: elastic shakedown below 
   CHECK(-force == Approx(7249.8292).epsilon(1e-6));
 }
 
-TEST_CASE("passes.until_verdict: the run stops after the pass that decides the verdict", "[scenes][stationary]") {
+TEST_CASE("passes.until_verdict: the run stops after the pass that decides the verdict", "[scenes][stationary][slow]") {
   // shakedown_p45 stationary: pass 3 adds 0.96 of pass 2's (settled) with a net shear of 0.7 of
   // its plastic shear, ratchetting; shakedown_p37 leaves no plastic strain after pass 1, elastic
   // shakedown as soon as three passes allow a verdict.
@@ -227,7 +227,7 @@ TEST_CASE("passes.until_verdict: the run stops after the pass that decides the v
   auto run = [&](bool until) {
     Simulation sim(
         load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml",
-                   {kStationary, {"passes.count", "12"}, {"passes.until_verdict", until ? "true" : "false"}}));
+                   {kStationary, {"passes.count", "4"}, {"passes.until_verdict", until ? "true" : "false"}}));
     RunOptions options;
     options.write_files = false;
     const RunSummary summary = sim.run(options);
@@ -241,10 +241,10 @@ TEST_CASE("passes.until_verdict: the run stops after the pass that decides the v
   CHECK(passes == 3);
   CHECK(until.steps_done == 3);
   CHECK(until.verdict->verdict == verdict);
-  CHECK_THAT(until.message, Catch::Contains("decided after pass 3 of 12"));
+  CHECK_THAT(until.message, Catch::Contains("decided after pass 3 of 4"));
   const auto [all, all_passes] = run(false);
   CHECK_FALSE(all.decided);
-  CHECK(all_passes == 12);
+  CHECK(all_passes == 4);
   CHECK(all.verdict->verdict == verdict);
 }
 

@@ -1,10 +1,11 @@
 """Every shipped scene, run in full with both contact backends: each run must end with exit
 code 0 and no output file may hold nan or inf (CTest "outputs of problems/<scene>.toml", one test
-per scene, label slow; docs/stability.md, "No nan or inf in any output").
+per scene, label slow; the penalty backend's runs of burnishing and carter, ~3 min each, label long;
+docs/stability.md, "No nan or inf in any output").
 
 usage: ./rollerpy check-scene-outputs [--out build/scene_outputs]
                                      [--roller ./build/roller] [--timeout 900]
-                                     [--only z1_outf05,hertz]
+                                     [--only z1_outf05,hertz] [--backends ipopt,penalty]
 
 problems/z3_data02.toml starts from z3_data01's final state of the same backend. The shakedown
 scenes (problems/shakedown_p*.toml, minutes each) are skipped unless --only names them; their
@@ -33,6 +34,8 @@ def main(argv=None):
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--only", default="", help="comma-separated scene names")
+    ap.add_argument("--backends", default="ipopt,penalty",
+                    help="comma-separated backends for the scenes with a roller (ipopt, penalty)")
     args = ap.parse_args(argv)
     os.chdir(ROOT)  # relative paths (the defaults too) are the checkout's
     roller, out_root = os.path.abspath(args.roller), os.path.abspath(args.out)
@@ -41,6 +44,10 @@ def main(argv=None):
         print("the output scanner misses planted nan/inf values:\n    " + "\n    ".join(wrong))
         return 1
     only = set(filter(None, args.only.split(",")))
+    backends = [b for b in args.backends.split(",") if b]
+    if not backends or set(backends) - {"ipopt", "penalty"}:
+        print("--backends %s: expected ipopt, penalty or both, comma-separated" % args.backends)
+        return 2
     os.makedirs(out_root, exist_ok=True)
     scenes = sorted(glob.glob("problems/*.toml"))  # z3_data01 before z3_data02
     unknown = only - {os.path.splitext(os.path.basename(s))[0] for s in scenes}
@@ -54,7 +61,7 @@ def main(argv=None):
             continue
         if not only and name.startswith("shakedown_"):
             continue
-        for backend in (["ipopt", "penalty"] if has_roller(scene) else [None]):
+        for backend in (backends if has_roller(scene) else [None]):
             out = os.path.join(out_root, "%s_%s" % (name, backend) if backend else name)
             log = out + ".log"
             extra = []
