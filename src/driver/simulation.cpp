@@ -16,6 +16,7 @@
 #include "roller/core/error.hpp"
 #include "roller/driver/memory_estimate.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/mesh/mesh.hpp"
 #include "roller/solver/blas_buffers.hpp"
 #include "roller_start.hpp"
 #include "stationary_passes.hpp"
@@ -97,8 +98,11 @@ Simulation::Simulation(Scene scene)
   if (!scene_.initial_state.empty()) load_state(scene_.initial_state, /*strip_only=*/true);
   Vec2 start_centre = Vec2::Zero();
   if (scene_.roller) {
-    const std::vector<Vec2> x = model_->current_coordinates();
     start_centre = given_start_centre(scene_);
+    // A periodic strip's nodes at their images nearest the roller, as the contact sees them
+    // (docs/model.md, Periodic strip): a roller over the seam touches the left edge's nodes too.
+    std::vector<Vec2> x = model_->current_coordinates();
+    for (Vec2& p : x) p.x() = nearest_image_x(model_->mesh(), p.x(), start_centre.x());
     if (scene_.roller->touch_strip) start_centre.y() += touching_lift(scene_, x, candidate_nodes_);
     check_roller_starts_outside(scene_, x, candidate_nodes_, start_centre);
     state_.pose = roller_pose(*scene_.roller, start_centre, 0.0);

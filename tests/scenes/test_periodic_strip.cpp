@@ -101,3 +101,20 @@ TEST_CASE("periodic strip: a displacement on the right edge alone is an input er
   }
   CHECK_THAT(message, Catch::Contains("mesh.periodic = false"));
 }
+
+TEST_CASE("periodic strip: the roller's start sees the strip at its images, past the mesh's ends too", "[periodic]") {
+  // Centred 30 mm past the right end, the roller stands over x = 30 of the strip (one period on).
+  auto start = [](const char* centre, bool touch) {
+    return Simulation(load_scene(kScene, {{"roller.centre", centre}, {"roller.touch_strip", touch ? "true" : "false"}}))
+        .state()
+        .pose.centre;
+  };
+  // Touching: the same height as over x = 30 (the top at y = 20, R = 100), not the 115.4 of the
+  // nearest node of the mesh as it lies (x = 40).
+  CHECK(start("[70.0, 200.0]", true).y() == Approx(start("[30.0, 200.0]", true).y()).epsilon(1e-12));
+  CHECK(start("[70.0, 200.0]", true).y() == Approx(120.0).epsilon(1e-12));
+  CHECK(start("[-10.0, 200.0]", true).y() == Approx(120.0).epsilon(1e-12));
+  // 0.01 mm inside the strip there is an input error, as over x = 30.
+  CHECK_THROWS_WITH(start("[70.0, 119.99]", false), Catch::Contains("the roller starts inside the strip"));
+  CHECK_THROWS_WITH(start("[30.0, 119.99]", false), Catch::Contains("the roller starts inside the strip"));
+}
