@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Quick start 2: install dependencies, build, run every test through CTest but the label long.
-# Options: --fast (only the tests labelled fast, ~4 min), --slow (only the slow ones), --fuzz (the
+# Options: --fast (only the tests labelled fast, ~2 min), --slow (only the slow ones), --fuzz (the
 # scene fuzzer, ~1 min), --long (the long ones too: the penalty backend's full runs of burnishing
 # and carter, ~3 min each); other arguments go to ctest (e.g. -R mesh).
 set -euo pipefail
