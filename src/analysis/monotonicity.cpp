@@ -6,9 +6,9 @@
 
 #include <fmt/format.h>
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include "roller/assembly/strip_model.hpp"
+#include "roller/core/eigenvalues.hpp"
 #include "roller/core/error.hpp"
 #include "roller/fem/element_kernel.hpp"
 #include "roller/fem/shape_functions.hpp"
@@ -147,8 +147,7 @@ Mat4 operator_a_algorithmic(const MaterialParams& material, const MaterialState&
 
 Definiteness definiteness(const Mat4& a) {
   Definiteness d;
-  const Eigen::SelfAdjointEigenSolver<Mat4> eig(a, Eigen::EigenvaluesOnly);
-  d.lambda_min = eig.eigenvalues()(0);
+  d.lambda_min = symmetric_eigenvalues(a)(0);
   d.by_eigenvalue = d.lambda_min > 0.0;
   d.by_cholesky = Eigen::LLT<Mat4>(a).info() == Eigen::Success;
   d.leading_minors << a(0, 0), a.topLeftCorner<2, 2>().determinant(), a.topLeftCorner<3, 3>().determinant(),
@@ -181,11 +180,7 @@ Real inverse_estimate_length(ElementType type, const std::vector<Vec2>& coordina
   MatX mass(n, n);
   for (Index a = 0; a < n; ++a)
     for (Index b = 0; b < n; ++b) mass(a, b) = vector_mass(2 * a, 2 * b);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eig(laplacian, mass, Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) {
-    throw NumericalError("inverse_estimate_length: generalised eigenproblem failed");
-  }
-  return 1.0 / std::sqrt(eig.eigenvalues()(n - 1));
+  return 1.0 / std::sqrt(generalized_symmetric_eigen(laplacian, mass, Eigenvectors::skip).values(n - 1));
 }
 
 // ---- The strip -------------------------------------------------------------------------------
@@ -263,9 +258,7 @@ StripMonotonicity check_strip(const StripModel& model, Real dt, const StripMonot
     };
     for (int q = 0; q < model.points_per_element(); ++q) {
       const MaterialState& s = model.state(e, q);
-      auto eigenvalue = [&](const Mat4& a) {
-        return Eigen::SelfAdjointEigenSolver<Mat4>(a, Eigen::EigenvaluesOnly).eigenvalues()(0);
-      };
+      auto eigenvalue = [](const Mat4& a) { return symmetric_eigenvalues(a)(0); };
       std::optional<Real>& known = uniform_lambda[materials.index[e]];
       if (uniform && !known) known = eigenvalue(operator_a(material, s, op));
       Real lambda_static = 0.0;

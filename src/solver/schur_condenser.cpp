@@ -3,7 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include <Eigen/Eigenvalues>
+#include "roller/core/eigenvalues.hpp"
 
 namespace roller {
 
@@ -105,8 +105,7 @@ std::optional<Inertia> SchurCondenser::inertia_of(const SparseMatrix& a) {
   const Real null = kNullPivot * matrix_norm_;
   const Eigen::LLT<MatX> llt(schur_superset_);
   if (llt.info() == Eigen::Success && llt.matrixLLT().diagonal().cwiseAbs2().minCoeff() > null) return in;
-  const Eigen::SelfAdjointEigenSolver<MatX> eigen(schur_superset_, Eigen::EigenvaluesOnly);
-  for (const Real lambda : eigen.eigenvalues()) {
+  for (const Real lambda : symmetric_eigenvalues(schur_superset_)) {
     in.negative += lambda < -null ? 1 : 0;
     in.zero += std::abs(lambda) <= null ? 1 : 0;
   }

@@ -6,8 +6,7 @@
 #include <random>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-
+#include "roller/core/eigenvalues.hpp"
 #include "roller/core/types.hpp"
 #include "roller/solver/dense_kkt_solver.hpp"
 
@@ -108,7 +107,7 @@ MatX kkt_matrix(int n, int m, bool indefinite_h, unsigned seed) {
 }
 
 int negative_eigenvalues(const MatX& a) {
-  const VecX lambda = Eigen::SelfAdjointEigenSolver<MatX>(a).eigenvalues();
+  const VecX lambda = symmetric_eigenvalues(a);
   return static_cast<int>((lambda.array() < 0.0).count());
 }
 
