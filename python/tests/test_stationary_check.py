@@ -8,7 +8,7 @@ import os
 import numpy as np
 import pytest
 
-from rollerpy.outputs import read_numbers
+from rollerpy.outputs import read_numbers, read_rows
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
 from rollerpy.validation.stationary_check import (SXX_DEPTHS, elastic_constants, long_track_sxx, measure,
@@ -141,3 +141,35 @@ def test_a_periodic_transient_is_read_across_its_seam(roller, tmp_path):
         assert abs(m["surface_dux"]) > 1e-5
         unwrapped = stretch_metrics(fields[k + 1], fields[k], row["track_start"], row["track_end"], A, elastic)
         assert unwrapped["mean"] != pytest.approx(m["mean"], rel=1e-3)
+
+
+def test_a_ring_rolled_on_is_measured_opposite_the_roller(roller, tmp_path):
+    """A ring pressed once and rolled on (make-shakedown-scenes --continuous: 2 periods of the 6a
+    track in steps of a, 0.5 mm elements): fields every period with the roller 3 steps before where
+    it pressed, half a period from continuous_windows' middle. An elastic ring is then in the same
+    state at every period's end, so the differences over a period hold nothing of the roller's
+    elastic field, which the stress as read does; a plastic ring yields in the window every period."""
+    from rollerpy.validation.stationary_check import continuous_windows
+    scene, = write_scenes([4.5], 2, 0.5, str(tmp_path), track=6.0, step=1.0, periodic=True, continuous=True)
+    text = open(scene).read()
+    assert "[passes]" not in text and "count = 12 " in text and "every = 6 " in text and "dx = 18.0" in text
+    windows = continuous_windows(2, A, 6.0, 6.0, 1.0)
+    elastic = elastic_constants(scene)
+    metrics = {}
+    for name, pairs in (("elastic", [("material.yield_stress", "1e7")]), ("plastic", [])):
+        out = str(tmp_path / name)
+        run(roller_command(roller, scene, out, *set_options(pairs)), out + ".log").check()
+        xs = {int(r["step"]): float(r["xc"]) for r in read_rows(os.path.join(out, "roller.csv"))}
+        for k, (x0, x1) in enumerate(windows):
+            # The roller half a period from the window's middle (mod 12 mm), 3 steps (6 mm) short of the press.
+            assert (xs[6 * (k + 1)] - 0.5 * (x0 + x1)) % 12.0 == pytest.approx(6.0, abs=1e-9)
+        metrics[name] = measure(pass_fields(out, 2), windows, A, elastic, period=12.0)
+    # The first period starts before the press, without the roller's field: its shear and u_x, odd
+    # about the roller, cancel over the window symmetric about the point opposite it (not exactly:
+    # the roller stands 3a from it here). The second starts and ends with the roller at one place.
+    for m, bound in zip(metrics["elastic"], (1e-7, 1e-12)):
+        assert abs(m["mean"]) < 1e-12 and abs(m["net_shear"]) < bound and abs(m["surface_dux"]) < bound
+        assert np.max(np.abs(m["sxx"][:, 1])) > 1.0      # the roller's elastic field, 3a from the window
+        assert np.max(np.abs(m["sxx_long"][:, 1])) < 1e-6  # no plastic strain
+    for m in metrics["plastic"]:
+        assert m["mean"] > 1e-4

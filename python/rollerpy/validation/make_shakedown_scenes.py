@@ -4,6 +4,7 @@
 usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
                                       [--element-size 0.2] [--out problems]
                                       [--kinematic E_T] [--track 8] [--step 0.5] [--periodic]
+                                      [--continuous]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -23,7 +24,10 @@ longer track (the long transient passes of docs/validation.md, "Stationary passe
 transient passes"). --periodic makes the strip one period of an endless track, the track itself
 (uniform elements over 2a T, `[mesh] periodic`): the roller presses in its middle, rolls the whole
 period over the seam and lifts where it pressed, so no stretch is left unrolled and the rolled
-layer has no ends to relieve it.
+layer has no ends to relieve it. --continuous (with --periodic) rolls the ring without lifting: one
+press, then --passes periods rolled on, fields written every period, when the roller stands 3 steps
+before where it pressed; the half of the ring opposite it has then been rolled over once more (a
+ring that is pressed and lifted every pass compresses the rest of it with its press zone).
 """
 import math
 import os
@@ -98,17 +102,65 @@ def periodic_lines(h, track):
     return [h * i for i in range(n + 1)], lines(h, track)[1]
 
 
-def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False):
+def pass_steps(passes, rolls):
+    """[steps], [passes] and [output] of repeated passes: press, roll, lift, `rolls` + 5 steps."""
+    count = rolls + 5
+    return """[steps]
+count = {count}              # one pass
+
+[passes]
+count = {passes}
+
+[output]
+every = {count}              # fields at the end of every pass""".format(count=count, passes=passes)
+
+
+def pass_path(passes, rolls, track, step, load):
+    """The path after the press: roll the track, lift clear (pass_steps)."""
+    return """[[roller.path]]         # roll {track:g}a under P
+steps = [4, {roll_end}]
+dx = {travel!r}
+fy = {load:.4f}
+
+[[roller.path]]         # lift clear
+steps = [{lift_start}, {count}]
+dy = 0.3""".format(track=track, roll_end=rolls + 3, travel=round(A * track, 6), load=load,
+                   lift_start=rolls + 4, count=rolls + 5)
+
+
+def continuous_steps(passes, rolls):
+    """[steps] and [output] of a ring rolled on: `passes` periods of `rolls` steps, the press the first
+    3 of them, fields every period (the roller then 3 steps before where it pressed)."""
+    return """[steps]
+count = {count}              # one press, {passes} periods rolled on
+
+[output]
+every = {rolls}              # fields every period""".format(count=passes * rolls, passes=passes, rolls=rolls)
+
+
+def continuous_path(passes, rolls, track, step, load):
+    """The path after the press: roll on under P to the last step (continuous_steps)."""
+    return """[[roller.path]]         # roll on under P, {passes} periods less the press's 3 steps
+steps = [4, {end}]
+dx = {travel!r}
+fy = {load:.4f}""".format(passes=passes, end=passes * rolls, travel=round((passes * rolls - 3) * step * A, 6),
+                          load=load)
+
+
+def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False, continuous=False):
     """The scene's name and text; track and step in units of a (the shipped scenes: 8a in 0.5a).
     periodic: the strip is one period of an endless track, the track itself (docs/model.md,
     Periodic strip): the roller presses in its middle, rolls the whole period over the seam and
-    lifts where it pressed, and no stretch of the strip is left unrolled."""
+    lifts where it pressed, and no stretch of the strip is left unrolled. continuous: it presses
+    once and rolls `passes` periods on (continuous_path)."""
     sigma_y = math.sqrt(3.0) * P0 / ratio
     xs, ys = periodic_lines(h, track) if periodic else lines(h, track)
     press_x = 0.5 * A * track if periodic else 92.0
     rolls = int(round(track / step))
     if rolls < 1 or abs(rolls * step - track) > 1e-9 * track:
         raise SystemExit("make-shakedown-scenes: --track %g is not a whole number of --step %g" % (track, step))
+    if continuous and not periodic:
+        raise SystemExit("make-shakedown-scenes: --continuous rolls a ring: give --periodic too")
     prefix = "shakedown_p" if kinematic is None else "shakedown_kinematic_p"
     name = prefix + "%02d" % round(10 * ratio)
     law = "elastic-perfectly plastic strip" if kinematic is None else "Prager-hardening strip"
@@ -135,14 +187,7 @@ nu = {NU}
 yield_stress = {sy:.4f}
 {hardening}
 
-[steps]
-count = {count}              # one pass
-
-[passes]
-count = {passes}
-
-[output]
-every = {count}              # fields at the end of every pass
+{steps_block}
 
 [[displacement]]        # the half-space's far field: base bonded
 nodes = "bottom"
@@ -157,31 +202,27 @@ centre = [{press_x!r}, 200.0]  # touching the top at x = {press_x:g}
 steps = [1, 3]
 fy = {load:.4f}
 
-[[roller.path]]         # roll {track:g}a under P
-steps = [4, {roll_end}]
-dx = {travel!r}
-fy = {load:.4f}
-
-[[roller.path]]         # lift clear
-steps = [{lift_start}, {count}]
-dy = 0.3
+{path_block}
 
 [contact]
 backend = "ipopt"
 friction = 0.0
 """.format(ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
            E=E, NU=NU, sy=sigma_y, R=R, law=law, hardening=hardening_lines(kinematic),
-           title_law="" if kinematic is None else ", kinematic hardening", length=round(xs[-1], 6), count=rolls + 5,
-           track=track, roll_end=rolls + 3, travel=round(A * track, 6), lift_start=rolls + 4, press_x=press_x,
-           periodic="\nperiodic = true        # one period of an endless track" if periodic else "")
+           title_law=("" if kinematic is None else ", kinematic hardening") + (", rolled on" if continuous else ""),
+           length=round(xs[-1], 6), press_x=press_x,
+           periodic="\nperiodic = true        # one period of an endless track" if periodic else "",
+           steps_block=(continuous_steps if continuous else pass_steps)(passes, rolls),
+           path_block=(continuous_path if continuous else pass_path)(passes, rolls, track, step, LOAD))
 
 
-def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5, periodic=False):
+def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5, periodic=False,
+                 continuous=False):
     """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
     os.makedirs(out, exist_ok=True)
     written = []
     for ratio in loads:
-        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic)
+        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic, continuous)
         path = os.path.join(out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)
@@ -201,8 +242,10 @@ def main(argv=None):
     ap.add_argument("--step", type=float, default=0.5, help="the roller's travel per step, in units of a")
     ap.add_argument("--periodic", action="store_true",
                     help="the strip one period (the track) of an endless track: no track ends")
+    ap.add_argument("--continuous", action="store_true",
+                    help="with --periodic: press once and roll --passes periods on, fields every period")
     args = ap.parse_args(argv)
     loads = [float(r) for r in args.loads.split(",")]
     for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic,
-                             args.track, args.step, args.periodic):
+                             args.track, args.step, args.periodic, args.continuous):
         print("wrote", path)

@@ -9,14 +9,18 @@ Every pass of a transient run is measured on the same stretch of its fields, fro
 the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
 of where the roller stops), down to 4a (with --periodic, the transient runs on a periodic strip of
 one period, the track, docs/model.md, Periodic strip, and is measured on the half of the period
-opposite the press, its passes.csv window): the mean increment of equivalent plastic strain, its depth
-integral, the band's at 0.78a and its net shear, the residual sigma_xx by depth (row means). The
+opposite the press, its passes.csv window; with --continuous the ring is pressed once and rolled
+on, make-shakedown-scenes --continuous, and every period is measured on the half of the ring
+opposite the roller, whose elastic field the differences over a period and the long track's
+residual sigma_xx do not hold, but the residual sigma_xx as read does): the mean increment of
+equivalent plastic strain, its depth integral, the band's at 0.78a and its net shear, the residual
+sigma_xx by depth (row means). The
 stationary runs' residual strips are uniform along x; they are measured on their own window
 (passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
                                    [--phases 0,0.25,0.5] [--track 24] [--passes 2]
-                                   [--kinematic E_T] [--periodic] [--set KEY=VALUE ...]
+                                   [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
                                    [--out out/stationary_check/hH]
                                    [--roller ./build/roller] [--timeout 14400]
 
@@ -168,6 +172,16 @@ def roller_centre(scene):
     """The roller's starting centre (x, y) [mm] of a scene file: x is where it presses."""
     with open(scene, "rb") as f:
         return tuple(tomllib.load(f)["roller"]["centre"])
+
+
+def continuous_windows(passes, a, track, press_x, step):
+    """A ring rolled on (make-shakedown-scenes --continuous): every period's fields are written with
+    the roller 3 steps before where it pressed; the half of the ring opposite it was rolled over
+    once in that period. A period's differences hold nothing of the roller's elastic field, there at
+    both ends; the first period's start, before the press, has none, but its shear and u_x, odd
+    about the roller, cancel over this window, symmetric about the point opposite it."""
+    middle = press_x - 3 * step * a + 0.5 * track * a
+    return [(middle - 0.25 * track * a, middle + 0.25 * track * a)] * passes
 
 
 def measured_windows(out, passes, a, track, own, press_x):
@@ -322,12 +336,16 @@ def main(argv=None):
     ap.add_argument("--kinematic", type=float, default=None, metavar="E_T")
     ap.add_argument("--periodic", action="store_true",
                     help="the transient runs on a periodic strip of one track's period (no track ends)")
+    ap.add_argument("--continuous", action="store_true",
+                    help="with --periodic: the ring pressed once and rolled on --passes periods")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a scene value for every run (roller run --set), e.g. another hardening law")
     ap.add_argument("--out", default=None)
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=14400.0)
     args = ap.parse_args(argv)
+    if args.continuous and not args.periodic:
+        sys.exit("stationary-check: --continuous rolls a ring: give --periodic too")
     if args.track < 2.0 * STRETCH[0]:
         sys.exit("stationary-check: --track %g: the measured stretch starts %ga before the end, give at least %ga" % (
             args.track, STRETCH[0], 2.0 * STRETCH[0]))
@@ -343,16 +361,21 @@ def main(argv=None):
     period = A * args.track if args.periodic else None
     for s in steps:
         folder = os.path.join(out, "scenes_s%g" % s)
-        scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s, args.periodic)
+        scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s, args.periodic,
+                              args.continuous)
         press_x, centre_y = roller_centre(scene)
         elastic = elastic_constants(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
         fields = pass_fields(run_out, args.passes)  # the last, the finest step's, measured again below
-        windows = measured_windows(run_out, args.passes, A, args.track, args.periodic, press_x)
+        if args.continuous:
+            windows = continuous_windows(args.passes, A, args.track, press_x, s)
+        else:
+            windows = measured_windows(run_out, args.passes, A, args.track, args.periodic, press_x)
         metrics = measure(fields, windows, A, elastic, period)
         transients.append((s, metrics))
-        rows.append(("transient%s, step %ga" % (", periodic" if args.periodic else "", s), metrics))
+        kind = ", ring rolled on" if args.continuous else ", periodic" if args.periodic else ""
+        rows.append(("transient%s, step %ga" % (kind, s), metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
     if not steps or args.periodic:  # the stationary runs' scene (its step does not enter a stationary pass)
         scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track)
