@@ -157,14 +157,14 @@ def elastic_constants(scene):
     return material["E"], material["nu"]
 
 
-def sxx_rows(transients, middle, stationaries):
+def sxx_rows(transients, middle, stationaries, as_read=", as read"):
     """The residual sigma_xx table's rows (sxx_table): every transient's as read and a long
     track's, the finest one's track middle as read, the stationary runs' (a long track's)."""
     out = []
     for label, metrics in transients:
-        out += [(label + ", as read", metrics, "sxx"), (label + ", a long track's", metrics, "sxx_long")]
+        out += [(label + as_read, metrics, "sxx"), (label + ", a long track's", metrics, "sxx_long")]
     if middle:
-        out.append((middle[0] + ", as read", middle[1], "sxx"))
+        out.append((middle[0] + as_read, middle[1], "sxx"))
     return out + [(label, metrics, "sxx_long") for label, metrics in stationaries]
 
 
@@ -255,7 +255,7 @@ def table(runs, reference, passes):
     return "\n".join(lines) + "\n"
 
 
-def figure(path, transients, stationaries, passes, track_middle, label_of_finest=None):
+def figure(path, transients, stationaries, passes, track_middle, label_of_finest=None, as_read=", as read"):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -275,9 +275,9 @@ def figure(path, transients, stationaries, passes, track_middle, label_of_finest
         p = transients[-1][1][passes - 1]["sxx_long"]
         right.plot(p[:, 1], p[:, 0], "o-k", ms=3, label=finest + ", a long track's")
         p = transients[-1][1][passes - 1]["sxx"]
-        right.plot(p[:, 1], p[:, 0], "--", color="0.3", lw=1, label=finest + ", as read")
+        right.plot(p[:, 1], p[:, 0], "--", color="0.3", lw=1, label=finest + as_read)
         p = track_middle[1][passes - 1]["sxx"]
-        right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0] + ", as read", zorder=0)
+        right.plot(p[:, 1], p[:, 0], "-", color="0.55", lw=2.5, label=track_middle[0] + as_read, zorder=0)
     for (label, metrics), style in zip(stationaries, styles):
         colour = "C0" if "roller" in label else "C3"
         if by_step:
@@ -401,12 +401,13 @@ def main(argv=None):
         middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
                   measure(fields, middle_windows(args.passes, A, args.track, transient_press), A, elastic, period))
     reference = rows[len(transients) - 1] if transients else rows[0]
+    as_read = ", as read, roller on" if args.continuous else ", as read"  # its elastic field in it
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
             args.load, h, args.track, reference[0]))
         f.write(table(rows, reference[1], args.passes))
-        f.write(sxx_table(sxx_rows(rows[:len(transients)], middle, rows[len(transients):]), args.passes, A))
+        f.write(sxx_table(sxx_rows(rows[:len(transients)], middle, rows[len(transients):], as_read), args.passes, A))
     figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle,
-           rows[len(transients) - 1][0] if transients else None)
+           rows[len(transients) - 1][0] if transients else None, as_read)
     print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
     return 0
