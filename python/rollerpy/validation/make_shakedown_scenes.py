@@ -39,6 +39,7 @@ E, NU, R, A = 2.1e5, 0.3, 100.0, 2.0
 E_STAR = E / (1.0 - NU ** 2)
 LOAD = math.pi * A ** 2 * E_STAR / (4.0 * R)
 P0 = A * E_STAR / (2.0 * R)
+PRESS_STEPS = 3  # the press to P, the first steps of a pass (stationary-check's rolled-on ring reads it)
 
 
 def graded(x0, x1, h_fine, n, fine_at_end):
@@ -102,10 +103,11 @@ def periodic_lines(h, track):
     return [h * i for i in range(n + 1)], lines(h, track)[1]
 
 
-def pass_steps(passes, rolls):
-    """[steps], [passes] and [output] of repeated passes: press, roll, lift, `rolls` + 5 steps."""
-    count = rolls + 5
-    return """[steps]
+def repeated_passes(passes, rolls, track, step, load):
+    """[steps], [passes] and [output], and the path after the press, of repeated passes: press,
+    roll the track, lift clear, `rolls` + PRESS_STEPS + 2 steps a pass, fields after every pass."""
+    count = rolls + PRESS_STEPS + 2
+    steps = """[steps]
 count = {count}              # one pass
 
 [passes]
@@ -113,38 +115,33 @@ count = {passes}
 
 [output]
 every = {count}              # fields at the end of every pass""".format(count=count, passes=passes)
-
-
-def pass_path(passes, rolls, track, step, load):
-    """The path after the press: roll the track, lift clear (pass_steps)."""
-    return """[[roller.path]]         # roll {track:g}a under P
-steps = [4, {roll_end}]
+    path = """[[roller.path]]         # roll {track:g}a under P
+steps = [{roll_start}, {roll_end}]
 dx = {travel!r}
 fy = {load:.4f}
 
 [[roller.path]]         # lift clear
 steps = [{lift_start}, {count}]
-dy = 0.3""".format(track=track, roll_end=rolls + 3, travel=round(A * track, 6), load=load,
-                   lift_start=rolls + 4, count=rolls + 5)
+dy = 0.3""".format(track=track, roll_start=PRESS_STEPS + 1, roll_end=rolls + PRESS_STEPS, travel=round(A * track, 6),
+                   load=load, lift_start=rolls + PRESS_STEPS + 1, count=count)
+    return steps, path
 
 
-def continuous_steps(passes, rolls):
-    """[steps] and [output] of a ring rolled on: `passes` periods of `rolls` steps, the press the first
-    3 of them, fields every period (the roller then 3 steps before where it pressed)."""
-    return """[steps]
+def rolled_on(passes, rolls, track, step, load):
+    """[steps] and [output], and the path after the press, of a ring rolled on: `passes` periods of
+    `rolls` steps, the press the first PRESS_STEPS of them, then rolling on under P to the last
+    step; fields every period (the roller then PRESS_STEPS steps before where it pressed)."""
+    steps = """[steps]
 count = {count}              # one press, {passes} periods rolled on
 
 [output]
 every = {rolls}              # fields every period""".format(count=passes * rolls, passes=passes, rolls=rolls)
-
-
-def continuous_path(passes, rolls, track, step, load):
-    """The path after the press: roll on under P to the last step (continuous_steps)."""
-    return """[[roller.path]]         # roll on under P, {passes} periods less the press's 3 steps
-steps = [4, {end}]
+    path = """[[roller.path]]         # roll on under P, {passes} periods less the press's {press} steps
+steps = [{start}, {end}]
 dx = {travel!r}
-fy = {load:.4f}""".format(passes=passes, end=passes * rolls, travel=round((passes * rolls - 3) * step * A, 6),
-                          load=load)
+fy = {load:.4f}""".format(passes=passes, press=PRESS_STEPS, start=PRESS_STEPS + 1, end=passes * rolls,
+                          travel=round((passes * rolls - PRESS_STEPS) * step * A, 6), load=load)
+    return steps, path
 
 
 def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False, continuous=False):
@@ -152,7 +149,7 @@ def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False,
     periodic: the strip is one period of an endless track, the track itself (docs/model.md,
     Periodic strip): the roller presses in its middle, rolls the whole period over the seam and
     lifts where it pressed, and no stretch of the strip is left unrolled. continuous: it presses
-    once and rolls `passes` periods on (continuous_path)."""
+    once and rolls `passes` periods on (rolled_on)."""
     sigma_y = math.sqrt(3.0) * P0 / ratio
     xs, ys = periodic_lines(h, track) if periodic else lines(h, track)
     press_x = 0.5 * A * track if periodic else 92.0
@@ -164,6 +161,7 @@ def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False,
     prefix = "shakedown_p" if kinematic is None else "shakedown_kinematic_p"
     name = prefix + "%02d" % round(10 * ratio)
     law = "elastic-perfectly plastic strip" if kinematic is None else "Prager-hardening strip"
+    steps_block, path_block = (rolled_on if continuous else repeated_passes)(passes, rolls, track, step, LOAD)
     return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
 # python/rollerpy/validation/make_shakedown_scenes.py, not this file); docs/validation.md,
 # "Shakedown: repeated rolling of a line contact".
@@ -199,7 +197,7 @@ radius = {R}
 centre = [{press_x!r}, 200.0]  # touching the top at x = {press_x:g}
 
 [[roller.path]]         # press to P
-steps = [1, 3]
+steps = [1, {press}]
 fy = {load:.4f}
 
 {path_block}
@@ -212,8 +210,7 @@ friction = 0.0
            title_law=("" if kinematic is None else ", kinematic hardening") + (", rolled on" if continuous else ""),
            length=round(xs[-1], 6), press_x=press_x,
            periodic="\nperiodic = true        # one period of an endless track" if periodic else "",
-           steps_block=(continuous_steps if continuous else pass_steps)(passes, rolls),
-           path_block=(continuous_path if continuous else pass_path)(passes, rolls, track, step, LOAD))
+           steps_block=steps_block, path_block=path_block, press=PRESS_STEPS)
 
 
 def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5, periodic=False,

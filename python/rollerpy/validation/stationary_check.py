@@ -44,7 +44,7 @@ from ..outputs import read_numbers, read_summary
 from ..paths import ROOT
 from ..runner import run, set_options
 from ..vtu import available_steps, read_vtu, vtu_path
-from .make_shakedown_scenes import A, write_scenes
+from .make_shakedown_scenes import A, PRESS_STEPS, write_scenes
 
 STRETCH = (10.0, 4.0)          # the measured stretch: from 10a to 4a before the track's end
 MIDDLE = 3.0                   # the middle stretch: 3a either side of the track's middle
@@ -176,11 +176,11 @@ def roller_centre(scene):
 
 def continuous_windows(passes, a, track, press_x, step):
     """A ring rolled on (make-shakedown-scenes --continuous): every period's fields are written with
-    the roller 3 steps before where it pressed; the half of the ring opposite it was rolled over
+    the roller PRESS_STEPS steps before where it pressed; the half of the ring opposite it was rolled over
     once in that period. A period's differences hold nothing of the roller's elastic field, there at
     both ends; the first period's start, before the press, has none, but its shear and u_x, odd
     about the roller, cancel over this window, symmetric about the point opposite it."""
-    middle = press_x - 3 * step * a + 0.5 * track * a
+    middle = press_x - PRESS_STEPS * step * a + 0.5 * track * a
     return [(middle - 0.25 * track * a, middle + 0.25 * track * a)] * passes
 
 
