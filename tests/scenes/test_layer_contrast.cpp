@@ -55,8 +55,8 @@ void check_agreement(const Run& ipopt, const Run& penalty) {
     const Vec2 a = ipopt.forces[k], b = penalty.forces[k];
     const Real fy_gap = std::abs(b.y() - a.y()) / std::abs(a.y());
     const Real fx_gap = std::abs(b.x() - a.x()) / std::abs(a.y());
-    std::cout << fmt::format("step {:2}: Fy ipopt {:.5g}, penalty {:.5g} ({:+.2e}); Fx gap / Fy {:.2e}\n", k + 1,
-                             a.y(), b.y(), (b.y() - a.y()) / a.y(), fx_gap);
+    std::cout << fmt::format("step {:2}: Fy ipopt {:.5g}, penalty {:.5g} ({:+.2e}); Fx gap / Fy {:.2e}\n", k + 1, a.y(),
+                             b.y(), (b.y() - a.y()) / a.y(), fx_gap);
     CHECK(a.y() > 0.0);
     CHECK(fy_gap <= bound);
     CHECK(fx_gap <= bound);
@@ -79,7 +79,8 @@ TEST_CASE("layered strips: a stiffness ratio of 1e6 between two layers converges
     // (h/a)^2 (here h/a = 0.35, and the layer strains 9 %); a steel strip would carry 1e6 times more.
     const Real E = 0.21, nu = 0.3, R = 300.0, g = 0.6, h = 20.0 / 3.0;
     const Real thin_layer = 4.0 / 3.0 * E * (1 - nu) / ((1 + nu) * (1 - 2 * nu)) * g * std::sqrt(2 * R * g) / h;
-    std::cout << fmt::format("pressed 0.6 mm: Fy {:.4g}, thin-layer estimate {:.4g}\n", ipopt.forces[2].y(), thin_layer);
+    std::cout << fmt::format("pressed 0.6 mm: Fy {:.4g}, thin-layer estimate {:.4g}\n", ipopt.forces[2].y(),
+                             thin_layer);
     CHECK(ipopt.forces[2].y() == Approx(thin_layer).epsilon(0.1));
   }
   SECTION("a steel top layer over a core of E = 0.21 MPa") {
