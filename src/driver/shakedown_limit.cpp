@@ -113,6 +113,11 @@ Real ShakedownLimitResult::scene_p0_over_k(const MelanLimit& bound) const {
 ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const ShakedownLimitSettings& settings) {
   if (!scene.roller) throw InputError(fmt::format("{}: shakedown-limit needs a [roller]", scene.file.string()));
   const SteadyLoad steady = steady_load(scene, settings.traction);
+  if (steady.creep)
+    throw InputError(
+        fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}); shakedown-limit "
+                    "takes full sliding (q = mu p) or free rolling (q = 0): give the traction q/p (--traction)",
+                    scene.file.string(), steady.travel->first_step, steady.travel->last_step, *steady.creep));
   if (!scene.strip_material().any_plastic())
     throw InputError(fmt::format("{}: [material]: the strip is elastic (no yield_stress): it has no shakedown limit",
                                  scene.file.string()));

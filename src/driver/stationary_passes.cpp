@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "roller/analysis/carter.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/steady_load.hpp"
 #include "roller/material/j2_plasticity.hpp"
@@ -61,6 +62,12 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
       elastic_materials_(linear_elastic(model.materials())) {
   require_held_base(scene, model);
   const SteadyLoad steady = steady_load(scene, std::nullopt);
+  if (scene.passes.stationary_contact == StationaryContact::Roller && steady.traction != 0.0)
+    throw InputError(fmt::format(
+        "{}: passes.stationary_contact = \"roller\" carries no tangential traction yet (the travel segment {}: "
+        "q = {} p); set passes.stationary_contact = \"hertz\"",
+        scene.file.string(), steady.creep ? fmt::format("rolls with creep {}", *steady.creep) : "slides",
+        steady.traction));
   const Mesh& mesh = model.mesh();
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
@@ -72,27 +79,41 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
              std::abs(strip_.point_position(b).x() - extraction_x_);
     }));
 
-  // The Hertz pressure (and q = traction p along the travel) as the work-equivalent nodal forces.
+  // The Hertz pressure and the traction q along the travel (q = traction p, or Carter's when the
+  // roller rolls with creep) as the work-equivalent nodal forces.
   std::vector<Index> top = mesh.node_set("contact");
-  std::sort(top.begin(), top.end(), [&](Index a, Index b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
-  std::vector<Real> x;
-  for (const Index a : top) x.push_back(mesh.nodes[a].x() - centre_x_);
-  const std::vector<Real> f = hertz_nodal_forces(hertz_, x);
+  std::sort(top.begin(), top.end(),
+            [&](Index a, Index b) { return travel_ * mesh.nodes[a].x() < travel_ * mesh.nodes[b].x(); });
+  std::vector<Real> along;  // from the contact's centre along the travel, increasing
+  for (const Index a : top) along.push_back(travel_ * (mesh.nodes[a].x() - centre_x_));
+  const std::vector<Real> f = hertz_nodal_forces(hertz_, along);
+  std::vector<Real> q;
+  std::optional<CarterTraction> carter;
+  if (steady.creep) {
+    carter = carter_traction(hertz_, *steady.creep, scene.roller->radius, steady.traction);
+    q = carter_nodal_forces(*carter, along);
+  } else {
+    for (const Real fi : f) q.push_back(steady.traction * fi);
+  }
   VecX load = VecX::Zero(mesh.n_dofs());
   for (std::size_t i = 0; i < top.size(); ++i) {
     if (f[i] == 0.0) continue;
-    const Vec2 force(travel_ * steady.traction * f[i], -f[i]);
+    const Vec2 force(travel_ * q[i], -f[i]);
     load.segment<2>(2 * top[i]) = force;
     NodeContactRecord c;
     c.node = top[i];
     c.position = mesh.nodes[top[i]];
     c.contact.normal_force = f[i];
-    c.contact.tangential_force = steady.traction * f[i];
-    c.contact.status = steady.traction > 0.0 ? ContactStatus::Slip : ContactStatus::Stick;
-    c.tributary_length = 0.5 * ((i + 1 < top.size() ? x[i + 1] : x[i]) - (i > 0 ? x[i - 1] : x[i]));
+    c.contact.tangential_force = q[i];
+    const bool slips = carter ? !carter->sticks(along[i]) : steady.traction > 0.0;
+    c.contact.status = slips ? ContactStatus::Slip : ContactStatus::Stick;
+    c.tributary_length =
+        0.5 * std::abs((i + 1 < top.size() ? along[i + 1] : along[i]) - (i > 0 ? along[i - 1] : along[i]));
     c.force = force;
     contact_.push_back(c);
   }
+  std::sort(contact_.begin(), contact_.end(),
+            [](const NodeContactRecord& a, const NodeContactRecord& b) { return a.position.x() < b.position.x(); });
   StripModel elastic(model.mesh(), elastic_materials_, model.options());  // assembles K_e
   elastic.set_dof_map(model.dof_map());
   SparseMatrix k;
@@ -100,11 +121,6 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   if (!solver_.factorize(k)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
   hertz_correction_ = std::make_unique<PrescribedLoadCorrection>(model.dof_map(), solver_, std::move(load));
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
-    if (steady.traction != 0.0)
-      throw InputError(
-          fmt::format("{}: passes.stationary_contact = \"roller\" carries no tangential traction yet (the "
-                      "travel segment slides: q = {} p); set passes.stationary_contact = \"hertz\"",
-                      scene.file.string(), steady.traction));
     roller_correction_ = make_roller_correction(scene, centre_x_, hertz_.load);
   }
 }

@@ -36,12 +36,15 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
     load.traction = 0.0;  // free rolling: no tangential load
   } else if (std::min(it->slip_start, it->slip_end) >= 1.0) {
     load.traction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
-  } else {
+  } else if (it->slip_start != it->slip_end) {
     throw InputError(
-        fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}..{}); a "
-                    "steady pass takes full sliding (q = mu p) or free rolling (q = 0): give the "
-                    "traction q/p (shakedown-limit --traction)",
+        fmt::format("{}: roller.path: the segment over steps {}-{} rolls with a creep that changes along it "
+                    "(slip {}..{}); a steady pass needs one creep (or give the traction q/p: shakedown-limit "
+                    "--traction)",
                     scene.file.string(), it->first_step, it->last_step, it->slip_start, it->slip_end));
+  } else {
+    load.creep = it->slip_start;
+    load.traction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
   }
   return load;
 }

@@ -267,6 +267,49 @@ TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", 
   CHECK(a["passes"] == b["passes"]);
 }
 
+TEST_CASE("stationary passes rolling with creep carry Carter's traction, its stick zone at the leading edge",
+          "[scenes][stationary]") {
+  // shakedown_p37 (a = 2 mm, R = 100 mm) with mu = 0.2 and creep s = 0.002 = (mu a / R)(1 - c/a):
+  // c = a/2, Q = mu P (1 - c^2/a^2) = 0.15 P, the stick zone [a - 2c, a] = [0, a] along the travel.
+  const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p37.toml";
+  const auto [dx, start_x] = GENERATE(table<Real, Real>({{16.0, 92.0}, {-16.0, 108.0}}));
+  INFO("dx = " << dx);
+  const Real travel = dx > 0.0 ? 1.0 : -1.0;
+  Simulation sim(load_scene(
+      file, {kStationary,
+             {"passes.count", "1"},
+             {"output.vtu", "false"},
+             {"contact.friction", "0.2"},
+             {"roller.centre", fmt::format("[{}, 200.0]", start_x)},
+             {"roller.path", fmt::format("[{{ steps = [1, 3], fy = 7249.8292 }}, {{ steps = [4, 19], dx = {}, "
+                                         "fy = 7249.8292, slip = 0.002 }}, {{ steps = [20, 21], dy = 0.3 }}]",
+                                         dx)}}));
+  REQUIRE(sim.advance_step(1).converged());
+  const Real centre = start_x + 0.5 * dx;  // the travel segment's middle
+  Real p = 0.0, q = 0.0;
+  int sticking = 0, slipping = 0;
+  for (const NodeContactRecord& c : sim.state().contact) {
+    p -= c.force.y();
+    q += travel * c.force.x();  // along the travel: the roller drags the strip forward
+    const Real along = travel * (c.position.x() - centre);
+    const bool sticks = c.contact.status == ContactStatus::Stick;
+    INFO("node at " << along << " mm along the travel");
+    if (along > 0.1 && along < 1.9) {
+      CHECK(sticks);
+      ++sticking;
+    }
+    if (along < -0.1) {
+      CHECK_FALSE(sticks);
+      ++slipping;
+    }
+  }
+  CHECK(p == Approx(7249.8292).epsilon(1e-9));
+  CHECK(q == Approx(0.2 * 0.75 * 7249.8292).epsilon(1e-9));
+  CHECK(sticking == 9);   // 0.2 mm apart
+  CHECK(slipping == 10);  // the trailing edge's node carries a share of the pressure
+  CHECK(sim.state().pass_records.front().mean_plastic_increment > 0.0);
+}
+
 TEST_CASE("stationary passes: scenes it cannot take are input errors naming the key", "[scenes][stationary]") {
   const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml";
   CHECK_THROWS_WITH(load_scene(file, {kStationary, {"kinematics", "\"finite\""}}),
@@ -279,6 +322,14 @@ TEST_CASE("stationary passes: scenes it cannot take are input errors naming the 
                                       "[{ steps = [1, 3], fy = 7249.8, friction = 0.0 }, { steps = [4, 19], "
                                       "dx = 16.0, fy = 7249.8, slip = 1.0 }, { steps = [20, 21], dy = 0.3 }]"}}));
     CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("stationary_contact") && Catch::Contains("hertz"));
+  }
+  SECTION("a creep that changes along the travel") {
+    Simulation sim(load_scene(file, {kStationary,
+                                     {"contact.friction", "0.2"},
+                                     {"roller.path",
+                                      "[{ steps = [1, 3], fy = 7249.8 }, { steps = [4, 19], dx = 16.0, fy = 7249.8, "
+                                      "slip = [0.001, 0.003] }, { steps = [20, 21], dy = 0.3 }]"}}));
+    CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("roller.path") && Catch::Contains("one creep"));
   }
   SECTION("a base free in x") {
     Simulation sim(load_scene(

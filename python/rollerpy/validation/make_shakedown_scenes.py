@@ -4,7 +4,7 @@
 usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
                                       [--element-size 0.2] [--out problems]
                                       [--kinematic E_T] [--track 8] [--step 0.5] [--periodic]
-                                      [--continuous]
+                                      [--continuous] [--creep S --friction MU]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -28,6 +28,9 @@ layer has no ends to relieve it. --continuous (with --periodic) rolls the ring w
 press, then --passes periods rolled on, fields written every period, when the roller stands 3 steps
 before where it pressed; the half of the ring opposite it has then been rolled over once more (a
 ring that is pressed and lifted every pass compresses the rest of it with its press zone).
+--creep S --friction MU rolls with the creep S (roller.path slip) under Coulomb friction MU
+instead of freely: Carter's steady rolling, a stick zone c = a - S R/MU at the leading edge
+(docs/validation.md, "Rolling with creep").
 """
 import math
 import os
@@ -103,9 +106,15 @@ def periodic_lines(h, track):
     return [h * i for i in range(n + 1)], lines(h, track)[1]
 
 
-def repeated_passes(passes, rolls, track, step, load):
+def creep_line(creep):
+    """The roll segment's creep (docs/scenes.md, roller.path slip), or nothing: free rolling."""
+    return "" if creep is None else "\nslip = %r" % creep
+
+
+def repeated_passes(passes, rolls, track, step, load, creep=None):
     """[steps], [passes] and [output], and the path after the press, of repeated passes: press,
-    roll the track, lift clear, `rolls` + PRESS_STEPS + 2 steps a pass, fields after every pass."""
+    roll the track (with `creep`), lift clear, `rolls` + PRESS_STEPS + 2 steps a pass, fields after
+    every pass."""
     count = rolls + PRESS_STEPS + 2
     steps = """[steps]
 count = {count}              # one pass
@@ -118,16 +127,16 @@ every = {count}              # fields at the end of every pass""".format(count=c
     path = """[[roller.path]]         # roll {track:g}a under P
 steps = [{roll_start}, {roll_end}]
 dx = {travel!r}
-fy = {load:.4f}
+fy = {load:.4f}{creep}
 
 [[roller.path]]         # lift clear
 steps = [{lift_start}, {count}]
 dy = 0.3""".format(track=track, roll_start=PRESS_STEPS + 1, roll_end=rolls + PRESS_STEPS, travel=round(A * track, 6),
-                   load=load, lift_start=rolls + PRESS_STEPS + 1, count=count)
+                   load=load, lift_start=rolls + PRESS_STEPS + 1, count=count, creep=creep_line(creep))
     return steps, path
 
 
-def rolled_on(passes, rolls, track, step, load):
+def rolled_on(passes, rolls, track, step, load, creep=None):
     """[steps] and [output], and the path after the press, of a ring rolled on: `passes` periods of
     `rolls` steps, the press the first PRESS_STEPS of them, then rolling on under P to the last
     step; fields every period (the roller then PRESS_STEPS steps before where it pressed)."""
@@ -139,13 +148,17 @@ every = {rolls}              # fields every period""".format(count=passes * roll
     path = """[[roller.path]]         # roll on under P, {passes} periods less the press's {press} steps
 steps = [{start}, {end}]
 dx = {travel!r}
-fy = {load:.4f}""".format(passes=passes, press=PRESS_STEPS, start=PRESS_STEPS + 1, end=passes * rolls,
-                          travel=round((passes * rolls - PRESS_STEPS) * step * A, 6), load=load)
+fy = {load:.4f}{creep}""".format(passes=passes, press=PRESS_STEPS, start=PRESS_STEPS + 1, end=passes * rolls,
+                                 travel=round((passes * rolls - PRESS_STEPS) * step * A, 6), load=load,
+                                 creep=creep_line(creep))
     return steps, path
 
 
-def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False, continuous=False):
+def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False, continuous=False, creep=None,
+          friction=0.0):
     """The scene's name and text; track and step in units of a (the shipped scenes: 8a in 0.5a).
+    creep: the roller rolls with this creep s (Carter's traction, which needs friction > 0) instead
+    of freely.
     periodic: the strip is one period of an endless track, the track itself (docs/model.md,
     Periodic strip): the roller presses in its middle, rolls the whole period over the seam and
     lifts where it pressed, and no stretch of the strip is left unrolled. continuous: it presses
@@ -161,14 +174,17 @@ def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False,
     prefix = "shakedown_p" if kinematic is None else "shakedown_kinematic_p"
     name = prefix + "%02d" % round(10 * ratio)
     law = "elastic-perfectly plastic strip" if kinematic is None else "Prager-hardening strip"
-    steps_block, path_block = (rolled_on if continuous else repeated_passes)(passes, rolls, track, step, LOAD)
+    if creep is not None and not friction > 0.0:
+        raise SystemExit("make-shakedown-scenes: --creep %g needs --friction > 0" % creep)
+    steps_block, path_block = (rolled_on if continuous else repeated_passes)(passes, rolls, track, step, LOAD, creep)
+    rolling = "Frictionless rolling" if creep is None else "Rolling with creep s = %g (friction %g)" % (creep, friction)
     return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
 # python/rollerpy/validation/make_shakedown_scenes.py, not this file); docs/validation.md,
 # "Shakedown: repeated rolling of a line contact".
-# Frictionless rolling of a rigid cylinder (R = 100 mm) under P = {load:.1f} N/mm over an
+# {rolling} of a rigid cylinder (R = 100 mm) under P = {load:.1f} N/mm over an
 # {law}: Hertz a = {a} mm, p0 = {p0:.1f} MPa, k = sigma_y/sqrt(3) =
 # {k:.1f} MPa. Johnson: first yield at p0/k = 3.1, elastic shakedown limit 4.0.
-title = "Shakedown: frictionless rolling at p0/k = {ratio}, {passes} passes{title_law}"
+title = "Shakedown: {title_rolling} at p0/k = {ratio}, {passes} passes{title_law}"
 kinematics = "small"
 
 [mesh]
@@ -204,8 +220,9 @@ fy = {load:.4f}
 
 [contact]
 backend = "ipopt"
-friction = 0.0
-""".format(ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
+friction = {friction!r}
+""".format(rolling=rolling, title_rolling=rolling[0].lower() + rolling[1:], friction=float(friction),
+           ratio=ratio, load=LOAD, a=A, p0=P0, k=P0 / ratio, passes=passes, xl=fmt_lines(xs), yl=fmt_lines(ys),
            E=E, NU=NU, sy=sigma_y, R=R, law=law, hardening=hardening_lines(kinematic),
            title_law=("" if kinematic is None else ", kinematic hardening") + (", rolled on" if continuous else ""),
            length=round(xs[-1], 6), press_x=press_x,
@@ -214,12 +231,12 @@ friction = 0.0
 
 
 def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5, periodic=False,
-                 continuous=False):
+                 continuous=False, creep=None, friction=0.0):
     """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
     os.makedirs(out, exist_ok=True)
     written = []
     for ratio in loads:
-        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic, continuous)
+        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic, continuous, creep, friction)
         path = os.path.join(out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)
@@ -241,8 +258,11 @@ def main(argv=None):
                     help="the strip one period (the track) of an endless track: no track ends")
     ap.add_argument("--continuous", action="store_true",
                     help="with --periodic: press once and roll --passes periods on, fields every period")
+    ap.add_argument("--creep", type=float, default=None, metavar="S",
+                    help="roll with this creep s (Carter's traction; needs --friction)")
+    ap.add_argument("--friction", type=float, default=0.0)
     args = ap.parse_args(argv)
     loads = [float(r) for r in args.loads.split(",")]
     for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic,
-                             args.track, args.step, args.periodic, args.continuous):
+                             args.track, args.step, args.periodic, args.continuous, args.creep, args.friction):
         print("wrote", path)
