@@ -8,11 +8,6 @@
 
 namespace roller {
 
-Real CarterTraction::ratio() const {
-  const Real r = stick_half_width / hertz.half_width;
-  return std::copysign(1.0 - r * r, creep);
-}
-
 Real CarterTraction::stick_centre() const { return hertz.half_width - stick_half_width; }
 
 bool CarterTraction::sticks(Real x) const { return std::abs(x - stick_centre()) < stick_half_width; }
@@ -27,24 +22,25 @@ HertzSolution CarterTraction::stick_relief() const {
 
 Real CarterTraction::traction(Real x) const {
   const Real q = friction * (hertz.pressure(x) - stick_relief().pressure(x - stick_centre()));
-  return creep < 0.0 ? -q : q;
+  return ratio < 0.0 ? -q : q;
 }
 
-CarterTraction carter_traction(const HertzSolution& hertz, Real creep, Real radius, Real friction) {
-  if (!std::isfinite(creep)) throw InputError(fmt::format("Carter's traction: the creep {} is not finite", creep));
-  if (creep != 0.0 && !(friction > 0.0))
-    throw InputError(fmt::format(
-        "Carter's traction: rolling with creep {} needs a friction coefficient > 0 (contact.friction), not {}", creep,
-        friction));
+Real CarterTraction::elastic_creep(Real radius) const {
+  return std::copysign(friction * hertz.half_width / radius * (1.0 - stick_half_width / hertz.half_width), ratio);
+}
+
+CarterTraction carter_traction(const HertzSolution& hertz, Real ratio, Real friction) {
+  if (!std::isfinite(ratio)) throw InputError(fmt::format("Carter's traction: Q/P = {} is not finite", ratio));
+  if (std::abs(ratio) > friction)
+    throw InputError(
+        fmt::format("Carter's traction: |Q/P| = {:.6g} exceeds the friction coefficient {}: the roller would slide",
+                    std::abs(ratio), friction));
   CarterTraction t;
   t.hertz = hertz;
   t.friction = friction;
-  t.creep = creep;
-  if (creep == 0.0) {  // free rolling: the whole contact sticks and carries no traction
-    t.stick_half_width = hertz.half_width;
-    return t;
-  }
-  t.stick_half_width = std::max(0.0, hertz.half_width - std::abs(creep) * radius / friction);
+  t.ratio = ratio;
+  t.stick_half_width =
+      friction > 0.0 ? hertz.half_width * std::sqrt(1.0 - std::abs(ratio) / friction) : hertz.half_width;
   return t;
 }
 
@@ -56,7 +52,7 @@ std::vector<Real> carter_nodal_forces(const CarterTraction& t, const std::vector
     const std::vector<Real> relief = hertz_nodal_forces(t.stick_relief(), shifted);
     for (std::size_t i = 0; i < q.size(); ++i) q[i] -= relief[i];
   }
-  for (Real& f : q) f *= t.creep < 0.0 ? -t.friction : t.friction;
+  for (Real& f : q) f *= t.ratio < 0.0 ? -t.friction : t.friction;
   return q;
 }
 

@@ -46,8 +46,12 @@ void print_result(const Scene& scene, const ShakedownLimitResult& r) {
   const ShakedownLoad& l = r.load;
   std::cout << fmt::format(
       "roller: shakedown limit of '{}' (load factor 1: the scene's load P = {:.6g} N/mm, Hertz a = {:.4g} mm, "
-      "p0 = {:.5g} MPa; computed peak pressure {:.5g} MPa; traction q = {:.3g} p)\n",
-      scene.name, l.load, l.half_width, l.hertz_peak, l.computed_peak, l.traction);
+      "p0 = {:.5g} MPa; computed peak pressure {:.5g} MPa; {})\n",
+      scene.name, l.load, l.half_width, l.hertz_peak, l.computed_peak,
+      l.shape == TractionShape::Carter
+          ? fmt::format("Carter's traction Q = {:.3g} P, stick zone c = {:.4g} mm at the leading edge", l.traction,
+                        l.stick_half_width)
+          : fmt::format("traction q = {:.3g} p", l.traction));
   std::cout << fmt::format("  {:<26} load factor {:.4g}: p0 = {:.5g} MPa\n", "first yield", r.elastic.first_yield(),
                            r.elastic.first_yield() * l.hertz_peak);
   std::cout << bound_line("elastic shakedown limit", r, r.elastic);
@@ -77,6 +81,8 @@ void write_json(const std::string& path, const ShakedownLimitResult& r) {
                      {"p0", l.hertz_peak},
                      {"computed_peak", l.computed_peak},
                      {"traction", l.traction},
+                     {"traction_shape", l.shape == TractionShape::Carter ? "carter" : "uniform"},
+                     {"stick_half_width", l.stick_half_width},
                      {"press_steps", l.press_steps}}},
                    {"scene_p0_over_k", r.scene_p0_over_k(r.elastic)},
                    {"first_yield_p0_over_k", r.elastic.first_yield() * r.scene_p0_over_k(r.elastic)},

@@ -4,10 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <ostream>
 
 #include <fmt/format.h>
 
+#include "roller/analysis/carter.hpp"
 #include "roller/analysis/hertz.hpp"
 #include "roller/assembly/element_materials.hpp"
 #include "roller/core/error.hpp"
@@ -26,11 +28,33 @@ Scene elastic_press_scene(const Scene& scene, int press_steps) {
   return s;
 }
 
-// Adds the elastic response to tangential nodal forces q/p |f_n| in the direction of travel.
-void add_traction(StripModel& strip, const std::vector<NodeContactRecord>& contact, Real traction) {
+// The steady load's tangential nodal forces in x, one per record of the press's contact: (Q/P) |f_n|
+// along the travel, or Carter's traction on the Hertz pressure of P about the roller's centre.
+std::vector<Real> tangential_forces(const std::vector<NodeContactRecord>& contact, const SteadyLoad& steady,
+                                    const HertzSolution& hertz, Real centre_x) {
+  const Real travel = steady.travel_sign;
+  std::vector<Real> out;
+  for (const NodeContactRecord& c : contact) out.push_back(travel * steady.traction * std::abs(c.force.y()));
+  if (steady.shape == TractionShape::Uniform) return out;
+  const CarterTraction t = carter_traction(hertz, steady.traction, steady.friction);
+  std::vector<std::size_t> order(contact.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  auto along = [&](std::size_t k) { return travel * (contact[k].position.x() - centre_x); };
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return along(i) < along(j); });
+  std::vector<Real> from_stick_centre;
+  for (const std::size_t k : order) from_stick_centre.push_back(along(k) - t.stick_centre());
+  const std::vector<Real> relief = hertz_nodal_forces(t.stick_relief(), from_stick_centre);
+  const Real sign = t.ratio < 0.0 ? -1.0 : 1.0;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    out[order[i]] = travel * sign * t.friction * (std::abs(contact[order[i]].force.y()) - relief[i]);
+  return out;
+}
+
+// Adds the elastic response to tangential nodal forces (x, one per contact record).
+void add_traction(StripModel& strip, const std::vector<NodeContactRecord>& contact, const std::vector<Real>& fx) {
   const DofMap& dofs = strip.dof_map();
   VecX force = VecX::Zero(strip.n_dofs());
-  for (const NodeContactRecord& c : contact) force[2 * c.node] += traction * std::abs(c.force.y());
+  for (std::size_t i = 0; i < contact.size(); ++i) force[2 * contact[i].node] += fx[i];
   SparseMatrix k;
   strip.evaluate(VecX::Zero(strip.n_dofs()), nullptr, &k);
   SparseSolver solver(MumpsSolver::Symmetry::Symmetric);
@@ -113,11 +137,6 @@ Real ShakedownLimitResult::scene_p0_over_k(const MelanLimit& bound) const {
 ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const ShakedownLimitSettings& settings) {
   if (!scene.roller) throw InputError(fmt::format("{}: shakedown-limit needs a [roller]", scene.file.string()));
   const SteadyLoad steady = steady_load(scene, settings.traction);
-  if (steady.creep)
-    throw InputError(
-        fmt::format("{}: roller.path: the segment over steps {}-{} rolls with creep (slip {}); shakedown-limit "
-                    "takes full sliding (q = mu p) or free rolling (q = 0): give the traction q/p (--traction)",
-                    scene.file.string(), steady.travel->first_step, steady.travel->last_step, *steady.creep));
   if (!scene.strip_material().any_plastic())
     throw InputError(fmt::format("{}: [material]: the strip is elastic (no yield_stress): it has no shakedown limit",
                                  scene.file.string()));
@@ -131,9 +150,17 @@ ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const Shakedown
       throw NumericalError(
           fmt::format("shakedown-limit: the elastic press did not converge at step {}: {}", step, r.message));
   }
-  if (traction != 0.0) add_traction(sim.model(), sim.state().contact, traction * steady.travel_sign);
   ShakedownLimitResult out;
   out.load = press_load(scene, sim, press_steps, traction, steady.travel_sign);
+  if (traction != 0.0) {
+    const HertzSolution hertz{out.load.load, out.load.half_width, out.load.hertz_peak};
+    add_traction(sim.model(), sim.state().contact,
+                 tangential_forces(sim.state().contact, steady, hertz, sim.state().pose.centre.x()));
+    if (steady.shape == TractionShape::Carter) {
+      out.load.shape = TractionShape::Carter;
+      out.load.stick_half_width = carter_traction(hertz, traction, steady.friction).stick_half_width;
+    }
+  }
   out.top = mesh_top(sim.model().mesh());
   if (settings.progress)
     *settings.progress << fmt::format(

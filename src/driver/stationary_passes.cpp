@@ -66,8 +66,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
     throw InputError(fmt::format(
         "{}: passes.stationary_contact = \"roller\" carries no tangential traction yet (the travel segment {}: "
         "q = {} p); set passes.stationary_contact = \"hertz\"",
-        scene.file.string(), steady.creep ? fmt::format("rolls with creep {}", *steady.creep) : "slides",
-        steady.traction));
+        scene.file.string(), steady.shape == TractionShape::Carter ? "rolls under fx" : "slides", steady.traction));
   const Mesh& mesh = model.mesh();
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
@@ -80,7 +79,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
     }));
 
   // The Hertz pressure and the traction q along the travel (q = traction p, or Carter's when the
-  // roller rolls with creep) as the work-equivalent nodal forces.
+  // roller rolls under a horizontal force) as the work-equivalent nodal forces.
   std::vector<Index> top = mesh.node_set("contact");
   std::sort(top.begin(), top.end(),
             [&](Index a, Index b) { return travel_ * mesh.nodes[a].x() < travel_ * mesh.nodes[b].x(); });
@@ -89,8 +88,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   const std::vector<Real> f = hertz_nodal_forces(hertz_, along);
   std::vector<Real> q;
   std::optional<CarterTraction> carter;
-  if (steady.creep) {
-    carter = carter_traction(hertz_, *steady.creep, scene.roller->radius, steady.traction);
+  if (steady.shape == TractionShape::Carter) {
+    carter = carter_traction(hertz_, steady.traction, steady.friction);
     q = carter_nodal_forces(*carter, along);
   } else {
     for (const Real fi : f) q.push_back(steady.traction * fi);
@@ -105,7 +104,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
     c.position = mesh.nodes[top[i]];
     c.contact.normal_force = f[i];
     c.contact.tangential_force = q[i];
-    const bool slips = carter ? !carter->sticks(along[i]) : steady.traction > 0.0;
+    const bool slips = carter ? !carter->sticks(along[i]) : steady.traction != 0.0;
     c.contact.status = slips ? ContactStatus::Slip : ContactStatus::Stick;
     c.tributary_length =
         0.5 * std::abs((i + 1 < top.size() ? along[i + 1] : along[i]) - (i > 0 ? along[i - 1] : along[i]));

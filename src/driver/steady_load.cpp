@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -30,21 +31,33 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
   load.press_steps = it->first_step - 1;
   load.force = it->fy;
   load.travel_sign = it->dx > 0.0 ? 1.0 : -1.0;
+  load.friction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
+  const std::string where =
+      fmt::format("{}: roller.path: the segment over steps {}-{}", scene.file.string(), it->first_step, it->last_step);
   if (traction) {
     load.traction = *traction;
+  } else if (it->fx) {
+    if (!it->fy)
+      throw InputError(
+          fmt::format("{} prescribes fx = {} without fy: a steady pass needs both forces", where, *it->fx));
+    load.traction = -load.travel_sign * *it->fx / std::abs(*it->fy);  // fx: the strip's force on the roller
+    load.shape = TractionShape::Carter;
+    if (std::abs(load.traction) > load.friction)
+      throw InputError(
+          fmt::format("{}: |fx| = {} exceeds mu |fy| = {} x {}: the roller would slide, it cannot roll "
+                      "steadily under this force",
+                      where, std::abs(*it->fx), load.friction, std::abs(*it->fy)));
   } else if (std::max(it->slip_start, it->slip_end) == 0.0) {
     load.traction = 0.0;  // free rolling: no tangential load
   } else if (std::min(it->slip_start, it->slip_end) >= 1.0) {
-    load.traction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
-  } else if (it->slip_start != it->slip_end) {
-    throw InputError(
-        fmt::format("{}: roller.path: the segment over steps {}-{} rolls with a creep that changes along it "
-                    "(slip {}..{}); a steady pass needs one creep (or give the traction q/p: shakedown-limit "
-                    "--traction)",
-                    scene.file.string(), it->first_step, it->last_step, it->slip_start, it->slip_end));
+    load.traction = load.friction;
   } else {
-    load.creep = it->slip_start;
-    load.traction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
+    throw InputError(fmt::format(
+        "{} rolls with creep (slip {}..{}); the traction a creep carries depends on the strip's plastic flow and on "
+        "nu (Carter's law holds for an elastic strip with nu = 0.5), so a steady pass takes the force instead: give "
+        "the segment fx, the strip's horizontal force on the roller (Carter's traction; the creep is then an "
+        "outcome), or the traction q/p (shakedown-limit --traction)",
+        where, it->slip_start, it->slip_end));
   }
   return load;
 }

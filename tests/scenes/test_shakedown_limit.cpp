@@ -46,6 +46,29 @@ Real mcewen_kinematic_limit(Real mu) {
   return melan_limit(rows, ShakedownBound::Kinematic).load_factor();
 }
 
+// Melan's bound of the half-plane under the Hertz pressure and Carter's traction Q = ratio P (k = 1,
+// rows every 0.01 a from 0.2 a to 0.7 a): McEwen's sliding field less the stick zone's, a semi-ellipse
+// of half-width c and peak mu c/a, whose field is the unit traction's scaled by c in x, z and
+// stress. McEwen's traction (mu > 0) points to -x, so the stick zone lies at x = -(a - c).
+Real carter_half_plane_limit(Real mu, Real ratio) {
+  const Real c = std::sqrt(1.0 - ratio / mu), d = -(1.0 - c);
+  std::vector<MelanRow> rows;
+  for (int j = 20; j <= 70; ++j) {
+    MelanRow row;
+    row.depth = 0.01 * j;
+    for (int i = 0; i <= 800; ++i) {
+      const Real x = -4.0 + 0.01 * i, z = row.depth;
+      const Vec4 unit_traction =
+          test::mcewen_stress((x - d) / c, z / c, 1.0, 0.3) - test::mcewen_stress((x - d) / c, z / c, 0.0, 0.3);
+      row.x.push_back(x);
+      row.stress.push_back(test::mcewen_stress(x, z, mu, 0.3) - mu * c * unit_traction);
+      row.yield_stress.push_back(std::sqrt(3.0));
+    }
+    rows.push_back(row);
+  }
+  return melan_limit(rows, ShakedownBound::Elastic).load_factor();
+}
+
 }  // namespace
 
 TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with sliding traction",
@@ -89,6 +112,35 @@ TEST_CASE("shakedown-limit under a strong traction: at the surface, falling to 1
     previous = r.p0_over_k(r.elastic);
   }
   CHECK(previous == Approx(1.0 / mu).epsilon(0.05));
+}
+
+TEST_CASE("shakedown-limit of rolling under a horizontal force: Carter's traction, the half-plane's limit",
+          "[scenes][melan][slow]") {
+  // mu = 0.2, fx = -Q along +x: Carter's stick zone c = a sqrt(1 - Q/(mu P)) at the leading edge.
+  auto rolling_under = [](Real q_over_p) {
+    return shipped("shakedown_p45",
+                   {{"contact.friction", "0.2"},
+                    {"roller.path", fmt::format("[{{ steps = [1, 3], fy = 7249.8292 }}, {{ steps = [4, 19], dx = 16.0, "
+                                                "fy = 7249.8292, fx = {} }}, {{ steps = [20, 21], dy = 0.3 }}]",
+                                                -q_over_p * 7249.8292)}});
+  };
+  for (const Real q_over_p : {0.1, 0.15}) {
+    const ShakedownLimitResult r = compute_shakedown_limit(rolling_under(q_over_p), {});
+    CHECK(r.load.shape == TractionShape::Carter);
+    CHECK(r.load.traction == Approx(q_over_p).epsilon(1e-12));
+    CHECK(r.load.stick_half_width == Approx(std::sqrt(1.0 - q_over_p / 0.2) * r.load.half_width).epsilon(1e-12));
+    const Real half_plane = carter_half_plane_limit(0.2, q_over_p);
+    const ShakedownLimitResult uniform = limit_of(shipped("shakedown_p45"), q_over_p);
+    std::cout << fmt::format("p45, mu 0.2, Q = {} P: Carter {:.4f} (half-plane {:.4f}), uniform q = {} p {:.4f}\n",
+                             q_over_p, r.p0_over_k(r.elastic), half_plane, q_over_p,
+                             uniform.p0_over_k(uniform.elastic));
+    CHECK(r.p0_over_k(r.elastic) == Approx(half_plane).epsilon(0.01));
+  }
+  // Q = mu P leaves no stick zone: Carter's traction is the sliding one, node for node.
+  const ShakedownLimitResult carter_sliding = compute_shakedown_limit(rolling_under(0.2), {});
+  const ShakedownLimitResult sliding = limit_of(shipped("shakedown_p45"), 0.2);
+  CHECK(carter_sliding.load.stick_half_width == 0.0);
+  CHECK(carter_sliding.p0_over_k(carter_sliding.elastic) == Approx(sliding.p0_over_k(sliding.elastic)).epsilon(1e-9));
 }
 
 TEST_CASE("shakedown-limit: scenes it cannot take are input errors naming the cause", "[scenes][melan]") {

@@ -267,10 +267,10 @@ TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", 
   CHECK(a["passes"] == b["passes"]);
 }
 
-TEST_CASE("stationary passes rolling with creep carry Carter's traction, its stick zone at the leading edge",
+TEST_CASE("stationary passes rolling under a horizontal force carry Carter's traction, its stick zone ahead",
           "[scenes][stationary]") {
-  // shakedown_p37 (a = 2 mm, R = 100 mm) with mu = 0.2 and creep s = 0.002 = (mu a / R)(1 - c/a):
-  // c = a/2, Q = mu P (1 - c^2/a^2) = 0.15 P, the stick zone [a - 2c, a] = [0, a] along the travel.
+  // shakedown_p37 (a = 2 mm) with mu = 0.2 under Q = 0.15 P along the travel (fx = -Q: the strip's
+  // force on the roller): c = a sqrt(1 - Q/(mu P)) = a/2, the stick zone [a - 2c, a] = [0, a].
   const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p37.toml";
   const auto [dx, start_x] = GENERATE(table<Real, Real>({{16.0, 92.0}, {-16.0, 108.0}}));
   INFO("dx = " << dx);
@@ -282,8 +282,8 @@ TEST_CASE("stationary passes rolling with creep carry Carter's traction, its sti
              {"contact.friction", "0.2"},
              {"roller.centre", fmt::format("[{}, 200.0]", start_x)},
              {"roller.path", fmt::format("[{{ steps = [1, 3], fy = 7249.8292 }}, {{ steps = [4, 19], dx = {}, "
-                                         "fy = 7249.8292, slip = 0.002 }}, {{ steps = [20, 21], dy = 0.3 }}]",
-                                         dx)}}));
+                                         "fy = 7249.8292, fx = {} }}, {{ steps = [20, 21], dy = 0.3 }}]",
+                                         dx, -travel * 0.15 * 7249.8292)}}));
   REQUIRE(sim.advance_step(1).converged());
   const Real centre = start_x + 0.5 * dx;  // the travel segment's middle
   Real p = 0.0, q = 0.0;
@@ -323,13 +323,21 @@ TEST_CASE("stationary passes: scenes it cannot take are input errors naming the 
                                       "dx = 16.0, fy = 7249.8, slip = 1.0 }, { steps = [20, 21], dy = 0.3 }]"}}));
     CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("stationary_contact") && Catch::Contains("hertz"));
   }
-  SECTION("a creep that changes along the travel") {
+  SECTION("rolling with creep: the traction it carries is the strip's, the pass needs the force") {
     Simulation sim(load_scene(file, {kStationary,
                                      {"contact.friction", "0.2"},
                                      {"roller.path",
                                       "[{ steps = [1, 3], fy = 7249.8 }, { steps = [4, 19], dx = 16.0, fy = 7249.8, "
-                                      "slip = [0.001, 0.003] }, { steps = [20, 21], dy = 0.3 }]"}}));
-    CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("roller.path") && Catch::Contains("one creep"));
+                                      "slip = 0.002 }, { steps = [20, 21], dy = 0.3 }]"}}));
+    CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("roller.path") && Catch::Contains("give the segment fx"));
+  }
+  SECTION("a horizontal force the friction cannot carry") {
+    Simulation sim(load_scene(file, {kStationary,
+                                     {"contact.friction", "0.2"},
+                                     {"roller.path",
+                                      "[{ steps = [1, 3], fy = 7249.8 }, { steps = [4, 19], dx = 16.0, fy = 7249.8, "
+                                      "fx = -1500.0 }, { steps = [20, 21], dy = 0.3 }]"}}));
+    CHECK_THROWS_WITH(sim.advance_step(1), Catch::Contains("fx") && Catch::Contains("would slide"));
   }
   SECTION("a base free in x") {
     Simulation sim(load_scene(

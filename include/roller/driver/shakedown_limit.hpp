@@ -4,20 +4,22 @@
 // sliding segment) is solved once with the strip made linear elastic, small strain and
 // frictionless; a sliding traction q = mu p is added as the elastic response to tangential nodal
 // forces mu |f_n| in the direction of travel (Johnson's load: the Hertz pressure and q = mu p,
-// uncoupled). Each row of integration points at one depth then holds the stress history of a point
-// at that depth as the roller passes (analysis/melan.hpp).
+// uncoupled), and a rolling segment's horizontal force fx as Carter's traction (analysis/carter.hpp). Each row of
+// integration points at one depth then holds the stress history of a point at that depth as the roller passes
+// (analysis/melan.hpp).
 #include <iosfwd>
 #include <optional>
 #include <vector>
 
 #include "roller/analysis/melan.hpp"
+#include "roller/driver/steady_load.hpp"
 #include "roller/io/scene.hpp"
 
 namespace roller {
 
 struct ShakedownLimitSettings {
-  // q/p of the traction; absent: mu of the scene's rolling segment when it slides (slip = 1), 0
-  // when it rolls (slip = 0).
+  // q/p of a uniform traction; absent: the scene's (driver/steady_load.hpp): Carter's of the rolling
+  // segment's fx, mu when it slides (slip = 1), 0 when it rolls freely (slip = 0).
   std::optional<Real> traction;
   MelanSearch search = MelanSearch::StrictestRow;
   std::ostream* progress = nullptr;
@@ -30,8 +32,10 @@ struct ShakedownLoad {
   Real half_width = 0.0;     // Hertz a of P [mm]
   Real hertz_peak = 0.0;     // Hertz p0 of P [MPa]: the load measure's p0
   Real computed_peak = 0.0;  // the largest nodal contact pressure of the press [MPa]
-  Real traction = 0.0;       // q/p
-  Real travel_sign = 1.0;    // direction of the rolling segment (+1: +x)
+  Real traction = 0.0;       // Q/P along the travel
+  TractionShape shape = TractionShape::Uniform;
+  Real stick_half_width = 0.0;  // c of Carter's traction [mm]
+  Real travel_sign = 1.0;       // direction of the rolling segment (+1: +x)
 };
 
 struct ShakedownLimitResult {
@@ -46,7 +50,7 @@ struct ShakedownLimitResult {
 };
 
 // Throws InputError when the scene has no roller that rolls or slides after a press, a creep
-// (0 < slip < 1) without an explicit traction, or a strip that cannot yield; NumericalError when
+// (0 < slip < 1) without fx or an explicit traction, or a strip that cannot yield; NumericalError when
 // the elastic press does not converge.
 ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const ShakedownLimitSettings& settings);
 

@@ -9,20 +9,29 @@
 
 namespace roller {
 
+// How the tangential traction spreads over the contact.
+enum class TractionShape {
+  Uniform,  // q = (Q/P) p: sliding (Q = mu P), or a traction ratio the user gives
+  Carter,   // rolling under a tangential force: Carter's stick zone at the leading edge (analysis/carter.hpp)
+};
+
 struct SteadyLoad {
   const PathSegment* travel = nullptr;
   int press_steps = 0;        // steps before the travel segment
   std::optional<Real> force;  // the travel segment's fy [N/mm]: absent when it prescribes the height
-  Real traction = 0.0;        // q/p along the travel: the friction coefficient when it slides or creeps
-  std::optional<Real> creep;  // s of a segment that rolls with creep (0 < s < 1) and no traction given
-  Real travel_sign = 1.0;     // +1: the roller moves towards +x over the strip
+  Real traction = 0.0;        // Q/P along the travel (> 0: the strip dragged along it)
+  TractionShape shape = TractionShape::Uniform;
+  Real friction = 0.0;     // mu of the travel segment
+  Real travel_sign = 1.0;  // +1: the roller moves towards +x over the strip
 };
 
-// `traction`: q/p given by the user; absent: mu of the travel segment when it slides (slip = 1 at
-// both ends), 0 when it rolls freely (slip = 0), mu and the creep when it rolls with one creep
-// (0 < slip < 1: Carter's traction, analysis/carter.hpp). Throws InputError naming the scene when
-// there is no roller, no segment with dx != 0, no press before it, or a creep that changes along
-// the segment.
+// `traction`: q/p given by the user (uniform); absent: Carter's traction of the travel segment's
+// horizontal force fx when it has one (the creep then turns the roller but does not set the load),
+// mu (uniform) when it slides (slip = 1 at both ends), 0 when it rolls freely (slip = 0). Throws
+// InputError naming the scene and key when there is no roller, no segment with dx != 0, no press
+// before it, an fx without fy or beyond mu fy, or a creep 0 < slip < 1 without fx: the traction a
+// creep carries depends on the strip's plastic flow and on nu (Carter's law is an elastic strip's
+// with nu = 0.5), so a steady solve takes the force.
 SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
 
 // The scene with its strip linear elastic (every layer), small-strain, quasi-static and

@@ -4,7 +4,7 @@
 usage: ./rollerpy make-shakedown-scenes [--loads 3.0,3.7,4.5,5.5] [--passes 5]
                                       [--element-size 0.2] [--out problems]
                                       [--kinematic E_T] [--track 8] [--step 0.5] [--periodic]
-                                      [--continuous] [--creep S --friction MU]
+                                      [--continuous] [--traction Q/P --friction MU]
 
 One template, the load as p0/k in the name: a rigid cylinder R = 100 mm rolled frictionlessly
 over an elastic-perfectly plastic strip (E = 2.1e5 MPa, nu = 0.3, E_T = 0) under a constant
@@ -28,9 +28,10 @@ layer has no ends to relieve it. --continuous (with --periodic) rolls the ring w
 press, then --passes periods rolled on, fields written every period, when the roller stands 3 steps
 before where it pressed; the half of the ring opposite it has then been rolled over once more (a
 ring that is pressed and lifted every pass compresses the rest of it with its press zone).
---creep S --friction MU rolls with the creep S (roller.path slip) under Coulomb friction MU
-instead of freely: Carter's steady rolling, a stick zone c = a - S R/MU at the leading edge
-(docs/validation.md, "Rolling with creep").
+--traction Q/P --friction MU rolls under the horizontal force Q (roller.path fx, ramped up over
+the first 2a and taken off with the roller standing after the track, one step more a pass) with
+Coulomb friction MU instead of freely: Carter's steady rolling, the creep an outcome
+(docs/validation.md, "Rolling under a tangential force").
 """
 import math
 import os
@@ -106,16 +107,48 @@ def periodic_lines(h, track):
     return [h * i for i in range(n + 1)], lines(h, track)[1]
 
 
-def creep_line(creep):
-    """The roll segment's creep (docs/scenes.md, roller.path slip), or nothing: free rolling."""
-    return "" if creep is None else "\nslip = %r" % creep
+def roll_segments(start, rolls, step, load, traction):
+    """The path's rolling segments over steps start ... start + rolls - 1, `step` a each, under P =
+    `load`: one segment when it rolls freely; under the horizontal force Q = traction P along the
+    travel (roller.path fx, the strip's force on the roller: -Q), the force ramped up over the first
+    2a, then held, then a step that takes it off with the roller standing (so that nothing is left
+    for the lift to carry). Returns the text and the number of steps."""
+    travel = round(A * rolls * step, 6)
+    if traction is None:
+        return """[[roller.path]]         # roll {track:g}a under P
+steps = [{start}, {end}]
+dx = {travel!r}
+fy = {load:.4f}""".format(track=rolls * step, start=start, end=start + rolls - 1, travel=travel, load=load), rolls
+    ramp = min(rolls - 1, max(1, int(round(2.0 / step))))
+    if ramp < 1:
+        raise SystemExit("make-shakedown-scenes: --traction needs a track of at least two steps")
+    fx = -traction * load
+    return """[[roller.path]]         # roll {ramp_a:g}a under P while Q = {traction:g} P builds up (fx = -Q)
+steps = [{start}, {ramp_end}]
+dx = {ramp_dx!r}
+fy = {load:.4f}
+fx = {fx:.4f}
+
+[[roller.path]]         # roll on under P and Q: {track:g}a in all
+steps = [{rest_start}, {end}]
+dx = {rest_dx!r}
+fy = {load:.4f}
+fx = {fx:.4f}
+
+[[roller.path]]         # Q taken off, the roller standing
+steps = [{off}, {off}]
+fy = {load:.4f}
+fx = 0.0""".format(ramp_a=ramp * step, traction=traction, start=start, ramp_end=start + ramp - 1,
+                   ramp_dx=round(A * ramp * step, 6), load=load, fx=fx, track=rolls * step, rest_start=start + ramp,
+                   end=start + rolls - 1, rest_dx=round(travel - A * ramp * step, 6), off=start + rolls), rolls + 1
 
 
-def repeated_passes(passes, rolls, track, step, load, creep=None):
+def repeated_passes(passes, rolls, track, step, load, traction=None):
     """[steps], [passes] and [output], and the path after the press, of repeated passes: press,
-    roll the track (with `creep`), lift clear, `rolls` + PRESS_STEPS + 2 steps a pass, fields after
+    roll the track (under the horizontal force traction P, roll_segments), lift clear, fields after
     every pass."""
-    count = rolls + PRESS_STEPS + 2
+    roll_block, roll_steps = roll_segments(PRESS_STEPS + 1, rolls, step, load, traction)
+    count = roll_steps + PRESS_STEPS + 2
     steps = """[steps]
 count = {count}              # one pass
 
@@ -124,19 +157,15 @@ count = {passes}
 
 [output]
 every = {count}              # fields at the end of every pass""".format(count=count, passes=passes)
-    path = """[[roller.path]]         # roll {track:g}a under P
-steps = [{roll_start}, {roll_end}]
-dx = {travel!r}
-fy = {load:.4f}{creep}
+    path = """{roll_block}
 
 [[roller.path]]         # lift clear
 steps = [{lift_start}, {count}]
-dy = 0.3""".format(track=track, roll_start=PRESS_STEPS + 1, roll_end=rolls + PRESS_STEPS, travel=round(A * track, 6),
-                   load=load, lift_start=rolls + PRESS_STEPS + 1, count=count, creep=creep_line(creep))
+dy = 0.3""".format(roll_block=roll_block, lift_start=roll_steps + PRESS_STEPS + 1, count=count)
     return steps, path
 
 
-def rolled_on(passes, rolls, track, step, load, creep=None):
+def rolled_on(passes, rolls, track, step, load, traction=None):
     """[steps] and [output], and the path after the press, of a ring rolled on: `passes` periods of
     `rolls` steps, the press the first PRESS_STEPS of them, then rolling on under P to the last
     step; fields every period (the roller then PRESS_STEPS steps before where it pressed)."""
@@ -148,17 +177,16 @@ every = {rolls}              # fields every period""".format(count=passes * roll
     path = """[[roller.path]]         # roll on under P, {passes} periods less the press's {press} steps
 steps = [{start}, {end}]
 dx = {travel!r}
-fy = {load:.4f}{creep}""".format(passes=passes, press=PRESS_STEPS, start=PRESS_STEPS + 1, end=passes * rolls,
-                                 travel=round((passes * rolls - PRESS_STEPS) * step * A, 6), load=load,
-                                 creep=creep_line(creep))
+fy = {load:.4f}""".format(passes=passes, press=PRESS_STEPS, start=PRESS_STEPS + 1, end=passes * rolls,
+                          travel=round((passes * rolls - PRESS_STEPS) * step * A, 6), load=load)
     return steps, path
 
 
-def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False, continuous=False, creep=None,
+def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False, continuous=False, traction=None,
           friction=0.0):
     """The scene's name and text; track and step in units of a (the shipped scenes: 8a in 0.5a).
-    creep: the roller rolls with this creep s (Carter's traction, which needs friction > 0) instead
-    of freely.
+    traction: the roller rolls under the horizontal force Q = traction P along the travel (Carter's
+    problem, which needs friction >= traction) instead of freely.
     periodic: the strip is one period of an endless track, the track itself (docs/model.md,
     Periodic strip): the roller presses in its middle, rolls the whole period over the seam and
     lifts where it pressed, and no stretch of the strip is left unrolled. continuous: it presses
@@ -174,10 +202,13 @@ def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False,
     prefix = "shakedown_p" if kinematic is None else "shakedown_kinematic_p"
     name = prefix + "%02d" % round(10 * ratio)
     law = "elastic-perfectly plastic strip" if kinematic is None else "Prager-hardening strip"
-    if creep is not None and not friction > 0.0:
-        raise SystemExit("make-shakedown-scenes: --creep %g needs --friction > 0" % creep)
-    steps_block, path_block = (rolled_on if continuous else repeated_passes)(passes, rolls, track, step, LOAD, creep)
-    rolling = "Frictionless rolling" if creep is None else "Rolling with creep s = %g (friction %g)" % (creep, friction)
+    if traction is not None and not 0.0 < traction <= friction:
+        raise SystemExit("make-shakedown-scenes: --traction %g needs 0 < Q/P <= --friction (%g)" % (traction, friction))
+    if traction is not None and continuous:
+        raise SystemExit("make-shakedown-scenes: --traction with --continuous is not written")
+    steps_block, path_block = (rolled_on if continuous else repeated_passes)(passes, rolls, track, step, LOAD, traction)
+    rolling = ("Frictionless rolling" if traction is None else
+               "Rolling under Q = %g P (friction %g)" % (traction, friction))
     return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
 # python/rollerpy/validation/make_shakedown_scenes.py, not this file); docs/validation.md,
 # "Shakedown: repeated rolling of a line contact".
@@ -231,12 +262,13 @@ friction = {friction!r}
 
 
 def write_scenes(loads, passes, element_size, out, kinematic=None, track=8.0, step=0.5, periodic=False,
-                 continuous=False, creep=None, friction=0.0):
+                 continuous=False, traction=None, friction=0.0):
     """problems/shakedown_pXX.toml for each load p0/k into `out`; returns the paths written."""
     os.makedirs(out, exist_ok=True)
     written = []
     for ratio in loads:
-        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic, continuous, creep, friction)
+        name, text = scene(ratio, passes, element_size, kinematic, track, step, periodic, continuous, traction,
+                           friction)
         path = os.path.join(out, name + ".toml")
         with open(path, "w") as f:
             f.write(text)
@@ -258,11 +290,12 @@ def main(argv=None):
                     help="the strip one period (the track) of an endless track: no track ends")
     ap.add_argument("--continuous", action="store_true",
                     help="with --periodic: press once and roll --passes periods on, fields every period")
-    ap.add_argument("--creep", type=float, default=None, metavar="S",
-                    help="roll with this creep s (Carter's traction; needs --friction)")
+    ap.add_argument("--traction", type=float, default=None, metavar="Q/P",
+                    help="roll under the horizontal force Q = Q/P x P along the travel (needs --friction)")
     ap.add_argument("--friction", type=float, default=0.0)
     args = ap.parse_args(argv)
     loads = [float(r) for r in args.loads.split(",")]
     for path in write_scenes(loads, args.passes, args.element_size, args.out, args.kinematic,
-                             args.track, args.step, args.periodic, args.continuous, args.creep, args.friction):
+                             args.track, args.step, args.periodic, args.continuous, args.traction,
+                             args.friction):
         print("wrote", path)

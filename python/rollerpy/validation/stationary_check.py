@@ -5,10 +5,10 @@ over a long track, so that the transient pass reaches its steady state, at one e
 - the stationary pass with the roller's contact, the roller's centre at several places between
   two nodes (its error: the contact resolved at nodes that stand still under the roller);
 - the stationary pass with the Hertz load.
-With --creep S --friction MU the roller rolls with creep: the transient's exact contact with Coulomb
-friction against the stationary pass under the Hertz pressure and Carter's traction (docs/model.md,
-Stationary pass), the only load of the stationary runs then (the roller's contact carries no
-traction).
+With --traction Q/P --friction MU the roller rolls under the horizontal force Q = Q/P x P along the
+travel: the transient's exact contact with Coulomb friction against the stationary pass under the
+Hertz pressure and Carter's traction (docs/model.md, Stationary pass), the only load of the
+stationary runs then (the roller's contact carries no traction).
 Every pass of a transient run is measured on the same stretch of its fields, from 10a to 4a before
 the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
 of where the roller stops), down to 4a (with --periodic, the transient runs on a periodic strip of
@@ -25,7 +25,7 @@ stationary runs' residual strips are uniform along x; they are measured on their
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
                                    [--phases 0,0.25,0.5] [--track 24] [--passes 2]
                                    [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
-                                   [--creep S --friction MU]
+                                   [--traction Q/P --friction MU]
                                    [--out out/stationary_check/hH]
                                    [--roller ./build/roller] [--timeout 14400]
 
@@ -343,9 +343,9 @@ def main(argv=None):
                     help="the transient runs on a periodic strip of one track's period (no track ends)")
     ap.add_argument("--continuous", action="store_true",
                     help="with --periodic: the ring pressed once and rolled on --passes periods")
-    ap.add_argument("--creep", type=float, default=None, metavar="S",
-                    help="roll with this creep (Carter's traction on the stationary pass; needs --friction); "
-                         "the stationary runs then take the Hertz load only")
+    ap.add_argument("--traction", type=float, default=None, metavar="Q/P",
+                    help="roll under the horizontal force Q = Q/P x P (Carter's traction on the stationary pass; "
+                         "needs --friction); the stationary runs then take the Hertz load only")
     ap.add_argument("--friction", type=float, default=0.0)
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a scene value for every run (roller run --set), e.g. another hardening law")
@@ -371,7 +371,7 @@ def main(argv=None):
     for s in steps:
         folder = os.path.join(out, "scenes_s%g" % s)
         scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s, args.periodic,
-                              args.continuous, args.creep, args.friction)
+                              args.continuous, args.traction, args.friction)
         press_x, centre_y = roller_centre(scene)
         elastic = elastic_constants(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
@@ -388,13 +388,13 @@ def main(argv=None):
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
     if not steps or args.periodic:  # the stationary runs' scene (its step does not enter a stationary pass)
         scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track,
-                              creep=args.creep, friction=args.friction)
+                              traction=args.traction, friction=args.friction)
         press_x, centre_y = roller_centre(scene)
     stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
     # The roller's centre moved along x by a fraction of an element.
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
                  ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
-                for p in (float(v) for v in args.phases.split(","))] if args.creep is None else []
+                for p in (float(v) for v in args.phases.split(","))] if args.traction is None else []
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
