@@ -40,7 +40,8 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
     if (!it->fy)
       throw InputError(
           fmt::format("{} prescribes fx = {} without fy: a steady pass needs both forces", where, *it->fx));
-    load.traction = -load.travel_sign * *it->fx / std::abs(*it->fy);  // fx: the strip's force on the roller
+    // fx: the strip's force on the roller (no -0 when it is zero)
+    load.traction = *it->fx == 0.0 ? 0.0 : -load.travel_sign * *it->fx / std::abs(*it->fy);
     load.shape = TractionShape::Carter;
     if (std::abs(load.traction) > load.friction)
       throw InputError(
