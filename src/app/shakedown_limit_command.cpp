@@ -131,9 +131,9 @@ Command add_shakedown_limit_command(CLI::App& app) {
   cmd->add_option("--set", args->sets, "override a scene value, e.g. --set contact.friction=0.2")
       ->type_name("KEY=VALUE");
   cmd->add_option("--refine", args->refine, "mesh refinement factor (overrides mesh.refine)")->check(CLI::Range(1, 64));
-  cmd->add_option(
-         "--traction", args->traction,
-         "traction coefficient q/p (default: the friction coefficient when the roller slides, 0 when it rolls)")
+  cmd->add_option("--traction", args->traction,
+                  "a uniform traction q/p (default: Carter's traction of the rolling segment's fx when it has one, the "
+                  "friction coefficient when the roller slides, 0 when it rolls freely)")
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file");
   cmd->add_option("--json", args->json, "write the limits to this JSON file");
