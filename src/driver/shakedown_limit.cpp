@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <ostream>
 
 #include <fmt/format.h>
@@ -26,28 +25,6 @@ Scene elastic_press_scene(const Scene& scene, int press_steps) {
   Scene s = elastic_frictionless_scene(scene);
   s.steps.n_steps = press_steps;
   return s;
-}
-
-// The steady load's tangential nodal forces in x, one per record of the press's contact: (Q/P) |f_n|
-// along the travel, or Carter's traction on the Hertz pressure of P about the roller's centre.
-std::vector<Real> tangential_forces(const std::vector<NodeContactRecord>& contact, const SteadyLoad& steady,
-                                    const HertzSolution& hertz, Real centre_x) {
-  const Real travel = steady.travel_sign;
-  std::vector<Real> out;
-  for (const NodeContactRecord& c : contact) out.push_back(travel * steady.traction * std::abs(c.force.y()));
-  if (steady.shape == TractionShape::Uniform) return out;
-  const CarterTraction t = carter_traction(hertz, steady.traction, steady.friction);
-  std::vector<std::size_t> order(contact.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  auto along = [&](std::size_t k) { return travel * (contact[k].position.x() - centre_x); };
-  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return along(i) < along(j); });
-  std::vector<Real> from_stick_centre;
-  for (const std::size_t k : order) from_stick_centre.push_back(along(k) - t.stick_centre());
-  const std::vector<Real> relief = hertz_nodal_forces(t.stick_relief(), from_stick_centre);
-  const Real sign = t.ratio < 0.0 ? -1.0 : 1.0;
-  for (std::size_t i = 0; i < order.size(); ++i)
-    out[order[i]] = travel * sign * t.friction * (std::abs(contact[order[i]].force.y()) - relief[i]);
-  return out;
 }
 
 // Adds the elastic response to tangential nodal forces (x, one per contact record).
@@ -155,7 +132,7 @@ ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const Shakedown
   if (traction != 0.0) {
     const HertzSolution hertz{out.load.load, out.load.half_width, out.load.hertz_peak};
     add_traction(sim.model(), sim.state().contact,
-                 tangential_forces(sim.state().contact, steady, hertz, sim.state().pose.centre.x()));
+                 traction_forces(steady, sim.state().contact, hertz, sim.state().pose.centre.x()));
     if (steady.shape == TractionShape::Carter) {
       out.load.shape = TractionShape::Carter;
       out.load.stick_half_width = carter_traction(hertz, traction, steady.friction).stick_half_width;

@@ -62,11 +62,6 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
       elastic_materials_(linear_elastic(model.materials())) {
   require_held_base(scene, model);
   const SteadyLoad steady = steady_load(scene, std::nullopt);
-  if (scene.passes.stationary_contact == StationaryContact::Roller && steady.traction != 0.0)
-    throw InputError(fmt::format(
-        "{}: passes.stationary_contact = \"roller\" carries no tangential traction yet (the travel segment {}: "
-        "q = {} p); set passes.stationary_contact = \"hertz\"",
-        scene.file.string(), steady.shape == TractionShape::Carter ? "rolls under fx" : "slides", steady.traction));
   const Mesh& mesh = model.mesh();
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include <fmt/format.h>
 
+#include "roller/analysis/carter.hpp"
 #include "roller/core/error.hpp"
 
 namespace roller {
@@ -61,6 +63,26 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
         where, it->slip_start, it->slip_end));
   }
   return load;
+}
+
+std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<NodeContactRecord>& contact,
+                                  const HertzSolution& hertz, Real centre_x) {
+  const Real travel = load.travel_sign;
+  std::vector<Real> out;
+  for (const NodeContactRecord& c : contact) out.push_back(travel * load.traction * std::abs(c.force.y()));
+  if (load.shape == TractionShape::Uniform) return out;
+  const CarterTraction t = carter_traction(hertz, load.traction, load.friction);
+  std::vector<std::size_t> order(contact.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  auto along = [&](std::size_t k) { return travel * (contact[k].position.x() - centre_x); };
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return along(i) < along(j); });
+  std::vector<Real> from_stick_centre;
+  for (const std::size_t k : order) from_stick_centre.push_back(along(k) - t.stick_centre());
+  const std::vector<Real> relief = hertz_nodal_forces(t.stick_relief(), from_stick_centre);
+  const Real sign = t.ratio < 0.0 ? -1.0 : 1.0;
+  for (std::size_t i = 0; i < order.size(); ++i)
+    out[order[i]] = travel * sign * t.friction * (std::abs(contact[order[i]].force.y()) - relief[i]);
+  return out;
 }
 
 Scene elastic_frictionless_scene(const Scene& scene) {

@@ -4,7 +4,10 @@
 // along which the roller rolls or slides (the one with the largest |dx|), the steps of the press
 // before it, its vertical force and the tangential traction q/p.
 #include <optional>
+#include <vector>
 
+#include "roller/analysis/hertz.hpp"
+#include "roller/driver/run_state.hpp"
 #include "roller/io/scene.hpp"
 
 namespace roller {
@@ -33,6 +36,13 @@ struct SteadyLoad {
 // creep carries depends on the strip's plastic flow and on nu (Carter's law is an elastic strip's
 // with nu = 0.5), so a steady solve takes the force.
 SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
+
+// The tangential nodal forces in x, one per record of `contact`, of the load's traction on the
+// contact's normal forces: (Q/P) |f_n| along the travel, or Carter's, mu |f_n| less the stick zone's
+// relief (analysis/carter.hpp) placed by the Hertz solution `hertz` of P about the contact's centre
+// `centre_x` (shakedown-limit on its elastic press, the stationary pass on the roller's contact).
+std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<NodeContactRecord>& contact,
+                                  const HertzSolution& hertz, Real centre_x);
 
 // The scene with its strip linear elastic (every layer), small-strain, quasi-static and
 // frictionless, one pass, no monitor and no initial state: the elastic solutions of the steady

@@ -6,9 +6,9 @@ over a long track, so that the transient pass reaches its steady state, at one e
   two nodes (its error: the contact resolved at nodes that stand still under the roller);
 - the stationary pass with the Hertz load.
 With --traction Q/P --friction MU the roller rolls under the horizontal force Q = Q/P x P along the
-travel: the transient's exact contact with Coulomb friction against the stationary pass under the
-Hertz pressure and Carter's traction (docs/model.md, Stationary pass), the only load of the
-stationary runs then (the roller's contact carries no traction).
+travel: the transient's exact contact with Coulomb friction against the stationary passes with
+Carter's traction (docs/model.md, Stationary pass) on the Hertz pressure or on the roller's
+frictionless contact.
 Every pass of a transient run is measured on the same stretch of its fields, from 10a to 4a before
 the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
 of where the roller stops), down to 4a (with --periodic, the transient runs on a periodic strip of
@@ -345,7 +345,7 @@ def main(argv=None):
                     help="with --periodic: the ring pressed once and rolled on --passes periods")
     ap.add_argument("--traction", type=float, default=None, metavar="Q/P",
                     help="roll under the horizontal force Q = Q/P x P (Carter's traction on the stationary pass; "
-                         "needs --friction); the stationary runs then take the Hertz load only")
+                         "needs --friction)")
     ap.add_argument("--friction", type=float, default=0.0)
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a scene value for every run (roller run --set), e.g. another hardening law")
@@ -394,7 +394,7 @@ def main(argv=None):
     # The roller's centre moved along x by a fraction of an element.
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
                  ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
-                for p in (float(v) for v in args.phases.split(","))] if args.traction is None else []
+                for p in (float(v) for v in args.phases.split(","))]
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
