@@ -264,6 +264,7 @@ def figure(path, transients, stationaries, passes, track_middle, label_of_finest
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from matplotlib.ticker import FormatStrFormatter, MaxNLocator
     styles = ("--", "-.", ":", (0, (5, 1)), (0, (1, 3)))
     fig, (left, middle, surface, right) = plt.subplots(1, 4, figsize=(19, 4.4))
     steps = [s for s, _ in transients]
@@ -308,7 +309,11 @@ def figure(path, transients, stationaries, passes, track_middle, label_of_finest
         left.set_ylabel("mean Δε̄ᵖ to 4a")
     middle.set_yscale("symlog", linthresh=1e-5)
     limits = middle.get_ylim()
-    middle.set_yticks([t for t in middle.get_yticks() if t == 0.0 or abs(t) >= 1e-5])  # none crowding 0
+    ticks = [t for t in middle.get_yticks() if t == 0.0 or abs(t) >= 1e-5]  # none crowding 0
+    if sum(limits[0] <= t <= limits[1] for t in ticks) < 2:  # the values within one decade: linear ticks
+        ticks = [t for t in MaxNLocator(4).tick_values(*limits) if limits[0] <= t <= limits[1]]
+        middle.yaxis.set_major_formatter(FormatStrFormatter("%.1e"))
+    middle.set_yticks(ticks)
     middle.set_ylim(limits)
     middle.axhline(0.0, color="0.6", lw=0.8)
     middle.set_xticks(list(numbers))
