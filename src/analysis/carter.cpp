@@ -21,8 +21,7 @@ HertzSolution CarterTraction::stick_relief() const {
 }
 
 Real CarterTraction::traction(Real x) const {
-  const Real q = friction * (hertz.pressure(x) - stick_relief().pressure(x - stick_centre()));
-  return ratio < 0.0 ? -q : q;
+  return direction() * friction * (hertz.pressure(x) - stick_relief().pressure(x - stick_centre()));
 }
 
 Real CarterTraction::elastic_creep(Real radius) const {
@@ -44,15 +43,17 @@ CarterTraction carter_traction(const HertzSolution& hertz, Real ratio, Real fric
   return t;
 }
 
+std::vector<Real> stick_relief_forces(const CarterTraction& t, const std::vector<Real>& x) {
+  if (t.stick_half_width <= 0.0) return std::vector<Real>(x.size(), 0.0);
+  std::vector<Real> shifted;
+  for (const Real xi : x) shifted.push_back(xi - t.stick_centre());
+  return hertz_nodal_forces(t.stick_relief(), shifted);
+}
+
 std::vector<Real> carter_nodal_forces(const CarterTraction& t, const std::vector<Real>& x) {
   std::vector<Real> q = hertz_nodal_forces(t.hertz, x);
-  if (t.stick_half_width > 0.0) {
-    std::vector<Real> shifted;
-    for (const Real xi : x) shifted.push_back(xi - t.stick_centre());
-    const std::vector<Real> relief = hertz_nodal_forces(t.stick_relief(), shifted);
-    for (std::size_t i = 0; i < q.size(); ++i) q[i] -= relief[i];
-  }
-  for (Real& f : q) f *= t.ratio < 0.0 ? -t.friction : t.friction;
+  const std::vector<Real> relief = stick_relief_forces(t, x);
+  for (std::size_t i = 0; i < q.size(); ++i) q[i] = t.direction() * t.friction * (q[i] - relief[i]);
   return q;
 }
 

@@ -76,12 +76,11 @@ std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<Node
   std::iota(order.begin(), order.end(), std::size_t{0});
   auto along = [&](std::size_t k) { return travel * (contact[k].position.x() - centre_x); };
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return along(i) < along(j); });
-  std::vector<Real> from_stick_centre;
-  for (const std::size_t k : order) from_stick_centre.push_back(along(k) - t.stick_centre());
-  const std::vector<Real> relief = hertz_nodal_forces(t.stick_relief(), from_stick_centre);
-  const Real sign = t.ratio < 0.0 ? -1.0 : 1.0;
+  std::vector<Real> sorted;
+  for (const std::size_t k : order) sorted.push_back(along(k));
+  const std::vector<Real> relief = stick_relief_forces(t, sorted);
   for (std::size_t i = 0; i < order.size(); ++i)
-    out[order[i]] = travel * sign * t.friction * (std::abs(contact[order[i]].force.y()) - relief[i]);
+    out[order[i]] = travel * t.direction() * t.friction * (std::abs(contact[order[i]].force.y()) - relief[i]);
   return out;
 }
 

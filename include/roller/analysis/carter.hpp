@@ -25,7 +25,8 @@ struct CarterTraction {
   bool sticks(Real x) const;    // whether x (along the travel, from the centre) lies in the stick zone
   // The semi-ellipse q takes off mu p over the stick zone, divided by mu: half-width c, peak p0 c/a.
   HertzSolution stick_relief() const;
-  Real traction(Real x) const;  // q(x)
+  Real direction() const { return ratio < 0.0 ? -1.0 : 1.0; }  // the sign of Q
+  Real traction(Real x) const;                                 // q(x)
   // The creep s = (mu a / R)(1 - c/a) with which a rigid roller of radius R carries Q on an
   // elastic strip whose normal and tangential problems uncouple (nu = 0.5).
   Real elastic_creep(Real radius) const;
@@ -33,6 +34,11 @@ struct CarterTraction {
 
 // Throws InputError when |Q/P| exceeds mu (the roller would slide) or is not finite.
 CarterTraction carter_traction(const HertzSolution& hertz, Real ratio, Real friction);
+
+// Work-equivalent nodal forces of stick_relief() on a surface chain with nodes at x (along the
+// travel from the contact's centre, sorted): what q takes off mu p at each node, divided by mu; zero
+// when the contact slides everywhere.
+std::vector<Real> stick_relief_forces(const CarterTraction& t, const std::vector<Real>& x);
 
 // Work-equivalent nodal forces of q on a surface chain with nodes at x (along the travel from the
 // contact's centre, sorted), as hertz_nodal_forces gives them for p: they sum to Q.

@@ -143,7 +143,7 @@ fx = 0.0""".format(ramp_a=ramp * step, traction=traction, start=start, ramp_end=
                    end=start + rolls - 1, rest_dx=round(travel - A * ramp * step, 6), off=start + rolls), rolls + 1
 
 
-def repeated_passes(passes, rolls, track, step, load, traction=None):
+def repeated_passes(passes, rolls, step, load, traction=None):
     """[steps], [passes] and [output], and the path after the press, of repeated passes: press,
     roll the track (under the horizontal force traction P, roll_segments), lift clear, fields after
     every pass."""
@@ -165,7 +165,7 @@ dy = 0.3""".format(roll_block=roll_block, lift_start=roll_steps + PRESS_STEPS + 
     return steps, path
 
 
-def rolled_on(passes, rolls, track, step, load, traction=None):
+def rolled_on(passes, rolls, track, step, load):
     """[steps] and [output], and the path after the press, of a ring rolled on: `passes` periods of
     `rolls` steps, the press the first PRESS_STEPS of them, then rolling on under P to the last
     step; fields every period (the roller then PRESS_STEPS steps before where it pressed)."""
@@ -206,7 +206,8 @@ def scene(ratio, passes, h, kinematic=None, track=8.0, step=0.5, periodic=False,
         raise SystemExit("make-shakedown-scenes: --traction %g needs 0 < Q/P <= --friction (%g)" % (traction, friction))
     if traction is not None and continuous:
         raise SystemExit("make-shakedown-scenes: --traction with --continuous is not written")
-    steps_block, path_block = (rolled_on if continuous else repeated_passes)(passes, rolls, track, step, LOAD, traction)
+    steps_block, path_block = (rolled_on(passes, rolls, track, step, LOAD) if continuous else
+                               repeated_passes(passes, rolls, step, LOAD, traction))
     rolling = ("Frictionless rolling" if traction is None else
                "Rolling under Q = %g P (friction %g)" % (traction, friction))
     return name, """# Shakedown validation at p0/k = {ratio}: written by `./rollerpy make-shakedown-scenes` (edit
