@@ -83,27 +83,38 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
     for (Index e = 0; e < mesh.n_elements(); ++e)
       if (std::any_of(mesh.elements[e].begin(), mesh.elements[e].end(), on_end)) end_elements_[end].push_back(e);
   }
+  assemble_strain_operator();
 }
 
-std::vector<Vec4> StationaryStrip::element_strains_of(const VecX& u, Index e) const {
-  const auto& element = mesh_.elements[e];
-  ElementVector ue(2 * element.size());
-  for (std::size_t a = 0; a < element.size(); ++a) ue.segment<2>(2 * a) = u.segment<2>(2 * element[a]);
-  return element_strains(options_, mesh_.element_type, geometry_[e], ue);
+void StationaryStrip::assemble_strain_operator() {
+  std::vector<Eigen::Triplet<Real, int>> entries;
+  for (Index e = 0; e < mesh_.n_elements(); ++e) {
+    const auto& element = mesh_.elements[e];
+    const Index n_local = 2 * static_cast<Index>(element.size());
+    for (Index j = 0; j < n_local; ++j) {
+      ElementVector unit = ElementVector::Zero(n_local);
+      unit[j] = 1.0;
+      const std::vector<Vec4> eps = element_strains(options_, mesh_.element_type, geometry_[e], unit);
+      const auto dof = static_cast<int>(2 * element[static_cast<std::size_t>(j / 2)] + j % 2);
+      for (int q = 0; q < points_per_element_; ++q)
+        for (int c = 0; c < 4; ++c)
+          if (eps[q][c] != 0.0)
+            entries.emplace_back(static_cast<int>(4 * (e * points_per_element_ + q) + c), dof, eps[q][c]);
+    }
+  }
+  strain_operator_.resize(static_cast<int>(4 * n_points()), static_cast<int>(mesh_.n_dofs()));
+  strain_operator_.setFromTriplets(entries.begin(), entries.end());
 }
 
 std::vector<Vec4> StationaryStrip::strains(const VecX& u) const {
   std::vector<Vec4> out(n_points());
-  for (Index e = 0; e < mesh_.n_elements(); ++e) {
-    const std::vector<Vec4> eps = element_strains_of(u, e);
-    std::copy(eps.begin(), eps.end(), out.begin() + e * points_per_element_);
-  }
+  Eigen::Map<VecX>(out.data()->data(), 4 * n_points()) = strain_operator_ * u;
   return out;
 }
 
 std::vector<Vec4> StationaryStrip::strains(const VecX& u, const std::vector<Index>& points) const {
   std::vector<Vec4> out;
-  for (const Index p : points) out.push_back(element_strains_of(u, p / points_per_element_)[p % points_per_element_]);
+  for (const Index p : points) out.push_back(strain_operator_.middleRows(4 * p, 4) * u);
   return out;
 }
 
@@ -130,15 +141,10 @@ std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strai
 }
 
 VecX StationaryStrip::forces(const std::vector<MaterialState>& states) const {
-  VecX f = VecX::Zero(mesh_.n_dofs());
-  std::array<Vec4, 4> stress;
-  for (Index e = 0; e < mesh_.n_elements(); ++e) {
-    for (int q = 0; q < points_per_element_; ++q) stress[q] = states[e * points_per_element_ + q].stress;
-    const ElementVector fe = element_forces(options_, mesh_.element_type, geometry_[e], stress.data());
-    const auto& element = mesh_.elements[e];
-    for (std::size_t a = 0; a < element.size(); ++a) f.segment<2>(2 * element[a]) += fe.segment<2>(2 * a);
-  }
-  return f;
+  VecX weighted(4 * n_points());
+  for (Index p = 0; p < n_points(); ++p)
+    weighted.segment<4>(4 * p) = geometry_[p / points_per_element_][p % points_per_element_].weight * states[p].stress;
+  return strain_operator_.transpose() * weighted;
 }
 
 std::vector<MaterialState> StationaryStrip::spread(const std::vector<MaterialState>& upstream) const {

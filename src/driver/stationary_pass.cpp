@@ -6,49 +6,16 @@
 #include <ostream>
 
 #include <fmt/format.h>
-#include <Eigen/QR>
+
+#include "roller/solver/anderson.hpp"
 
 namespace roller {
 
 namespace {
 
-constexpr int kAndersonDepth = 20;
-
-// Anderson's mixing of the last corrections (Walker & Ni, SIAM J. Numer. Anal. 49 (2011)): the
-// fixed point u = u + K_e^-1 r(u) accelerated by the least-squares combination of the last
-// `depth` corrections; the history restarts when the least-squares problem degenerates.
-class Anderson {
- public:
-  explicit Anderson(int depth) : depth_(depth) {}
-  // The next iterate from the iterate u (free dofs) and its correction g = K_e^-1 r(u).
-  VecX next(const VecX& u, const VecX& g) {
-    if (last_u_.size() == u.size()) {
-      du_.push_back(u - last_u_);
-      dg_.push_back(g - last_g_);
-      if (static_cast<int>(du_.size()) > depth_) du_.erase(du_.begin()), dg_.erase(dg_.begin());
-    }
-    last_u_ = u;
-    last_g_ = g;
-    if (du_.empty()) return u + g;
-    Eigen::MatrixXd dg(g.size(), static_cast<Eigen::Index>(dg_.size()));
-    for (std::size_t j = 0; j < dg_.size(); ++j) dg.col(static_cast<Eigen::Index>(j)) = dg_[j];
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(dg);
-    if (qr.rank() < dg.cols()) {  // a correction repeats the others: start the history again
-      du_.clear();
-      dg_.clear();
-      return u + g;
-    }
-    const Eigen::VectorXd gamma = qr.solve(g);
-    VecX out = u + g;
-    for (std::size_t j = 0; j < du_.size(); ++j) out -= gamma[static_cast<Eigen::Index>(j)] * (du_[j] + dg_[j]);
-    return out;
-  }
-
- private:
-  int depth_;
-  VecX last_u_, last_g_;
-  std::vector<VecX> du_, dg_;
-};
+// Anderson's depth: 20 sufficed at 20 elements across a; at 40 the pass needs 40 (140 iterations
+// against 213 with 20; docs/benchmarks-log.md), and more does not pay.
+constexpr int kAndersonDepth = 40;
 
 }  // namespace
 

@@ -6,7 +6,12 @@
 //
 // Three pieces, each pure: the strains of a displacement at every integration point; the sweep of
 // the material along every streamline from the upstream states; the nodal forces of the states.
+// The strains are linear in the displacement (small strain): a sparse matrix B, assembled once from
+// the element kernel's strains of unit displacements, gives them, and its transpose the nodal
+// forces sum w B^T sigma (the element loop took three times as long; docs/benchmarks-log.md).
 #include <vector>
+
+#include <Eigen/SparseCore>
 
 #include "roller/assembly/element_materials.hpp"
 #include "roller/fem/element_kernel.hpp"
@@ -70,7 +75,8 @@ class StationaryStrip {
   std::vector<MaterialState> virgin_upstream() const;
 
  private:
-  std::vector<Vec4> element_strains_of(const VecX& u, Index e) const;
+  using RowMajorMatrix = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
+  void assemble_strain_operator();
 
   const Mesh& mesh_;
   const ElementMaterials& materials_;
@@ -83,6 +89,7 @@ class StationaryStrip {
   Real end_x_[2] = {0.0, 0.0};          // per End (Upstream, Downstream)
   std::vector<Index> end_elements_[2];  // per End: the elements with a node on it
   std::vector<Index> end_nodes_[2];     // per End: its nodes
+  RowMajorMatrix strain_operator_;      // B, 4 n_points x n_dofs: the points' strains of u
 };
 
 }  // namespace roller
