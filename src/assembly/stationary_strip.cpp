@@ -125,15 +125,15 @@ std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strai
   std::vector<MaterialState> out(n_points());
   Index yielded = 0;
   for (std::size_t s = 0; s < streamlines_.size(); ++s) {
-    MaterialState state = upstream[s];
+    const MaterialState* state = &upstream[s];
     Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
     for (const Index p : streamlines_[s].points) {
       const MaterialUpdate update =
-          update_material(materials_.of(p / points_per_element_), strains[p] - previous, state);
-      state = update.trial;
+          update_material(materials_.of(p / points_per_element_), strains[p] - previous, *state);
       yielded += update.yielded ? 1 : 0;
       previous = strains[p];
-      out[p] = state;
+      out[p] = update.trial;
+      state = &out[p];
     }
   }
   if (report) report->n_yielded = yielded;
