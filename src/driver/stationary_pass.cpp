@@ -13,8 +13,8 @@ namespace roller {
 
 namespace {
 
-// Anderson's depth: 20 sufficed at 20 elements across a; at 40 the pass needs 40 (140 iterations
-// against 213 with 20; docs/benchmarks-log.md), and more does not pay.
+// Anderson's depth: 20 sufficed at 20 elements across a; at 40 elements across a the pass needs a
+// depth of 40 (140 iterations against 213 with 20; docs/benchmarks-log.md), and more does not pay.
 constexpr int kAndersonDepth = 40;
 
 }  // namespace

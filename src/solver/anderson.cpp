@@ -1,6 +1,6 @@
 #include "roller/solver/anderson.hpp"
 
-#include <cmath>
+#include <Eigen/Jacobi>
 
 namespace roller {
 
@@ -53,24 +53,13 @@ VecX Anderson::next(const VecX& u, const VecX& g) {
 
 void Anderson::drop_oldest() {
   // R without its first column is upper Hessenberg: Givens rotations G restore the triangle
-  // (R <- G R) and Q <- Q G^T keeps the product.
+  // (R <- G^* R) and Q <- Q G keeps the product. Columns past m_ - 1 are zeroed before use.
   for (int j = 0; j + 1 < m_; ++j) r_.col(j).head(m_) = r_.col(j + 1).head(m_);
   for (int i = 0; i + 1 < m_; ++i) {
-    const Real a = r_(i, i), b = r_(i + 1, i);
-    const Real h = std::hypot(a, b);
-    const Real c = a / h, s = b / h;
-    for (int k = i; k + 1 < m_; ++k) {
-      const Real top = r_(i, k), bottom = r_(i + 1, k);
-      r_(i, k) = c * top + s * bottom;
-      r_(i + 1, k) = -s * top + c * bottom;
-    }
-    Real* qi = q_.col(i).data();
-    Real* qj = q_.col(i + 1).data();
-    for (Index k = 0; k < q_.rows(); ++k) {
-      const Real t = qi[k];
-      qi[k] = c * t + s * qj[k];
-      qj[k] = -s * t + c * qj[k];
-    }
+    Eigen::JacobiRotation<Real> g;
+    g.makeGivens(r_(i, i), r_(i + 1, i));
+    r_.applyOnTheLeft(i, i + 1, g.adjoint());
+    q_.applyOnTheRight(i, i + 1, g);
   }
   r_.row(m_ - 1).setZero();
   r_.col(m_ - 1).setZero();
