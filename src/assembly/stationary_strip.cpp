@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,10 @@ namespace {
 
 // Points closer in y than this fraction of the strip's smallest element height share a row.
 constexpr Real kRowTolerance = 1e-6;
+// A step between two points of a lane along which the material yields is walked in this many equal
+// parts of the straight strain path: the plastic increments of a pass moved by 2-4 % from 1 to 4
+// parts and by 0.5-1.5 % from 4 to 16 at 20 and 40 elements across a (docs/validation.md).
+constexpr int kPathSubsteps = 16;
 
 Real smallest_height(const Mesh& mesh) {
   Real h = std::numeric_limits<Real>::infinity();
@@ -49,12 +54,16 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
       positions_[e * points_per_element_ + q] = p;
     }
   }
-  // Rows by y; upstream first: the material flows against the roller's travel.
+  // Rows by y, and within a row one streamline per place in the element (docs/model.md,
+  // "Streamlines"): a lane holds the same integration point of every element, so its strains follow
+  // the field the way one material point's do in the transient pass; upstream first: the material
+  // flows against the roller's travel.
   const Real tolerance = kRowTolerance * smallest_height(mesh);
-  std::map<long long, Streamline> rows;
+  std::map<std::pair<long long, Index>, Streamline> rows;
   for (Index p = 0; p < n_points(); ++p) {
-    Streamline& s = rows[std::llround(positions_[p].y() / tolerance)];
+    Streamline& s = rows[{std::llround(positions_[p].y() / tolerance), p % points_per_element_}];
     s.y = positions_[p].y();
+    s.q = static_cast<int>(p % points_per_element_);
     s.points.push_back(p);
   }
   for (auto& [key, s] : rows) {
@@ -128,8 +137,14 @@ std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strai
     const MaterialState* state = &upstream[s];
     Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
     for (const Index p : streamlines_[s].points) {
-      const MaterialUpdate update =
-          update_material(materials_.of(p / points_per_element_), strains[p] - previous, *state);
+      const MaterialParams& m = materials_.of(p / points_per_element_);
+      const Vec4 step = strains[p] - previous;
+      MaterialUpdate update = update_material(m, step, *state);
+      if (update.yielded) {
+        MaterialState walked = *state;
+        for (int i = 0; i < kPathSubsteps; ++i) walked = update_material(m, step / kPathSubsteps, walked).trial;
+        update.trial = walked;
+      }
       yielded += update.yielded ? 1 : 0;
       previous = strains[p];
       out[p] = update.trial;

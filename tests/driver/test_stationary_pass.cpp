@@ -11,6 +11,7 @@
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/stationary_pass.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/material/j2_plasticity.hpp"
 
 using namespace roller;
 
@@ -58,6 +59,77 @@ TEST_CASE("stationary strip: the sweep's nodal forces of an elastic strip are th
   const StationaryStrip strip(model.mesh(), elastic, model.options(), 1.0);
   const VecX f = strip.forces(strip.sweep(strip.strains(u), strip.virgin_upstream()));
   CHECK((f - gradient).cwiseAbs().maxCoeff() <= 1e-10 * gradient.cwiseAbs().maxCoeff());
+}
+
+TEST_CASE("stationary strip: a streamline is one integration point of every element in a row, upstream first",
+          "[stationary]") {
+  // The lanes (docs/model.md, "Streamlines"): a Q4 row of elements holds four, one per Gauss point,
+  // each meeting every element of the row once, so its strains are those one material point sees
+  // when the roller moves by one element at a time.
+  const Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml"));
+  const StationaryStrip strip(sim.model().mesh(), sim.model().materials(), sim.model().options(), 1.0);
+  const int ppe = strip.points_per_element();
+  REQUIRE(ppe == 4);
+  std::vector<int> seen(static_cast<std::size_t>(strip.n_points()), 0);
+  std::vector<std::size_t> lengths;
+  for (const Streamline& line : strip.streamlines()) {
+    std::vector<Index> elements;
+    for (std::size_t i = 0; i < line.points.size(); ++i) {
+      const Index p = line.points[i];
+      ++seen[static_cast<std::size_t>(p)];
+      CHECK(p % ppe == line.q);
+      CHECK(strip.point_position(p).y() == Approx(line.y).margin(1e-12));
+      if (i > 0) CHECK(strip.point_position(p).x() < strip.point_position(line.points[i - 1]).x());
+      elements.push_back(p / ppe);
+    }
+    std::sort(elements.begin(), elements.end());
+    CHECK(std::adjacent_find(elements.begin(), elements.end()) == elements.end());
+    lengths.push_back(line.points.size());
+  }
+  CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+  // Every lane of a row meets the same elements: the rows' lanes come in fours of equal length.
+  CHECK(strip.streamlines().size() % 4 == 0);
+  CHECK(strip.n_points() == static_cast<Index>(strip.streamlines().size() * lengths.front()));
+}
+
+TEST_CASE("stationary strip: the sweep follows a strain path that turns, where one return per step does not",
+          "[stationary]") {
+  // A lane's strain turns in the deviatoric plane by 30 degrees from point to point at twice the
+  // yield strain (perfect plasticity): the sweep's end state against the same straight segments
+  // walked in 4000 parts each, and against one return mapping a step (the sweep before it walked
+  // its yielding steps in parts).
+  const Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml"));
+  const StationaryStrip strip(sim.model().mesh(), sim.model().materials(), sim.model().options(), 1.0);
+  const Streamline& line = strip.streamlines().front();
+  const MaterialParams& m = sim.model().materials().of(line.points.front() / strip.points_per_element());
+  const Real amplitude = 2.0 * m.yield_stress / m.youngs_modulus;
+  std::vector<Vec4> strains(static_cast<std::size_t>(strip.n_points()), Vec4::Zero());
+  const std::size_t n = std::min<std::size_t>(line.points.size(), 12);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Real angle = 0.5236 * static_cast<Real>(i);
+    strains[static_cast<std::size_t>(line.points[i])] =
+        amplitude * std::min<Real>(1.0, 0.5 * (i + 1)) * Vec4(std::cos(angle), -std::cos(angle), 0.0, std::sin(angle));
+  }
+  const std::vector<MaterialState> swept = strip.sweep(strains, strip.virgin_upstream());
+  auto walk = [&](int parts) {
+    MaterialState state = initial_state(m);
+    Vec4 previous = Vec4::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec4 step = strains[static_cast<std::size_t>(line.points[i])] - previous;
+      for (int k = 0; k < parts; ++k) state = update_material(m, step / parts, state).trial;
+      previous += step;
+    }
+    return state;
+  };
+  const MaterialState fine = walk(4000), coarse = walk(1);
+  const MaterialState& end = swept[static_cast<std::size_t>(line.points[n - 1])];
+  const Real scale = fine.stress.norm();
+  const Real error = (end.stress - fine.stress).norm() / scale;
+  const Real coarse_error = (coarse.stress - fine.stress).norm() / scale;
+  INFO("sweep " << error << ", one return a step " << coarse_error);
+  CHECK(error < 0.01);
+  CHECK(coarse_error > 4.0 * error);
+  CHECK(end.eq_plastic_strain == Approx(fine.eq_plastic_strain).epsilon(0.01));
 }
 
 TEST_CASE("stationary strip: a state uniform along x holds the mesh at its two ends only", "[stationary]") {

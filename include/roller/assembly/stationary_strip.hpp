@@ -2,7 +2,9 @@
 // The strip seen from a roller that rolls steadily along it (docs/model.md, "Stationary pass";
 // Dang Van & Maitournam, J. Mech. Phys. Solids 41 (1993)): the mesh stays under the roller and the
 // material flows through it, so a point's state is the constitutive law integrated along its
-// streamline, the row of integration points at its depth, from upstream. Small kinematics.
+// streamline from upstream: the same integration point of every element in a row (a lane), so
+// that its strains follow the field as one material point's do when the roller moves by one
+// element (docs/model.md, "Streamlines"). Small kinematics.
 //
 // Three pieces, each pure: the strains of a displacement at every integration point; the sweep of
 // the material along every streamline from the upstream states; the nodal forces of the states.
@@ -20,9 +22,10 @@
 
 namespace roller {
 
-// The integration points at one depth, in the order the material meets them.
+// One lane: the integration point q of every element of a row, in the order the material meets them.
 struct Streamline {
   Real y = 0.0;               // of its points in the mesh [mm]
+  int q = 0;                  // the points' place in their elements
   std::vector<Index> points;  // flat indices e * points_per_element + q, upstream first
 };
 
@@ -48,7 +51,8 @@ class StationaryStrip {
   // The same at a few points only (in their order).
   std::vector<Vec4> strains(const VecX& u, const std::vector<Index>& points) const;
   // Each streamline's states from its upstream state (one per streamline, in streamlines()' order):
-  // the return mapping from point to point with the strain between them.
+  // the return mapping from point to point with the strain between them, in equal parts along the
+  // straight strain path where the material yields.
   std::vector<MaterialState> sweep(const std::vector<Vec4>& strains, const std::vector<MaterialState>& upstream,
                                    SweepReport* report = nullptr) const;
   // Nodal forces sum w B^T sigma of the states' stresses (all dofs).
