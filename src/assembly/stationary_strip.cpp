@@ -18,8 +18,8 @@ namespace {
 // Points closer in y than this fraction of the strip's smallest element height share a row.
 constexpr Real kRowTolerance = 1e-6;
 // A step between two points of a lane along which the material yields is walked in this many equal
-// parts of the straight strain path: the plastic increments of a pass moved by 2-4 % from 1 to 4
-// parts and by 0.5-1.5 % from 4 to 16 at 20 and 40 elements across a (docs/validation.md).
+// parts of the straight strain path: at a/h = 20 the plastic increments of two passes moved by 3-5 %
+// from 1 to 4 parts and by 1-1.5 % from 4 to 16 (docs/validation.md, "Streamlines as lanes").
 constexpr int kPathSubsteps = 16;
 
 Real smallest_height(const Mesh& mesh) {

@@ -66,13 +66,13 @@ TEST_CASE(
   INFO(four.criterion);
   CHECK(four.verdict == ShakedownVerdict::Undetermined);
   CHECK_THAT(four.criterion, Catch::Contains("still falls"));
-  const ShakedownClassification eight = verdict("1175.6001", 8);  // 0.85 of pass 7's, 0.024 of pass 1's
+  const ShakedownClassification eight = verdict("1175.6001", 8);  // 0.84 of pass 7's, 0.023 of pass 1's
   INFO(eight.criterion);
   CHECK(eight.verdict == ShakedownVerdict::Undetermined);
   const ShakedownClassification twenty = verdict("1175.6001", 20);
   INFO(twenty.criterion);
-  CHECK(twenty.verdict == ShakedownVerdict::ElasticShakedown);    // measured: 0.0084 of pass 1's in pass 20
-  const ShakedownClassification above = verdict("1051.8527", 6);  // p0/k = 3.8: 0.98 of pass 5's
+  CHECK(twenty.verdict == ShakedownVerdict::ElasticShakedown);    // measured: 0.0066 of pass 1's in pass 20
+  const ShakedownClassification above = verdict("1051.8527", 6);  // p0/k = 3.8: 0.28 of pass 1's in pass 6
   INFO(above.criterion);
   CHECK(above.verdict == ShakedownVerdict::Ratchetting);
 }
@@ -93,12 +93,12 @@ TEST_CASE(
 
   const auto epp = passes("shakedown_p45", {});
   CHECK(classify_passes(epp).verdict == ShakedownVerdict::Ratchetting);
-  CHECK(net(epp, 15) < -3e-3);  // measured -3.88e-3
+  CHECK(net(epp, 15) < -3e-3);  // measured -3.34e-3
   CHECK(std::abs(net(epp, 15) / net(epp, 14) - 1.0) < 0.02);
 
   const auto prager = passes("shakedown_kinematic_p45", {});
   CHECK(classify_passes(prager).verdict == ShakedownVerdict::PlasticShakedown);
-  CHECK(std::abs(net(prager, 15)) < 0.02 * std::abs(net(prager, 2)));  // measured 4.3e-5 against 4.4e-3
+  CHECK(std::abs(net(prager, 15)) < 0.02 * std::abs(net(prager, 2)));  // measured 3.7e-5 against 4.1e-3
   CHECK(prager.back().mean_plastic_increment > 0.2 * prager.front().mean_plastic_increment);  // still yields
 
   const auto af = passes("shakedown_kinematic_p45", {{"material.tangent_modulus", "0"},
@@ -106,7 +106,7 @@ TEST_CASE(
                                                      {"material.chaboche_C", "[4286.0]"},
                                                      {"material.chaboche_gamma", "[20.0]"}});
   CHECK(classify_passes(af).verdict == ShakedownVerdict::Ratchetting);
-  CHECK(net(af, 15) < -2e-4);  // measured -5.5e-4
+  CHECK(net(af, 15) < -2e-4);  // measured -4.3e-4
   CHECK(std::abs(net(af, 15) / net(af, 14) - 1.0) < 0.05);
 }
 
