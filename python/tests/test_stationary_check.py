@@ -11,9 +11,9 @@ import pytest
 from rollerpy.outputs import read_numbers, read_rows
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
-from rollerpy.validation.stationary_check import (SXX_DEPTHS, elastic_constants, long_track_sxx, measure,
-                                                  middle_windows, pass_fields, plastic_shear, stretch_metrics,
-                                                  sxx_table)
+from rollerpy.validation.stationary_check import (SXX_DEPTHS, elastic_constants, link_transients, long_track_sxx,
+                                                  measure, middle_windows, pass_fields, plastic_shear,
+                                                  stretch_metrics, sxx_table)
 
 
 @pytest.fixture(scope="module")
@@ -173,3 +173,25 @@ def test_a_ring_rolled_on_is_measured_opposite_the_roller(roller, tmp_path):
         assert np.max(np.abs(m["sxx_long"][:, 1])) < 1e-6  # no plastic strain
     for m in metrics["plastic"]:
         assert m["mean"] > 1e-4
+
+
+def test_transients_from_an_earlier_check_are_linked_not_run(tmp_path):
+    """--transients-from: the transient runs of the steps asked for are linked into the new folder
+    (what it holds already stays; scenes and stationary runs are not linked); a step the earlier
+    check did not run is an error naming the steps it did."""
+    source = tmp_path / "earlier"
+    for name in ("scenes", "scenes_s0.1", "transient_s0.1", "transient_s0.05", "transient_s0.2",
+                 "stationary_roller_ph0"):
+        (source / name).mkdir(parents=True)
+        (source / name / "summary.json").write_text(name)
+    (source / "transient_s0.3.log").write_text("log")
+    out = tmp_path / "new"
+    (out / "transient_s0.2").mkdir(parents=True)
+    link_transients(str(source), str(out), [0.1, 0.2])
+    assert os.path.islink(out / "transient_s0.1")
+    assert (out / "transient_s0.1" / "summary.json").read_text() == "transient_s0.1"
+    assert not os.path.islink(out / "transient_s0.2")  # held already
+    for name in ("scenes", "scenes_s0.1", "stationary_roller_ph0", "transient_s0.05"):
+        assert not os.path.exists(out / name)
+    with pytest.raises(SystemExit, match=r"holds no transient_s0.3 \(its steps: 0.05, 0.1, 0.2\)"):
+        link_transients(str(source), str(out), [0.3])

@@ -26,10 +26,13 @@ usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.
                                    [--phases 0,0.25,0.5] [--track 24] [--passes 2]
                                    [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
                                    [--traction Q/P --friction MU]
-                                   [--out out/stationary_check/hH]
+                                   [--out out/stationary_check/hH] [--transients-from DIR]
                                    [--roller ./build/roller] [--timeout 14400]
 
 A run whose summary.json says completed is not run again (remove its folder to rerun it).
+--transients-from DIR links the transient runs of an earlier check with the same options into OUT,
+so that only the stationary runs are made: a new build's stationary pass against references that
+took hours.
 Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step;
 the residual sigma_xx at a few depths, with the finest transient also read on the middle of its
 track, where its ends relieve it least) and OUT/stationary_check.png (pass 1's increment against
@@ -153,6 +156,23 @@ def ensure_run(roller, scene, out, pairs, timeout):
     result = run([roller, "run", scene, "--out", out, "--overwrite"] + set_options(pairs), out + ".log", timeout)
     if result.exit_code != 0:
         sys.exit("stationary-check: %s failed (exit %s), see %s" % (out, result.exit_code, result.log))
+
+
+def link_transients(source, out, steps):
+    """Links the transient run of every step from an earlier check's folder into out (symbolic
+    links, relative), leaving what out holds already; exits when one of them is not there. The
+    scenes are written again into out (the same options give the same files), so that nothing is
+    written into the earlier check's folder."""
+    os.makedirs(out, exist_ok=True)
+    for name in ["transient_s%g" % s for s in steps]:
+        target, link = os.path.join(source, name), os.path.join(out, name)
+        if not os.path.isdir(target):
+            held = sorted(n[len("transient_s"):] for n in os.listdir(source)
+                          if n.startswith("transient_s") and os.path.isdir(os.path.join(source, n)))
+            sys.exit("stationary-check: --transients-from %s holds no %s (its steps: %s)" % (
+                source, name, ", ".join(held) or "none"))
+        if not os.path.lexists(link):
+            os.symlink(os.path.relpath(os.path.abspath(target), os.path.abspath(out)), link)
 
 
 def elastic_constants(scene):
@@ -355,6 +375,8 @@ def main(argv=None):
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="a scene value for every run (roller run --set), e.g. another hardening law")
     ap.add_argument("--out", default=None)
+    ap.add_argument("--transients-from", default=None, metavar="DIR",
+                    help="an earlier check's folder whose transient runs OUT links, not runs")
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=14400.0)
     args = ap.parse_args(argv)
@@ -371,6 +393,8 @@ def main(argv=None):
     common = [tuple(item.split("=", 1)) for item in args.set]
     if any(len(pair) != 2 for pair in common):
         sys.exit("stationary-check: --set takes KEY=VALUE")
+    if args.transients_from:
+        link_transients(args.transients_from, out, steps)
     transients, stationaries, rows = [], [], []
     period = A * args.track if args.periodic else None
     for s in steps:
