@@ -75,6 +75,19 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
             fmt::format("the stationary pass needs straight rows of integration points; element {} "
                         "shares a row position with another (use Q4 or T3 with one diagonal direction)",
                         s.points[i] / points_per_element_ + 1));
+    // A lane's points lie on one side of their elements' centres, or its elements number their
+    // corners otherwise than each other and the lane would zigzag between places.
+    auto ahead = [&](Index p) {
+      Real centre = 0.0;
+      for (const Index a : mesh.elements[p / points_per_element_]) centre += mesh.nodes[a].x();
+      return positions_[p].x() * static_cast<Real>(mesh.elements[p / points_per_element_].size()) > centre;
+    };
+    for (const Index p : s.points)
+      if (ahead(p) != ahead(s.points.front()))
+        throw InputError(
+            fmt::format("the stationary pass needs the elements of a row to number their corners alike; element {} "
+                        "puts its integration point {} on the other side of its centre from element {}'s",
+                        p / points_per_element_ + 1, s.q + 1, s.points.front() / points_per_element_ + 1));
     streamlines_.push_back(std::move(s));
   }
   streamline_of_.resize(n_points());

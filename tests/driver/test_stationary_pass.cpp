@@ -7,11 +7,14 @@
 
 #include <fmt/format.h>
 
+#include "../support/strip_spec.hpp"
+
 #include "roller/analysis/hertz.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/stationary_pass.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/material/j2_plasticity.hpp"
+#include "roller/mesh/strip_mesher.hpp"
 
 using namespace roller;
 
@@ -90,6 +93,21 @@ TEST_CASE("stationary strip: a streamline is one integration point of every elem
   // Every lane of a row meets the same elements: the rows' lanes come in fours of equal length.
   CHECK(strip.streamlines().size() % 4 == 0);
   CHECK(strip.n_points() == static_cast<Index>(strip.streamlines().size() * lengths.front()));
+}
+
+TEST_CASE("stationary strip: an element that numbers its corners otherwise than its row is an input error",
+          "[stationary]") {
+  // The lanes take the same integration point of every element: an element whose corners start
+  // elsewhere would put that point at another place, and the lane would zigzag.
+  Mesh mesh = make_strip_mesh(test::strip_spec(ElementType::Q4, 4.0, 2.0, 4, 2));
+  const MaterialParams steel;
+  const ElementMaterials materials = uniform_materials(steel, mesh.n_elements());
+  const ElementOptions options{Kinematics::Small, Q4Formulation::BBar};
+  CHECK_NOTHROW(StationaryStrip(mesh, materials, options, 1.0));
+  auto& corners = mesh.elements[2];
+  std::rotate(corners.begin(), corners.begin() + 1, corners.end());  // the same element, turned
+  CHECK_THROWS_WITH(StationaryStrip(mesh, materials, options, 1.0),
+                    Catch::Contains("number their corners alike; element 3"));
 }
 
 TEST_CASE("stationary strip: the sweep follows a strain path that turns, where one return per step does not",
