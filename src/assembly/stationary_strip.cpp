@@ -63,7 +63,6 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
   for (Index p = 0; p < n_points(); ++p) {
     Streamline& s = rows[{std::llround(positions_[p].y() / tolerance), p % points_per_element_}];
     s.y = positions_[p].y();
-    s.q = static_cast<int>(p % points_per_element_);
     s.points.push_back(p);
   }
   for (auto& [key, s] : rows) {
@@ -82,12 +81,13 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
       for (const Index a : mesh.elements[p / points_per_element_]) centre += mesh.nodes[a].x();
       return positions_[p].x() * static_cast<Real>(mesh.elements[p / points_per_element_].size()) > centre;
     };
+    const bool first_ahead = ahead(s.points.front());
     for (const Index p : s.points)
-      if (ahead(p) != ahead(s.points.front()))
-        throw InputError(
-            fmt::format("the stationary pass needs the elements of a row to number their corners alike; element {} "
-                        "puts its integration point {} on the other side of its centre from element {}'s",
-                        p / points_per_element_ + 1, s.q + 1, s.points.front() / points_per_element_ + 1));
+      if (ahead(p) != first_ahead)
+        throw InputError(fmt::format(
+            "the stationary pass needs the elements of a row to number their corners alike; element {} "
+            "puts its integration point {} on the other side of its centre from element {}'s",
+            p / points_per_element_ + 1, p % points_per_element_ + 1, s.points.front() / points_per_element_ + 1));
     streamlines_.push_back(std::move(s));
   }
   streamline_of_.resize(n_points());

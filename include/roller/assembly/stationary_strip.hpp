@@ -25,7 +25,6 @@ namespace roller {
 // One lane: the integration point q of every element of a row, in the order the material meets them.
 struct Streamline {
   Real y = 0.0;               // of its points in the mesh [mm]
-  int q = 0;                  // the points' place in their elements
   std::vector<Index> points;  // flat indices e * points_per_element + q, upstream first
 };
 
