@@ -140,6 +140,16 @@ std::vector<Vec4> StationaryStrip::strains(const VecX& u, const std::vector<Inde
   return out;
 }
 
+MaterialUpdate lane_step(const MaterialParams& m, const Vec4& step, const MaterialState& before) {
+  MaterialUpdate update = update_material(m, step, before);
+  if (update.yielded) {
+    MaterialState walked = before;
+    for (int i = 0; i < kPathSubsteps; ++i) walked = update_material(m, step / kPathSubsteps, walked).trial;
+    update.trial = walked;
+  }
+  return update;
+}
+
 std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strains,
                                                   const std::vector<MaterialState>& upstream,
                                                   SweepReport* report) const {
@@ -151,13 +161,7 @@ std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strai
     Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
     for (const Index p : streamlines_[s].points) {
       const MaterialParams& m = materials_.of(p / points_per_element_);
-      const Vec4 step = strains[p] - previous;
-      MaterialUpdate update = update_material(m, step, *state);
-      if (update.yielded) {
-        MaterialState walked = *state;
-        for (int i = 0; i < kPathSubsteps; ++i) walked = update_material(m, step / kPathSubsteps, walked).trial;
-        update.trial = walked;
-      }
+      const MaterialUpdate update = lane_step(m, strains[p] - previous, *state);
       yielded += update.yielded ? 1 : 0;
       previous = strains[p];
       out[p] = update.trial;

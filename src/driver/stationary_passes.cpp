@@ -110,10 +110,9 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
             [](const NodeContactRecord& a, const NodeContactRecord& b) { return a.position.x() < b.position.x(); });
   StripModel elastic(model.mesh(), elastic_materials_, model.options());  // assembles K_e
   elastic.set_dof_map(model.dof_map());
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
-  if (!solver_.factorize(k)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
-  hertz_correction_ = std::make_unique<PrescribedLoadCorrection>(model.dof_map(), solver_, std::move(load));
+  elastic.evaluate(VecX::Zero(model.n_dofs()), nullptr, &elastic_free_);
+  if (!solver_.factorize(elastic_free_)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
+  hertz_load_ = std::move(load);
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
     roller_correction_ = make_roller_correction(scene, centre_x_, hertz_.load);
   }
@@ -179,12 +178,16 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
   settings.progress = progress;
   Pass out;
   const std::vector<MaterialState> upstream = upstream_of(strip);
-  StationaryCorrection* correction = hertz_correction_.get();
+  SteadyJacobianSettings newton;
+  newton.tolerance = settings.tolerance;
+  SteadyJacobianCorrection hertz(strip_, strip.dof_map(), elastic_free_, solver_, hertz_load_, upstream, newton);
+  StationaryCorrection* correction = &hertz;
   if (roller_correction_) correction = roller_correction_.get();
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
     return states_of(leaving(u, states, elastic_displacement(strip.dof_map(), load)));
   };
   out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings, leaving_states);
+  out.factorizations = hertz.factorizations();
   if (!out.solve.converged()) return out;
   if (roller_correction_) {
     contact_ = roller_correction_->contact();

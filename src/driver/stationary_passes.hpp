@@ -50,6 +50,7 @@ class StationaryPasses {
     StationaryPassResult solve;
     std::vector<MaterialState> residual;  // the residual strip's states (every point)
     VecX permanent_displacement;          // the long track's displacement of the pass (all dofs)
+    int factorizations = 0;               // of the steady Jacobian
   };
   // The pass from the residual strip `strip` (or the initial state before the first pass).
   Pass run(const StripModel& strip, std::ostream* progress);
@@ -78,7 +79,8 @@ class StationaryPasses {
   StationaryStrip strip_;
   ElementMaterials elastic_materials_;
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
-  std::unique_ptr<PrescribedLoadCorrection> hertz_correction_;
+  SparseMatrix elastic_free_;                            // K_e over the free dofs, which solver_ holds factorised
+  VecX hertz_load_;                                      // the Hertz pressure and its traction (all dofs)
   std::unique_ptr<RollerCorrection> roller_correction_;  // passes.stationary_contact = "roller"
   std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
   std::vector<Index> extraction_;                        // per streamline: its point at the extraction column

@@ -20,7 +20,7 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   const PassBaseline baseline = PassBaseline::of(*model_);
   const StationaryPasses::Pass pass = passes.run(*model_, progress_);
   res.counters.iterations = pass.solve.iterations;
-  res.counters.factorizations = built ? 1 : 0;
+  res.counters.factorizations = (built ? 1 : 0) + pass.factorizations;  // K_e once a run, J's a pass
   res.n_yielded = pass.solve.n_yielded;
   res.status = pass.solve.status;
   res.last.status = pass.solve.status;

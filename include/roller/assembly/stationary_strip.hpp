@@ -17,6 +17,7 @@
 
 #include "roller/assembly/element_materials.hpp"
 #include "roller/fem/element_kernel.hpp"
+#include "roller/material/j2_plasticity.hpp"
 #include "roller/material/material_state.hpp"
 #include "roller/mesh/mesh.hpp"
 
@@ -33,6 +34,11 @@ struct SweepReport {
   Index n_yielded = 0;  // points that yield on their way
 };
 
+// One step of a lane: the return mapping of the strain `step` from the state `before`, and where the
+// material yields, the straight strain path walked in equal parts instead (the step's trial state;
+// its other fields are the whole step's).
+MaterialUpdate lane_step(const MaterialParams& m, const Vec4& step, const MaterialState& before);
+
 class StationaryStrip {
  public:
   // `travel`: +1 when the roller moves towards +x over the strip (the material then flows towards
@@ -44,6 +50,12 @@ class StationaryStrip {
   Index n_points() const { return static_cast<Index>(geometry_.size()) * points_per_element_; }
   int points_per_element() const { return points_per_element_; }
   const Vec2& point_position(Index p) const { return positions_[p]; }
+
+  // B: the points' strains of u, four rows a point ([xx, yy, zz, 2xy]), a column a dof (all dofs).
+  using StrainOperator = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
+  const StrainOperator& strain_operator() const { return strain_operator_; }
+  Real weight(Index p) const { return geometry_[p / points_per_element_][p % points_per_element_].weight; }
+  const MaterialParams& material(Index p) const { return materials_.of(p / points_per_element_); }
 
   // The strain of the displacement u (all dofs, from the upstream configuration) at every point.
   std::vector<Vec4> strains(const VecX& u) const;
@@ -78,7 +90,6 @@ class StationaryStrip {
   std::vector<MaterialState> virgin_upstream() const;
 
  private:
-  using RowMajorMatrix = Eigen::SparseMatrix<Real, Eigen::RowMajor, int>;
   void assemble_strain_operator();
 
   const Mesh& mesh_;
@@ -92,7 +103,7 @@ class StationaryStrip {
   Real end_x_[2] = {0.0, 0.0};          // per End (Upstream, Downstream)
   std::vector<Index> end_elements_[2];  // per End: the elements with a node on it
   std::vector<Index> end_nodes_[2];     // per End: its nodes
-  RowMajorMatrix strain_operator_;      // B, 4 n_points x n_dofs: the points' strains of u
+  StrainOperator strain_operator_;      // B, 4 n_points x n_dofs: the points' strains of u
 };
 
 }  // namespace roller

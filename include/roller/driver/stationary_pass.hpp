@@ -1,10 +1,10 @@
 #pragma once
 // One steady pass of the roller solved in its own frame (docs/model.md, "Stationary pass"):
 // the displacement u (from the upstream configuration) for which the states swept along the
-// streamlines carry the load. Each iteration is an initial-stress correction with the elastic
-// stiffness:
+// streamlines carry the load. Each iteration is a correction, with the elastic stiffness
 //   r(u) = f(sigma_upstream) - f(sigma(u)),   K_e du = r + f_c  (f_c: the load, with du)
-// and the fixed point u = u + du accelerated by Anderson's mixing of the last 20 corrections;
+// or with the steady Jacobian near the solution under a prescribed load, and the fixed point
+// u = u + du accelerated by Anderson's mixing of the last 40 corrections of one operator;
 // converged when |r + f_c| <= tolerance |f_c|. The upstream term makes an unloaded strip keep its
 // upstream state (r = 0 at u = 0).
 #include <functional>
@@ -27,9 +27,10 @@ class StationaryCorrection {
  public:
   virtual ~StationaryCorrection() = default;
   struct Result {
-    VecX du;              // free dofs
-    VecX load;            // all dofs
-    std::string message;  // why there is none (du empty)
+    VecX du;                    // free dofs
+    VecX load;                  // all dofs
+    std::string message;        // why there is none (du empty)
+    bool new_operator = false;  // du comes from another operator than the last: Anderson starts again
   };
   virtual Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) = 0;
 };
@@ -46,6 +47,45 @@ class PrescribedLoadCorrection : public StationaryCorrection {
  private:
   SparseSolver& elastic_;
   VecX external_, external_free_;
+};
+
+// When the steady Jacobian takes over from K_e and when it is factorised again (measured on
+// shakedown_p45 at 1.8e4 and 4.8e4 dofs: docs/benchmarks-log.md, "The steady Jacobian").
+struct SteadyJacobianSettings {
+  // From |r + f_ext| <= from |f_ext| on; further out Newton's steps from the Jacobian of a strip far
+  // from its steady state overshoot (from the elastic field, the residual grows tenfold a step).
+  Real from = 3e-2;
+  // J is factorised again at the iterate when the residual fell by less than this factor in the
+  // last step; otherwise the last J stays, and Anderson's mixing accelerates the chord iteration.
+  Real contraction = 0.5;
+  Real tolerance = 1e-8;  // the pass's: a converged iterate needs no new J
+};
+
+// Newton's correction with the steady Jacobian (assembly/steady_jacobian.hpp) under a prescribed
+// load f_ext: K_e^-1 (r + f_ext) while the iterate is far from the steady state, then the
+// displacement's part of J^-1 [r + f_ext; 0] (docs/model.md, "The steady Jacobian"). Should J be
+// singular, K_e carries on alone for the rest of the pass.
+class SteadyJacobianCorrection : public StationaryCorrection {
+ public:
+  SteadyJacobianCorrection(const StationaryStrip& strip, const DofMap& dofs, const SparseMatrix& elastic_free,
+                           SparseSolver& elastic, VecX external, std::vector<MaterialState> upstream,
+                           const SteadyJacobianSettings& settings);
+  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override;
+  int factorizations() const { return factorizations_; }  // of J
+
+ private:
+  const StationaryStrip& strip_;
+  const DofMap& dofs_;
+  const SparseMatrix& elastic_free_;
+  SparseSolver& elastic_;
+  VecX external_, external_free_;
+  std::vector<MaterialState> upstream_;
+  SteadyJacobianSettings settings_;
+  SparseSolver jacobian_{MumpsSolver::Symmetry::General};
+  Index n_unknowns_ = 0;      // of the factorised J; 0 before the first
+  Real last_residual_ = 0.0;  // |r + f_ext| / |f_ext| at the last call with J
+  bool failed_ = false;       // J was singular
+  int factorizations_ = 0;
 };
 
 struct StationarySettings {
