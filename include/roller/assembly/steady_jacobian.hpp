@@ -2,9 +2,8 @@
 // The Jacobian of the steady problem in the roller's frame (docs/model.md, "The steady Jacobian"):
 // the derivative of the nodal forces sum w B^T sigma of the swept states with respect to the
 // displacement, where a point's stress depends on the strains of every point upstream on its lane.
-// Dense along a lane if written in the displacement alone, it is sparse with the lanes' states as
-// unknowns beside it, as in Dang Van & Maitournam's Newton iteration (J. Mech. Phys. Solids 41
-// (1993)):
+// Dense along a lane if written in the displacement alone (unsymmetric and non-local), it is
+// sparse with the lanes' states as unknowns beside it:
 //   z_p = [tau, eq. plastic strain, back-stresses] at every point p from its lane's first yielding
 //   point on, with tau = sigma - C eps, so that every point's stress is tau + C eps and the
 //   displacement's block is the elastic stiffness K_e;
