@@ -21,15 +21,13 @@ constexpr int kAndersonDepth = 40;
 }  // namespace
 
 SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip, const DofMap& dofs,
-                                                   const SparseMatrix& elastic_free, SparseSolver& elastic,
-                                                   VecX external, std::vector<MaterialState> upstream,
+                                                   const SparseMatrix& elastic_free, StationaryCorrection& elastic,
+                                                   std::vector<MaterialState> upstream,
                                                    const SteadyJacobianSettings& settings)
     : strip_(strip),
       dofs_(dofs),
       elastic_free_(elastic_free),
       elastic_(elastic),
-      external_(std::move(external)),
-      external_free_(dofs.gather_free(external_)),
       upstream_(std::move(upstream)),
       settings_(settings) {
   // J's pattern follows the yielding points, so most factorisations analyse it anew: AMD's analysis
@@ -41,23 +39,27 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
 
 StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, const std::vector<MaterialState>& states,
                                                                const VecX& r) {
-  const VecX rhs = r + external_free_;
-  const Real residual = rhs.cwiseAbs().maxCoeff() / std::max(external_free_.cwiseAbs().maxCoeff(), 1e-300);
+  const bool with_jacobian = n_unknowns_ > 0 && !failed_;
   Result out;
-  out.load = external_;
-  const bool far = n_unknowns_ == 0 && residual > settings_.from;
-  if (far || failed_) {
-    out.du = elastic_.solve(rhs);
-    return out;
+  if (with_jacobian && elastic_.fixed_load()) {
+    out.load = *elastic_.fixed_load();  // K_e's step would be thrown away
+  } else {
+    out = elastic_.correct(u, states, r);
+    if (out.du.size() == 0 || failed_) return out;
   }
+  const VecX load = dofs_.gather_free(out.load);
+  const VecX rhs = r + load;
+  const Real residual = rhs.cwiseAbs().maxCoeff() / std::max(load.cwiseAbs().maxCoeff(), 1e-300);
+  if (!with_jacobian && residual > settings_.from) return out;
   const bool slow = last_residual_ == 0.0 || residual > settings_.contraction * last_residual_;
   last_residual_ = residual;
-  if (n_unknowns_ == 0 || (slow && residual > settings_.tolerance)) {
+  if (!with_jacobian || (slow && residual > settings_.tolerance)) {
     const SteadyJacobian j = steady_jacobian(strip_, dofs_, elastic_free_, strip_.strains(u), upstream_, states);
     out.new_operator = true;
-    if (!jacobian_.factorize(j.matrix)) {  // the elastic correction carries on alone
+    if (!jacobian_.factorize(j.matrix)) {  // K_e's correction carries on alone
       failed_ = true;
-      out.du = elastic_.solve(rhs);
+      if (out.du.size() == 0) out = elastic_.correct(u, states, r);
+      out.new_operator = true;
       return out;
     }
     n_unknowns_ = j.matrix.rows();

@@ -180,14 +180,15 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
   const std::vector<MaterialState> upstream = upstream_of(strip);
   SteadyJacobianSettings newton;
   newton.tolerance = settings.tolerance;
-  SteadyJacobianCorrection hertz(strip_, strip.dof_map(), elastic_free_, solver_, hertz_load_, upstream, newton);
-  StationaryCorrection* correction = &hertz;
-  if (roller_correction_) correction = roller_correction_.get();
+  PrescribedLoadCorrection hertz(strip.dof_map(), solver_, hertz_load_);
+  StationaryCorrection* carrier = &hertz;  // K_e's correction, which finds the load
+  if (roller_correction_) carrier = roller_correction_.get();
+  SteadyJacobianCorrection correction(strip_, strip.dof_map(), elastic_free_, *carrier, upstream, newton);
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
     return states_of(leaving(u, states, elastic_displacement(strip.dof_map(), load)));
   };
-  out.solve = solve_stationary_pass(strip_, strip.dof_map(), *correction, upstream, settings, leaving_states);
-  out.factorizations = hertz.factorizations();
+  out.solve = solve_stationary_pass(strip_, strip.dof_map(), correction, upstream, settings, leaving_states);
+  out.factorizations = correction.factorizations();
   if (!out.solve.converged()) return out;
   if (roller_correction_) {
     contact_ = roller_correction_->contact();

@@ -3,7 +3,8 @@
 // one pass, solved as the steady state in the roller's frame under the Hertz pressure of the
 // travel segment's force (and q = mu p when it slides). Built once a run: the streamlines, the
 // elastic stiffness factorised once for every pass, the load, and the load's elastic field, which
-// unloads the state leaving a pass (the roller lifted).
+// unloads the state leaving a pass (the roller lifted). Near each pass's solution the steady
+// Jacobian corrects instead (SteadyJacobianCorrection), factorised once or twice a pass.
 //
 // The strip between passes is the residual strip: every point holds the residual state of its
 // streamline as it leaves the pass, a long track's (material/long_track_state.hpp), read at the

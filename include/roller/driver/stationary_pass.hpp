@@ -33,6 +33,9 @@ class StationaryCorrection {
     bool new_operator = false;  // du comes from another operator than the last: Anderson starts again
   };
   virtual Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) = 0;
+  // The load when it does not depend on the iterate (all dofs), so that another operator's step
+  // needs no call of correct; none otherwise.
+  virtual const VecX* fixed_load() const { return nullptr; }
 };
 
 // K_e^-1 (r + f_ext) with K_e factorised (over the free dofs) and a fixed load f_ext.
@@ -43,6 +46,7 @@ class PrescribedLoadCorrection : public StationaryCorrection {
   Result correct(const VecX&, const std::vector<MaterialState>&, const VecX& r) override {
     return {elastic_.solve(r + external_free_), external_, {}};
   }
+  const VecX* fixed_load() const override { return &external_; }
 
  private:
   SparseSolver& elastic_;
@@ -55,20 +59,22 @@ struct SteadyJacobianSettings {
   // From |r + f_ext| <= from |f_ext| on; further out Newton's steps from the Jacobian of a strip far
   // from its steady state overshoot (from the elastic field, the residual grows tenfold a step).
   Real from = 3e-2;
-  // J is factorised again at the iterate when the residual fell by less than this factor in the
-  // last step; otherwise the last J stays, and Anderson's mixing accelerates the chord iteration.
-  Real contraction = 0.5;
+  // J is factorised again at the iterate when the last step left more than this share of the
+  // residual; otherwise the last J stays, and Anderson's mixing accelerates the chord iteration
+  // (under the roller's contact 0.5 factorised J at most steps of pass 1: 39 times).
+  Real contraction = 0.9;
   Real tolerance = 1e-8;  // the pass's: a converged iterate needs no new J
 };
 
-// Newton's correction with the steady Jacobian (assembly/steady_jacobian.hpp) under a prescribed
-// load f_ext: K_e^-1 (r + f_ext) while the iterate is far from the steady state, then the
-// displacement's part of J^-1 [r + f_ext; 0] (docs/model.md, "The steady Jacobian"). Should J be
-// singular, K_e carries on alone for the rest of the pass.
+// Newton's correction with the steady Jacobian (assembly/steady_jacobian.hpp) around another
+// correction with K_e, which finds the load f_c (prescribed, or the roller's contact): K_e's
+// while the iterate is far from the steady state, then the displacement's part of
+// J^-1 [r + f_c; 0] with K_e's load (docs/model.md, "The steady Jacobian"). Should J be singular,
+// K_e's carries on alone for the rest of the pass.
 class SteadyJacobianCorrection : public StationaryCorrection {
  public:
   SteadyJacobianCorrection(const StationaryStrip& strip, const DofMap& dofs, const SparseMatrix& elastic_free,
-                           SparseSolver& elastic, VecX external, std::vector<MaterialState> upstream,
+                           StationaryCorrection& elastic, std::vector<MaterialState> upstream,
                            const SteadyJacobianSettings& settings);
   Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override;
   int factorizations() const { return factorizations_; }  // of J
@@ -77,13 +83,12 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   const StationaryStrip& strip_;
   const DofMap& dofs_;
   const SparseMatrix& elastic_free_;
-  SparseSolver& elastic_;
-  VecX external_, external_free_;
+  StationaryCorrection& elastic_;
   std::vector<MaterialState> upstream_;
   SteadyJacobianSettings settings_;
   SparseSolver jacobian_{MumpsSolver::Symmetry::General};
   Index n_unknowns_ = 0;      // of the factorised J; 0 before the first
-  Real last_residual_ = 0.0;  // |r + f_ext| / |f_ext| at the last call with J
+  Real last_residual_ = 0.0;  // |r + f_c| / |f_c| at the last step with J
   bool failed_ = false;       // J was singular
   int factorizations_ = 0;
 };
