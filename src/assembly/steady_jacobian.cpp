@@ -85,17 +85,29 @@ SteadyJacobian steady_jacobian(const StationaryStrip& strip, const DofMap& dofs,
 
   const StationaryStrip::StrainOperator& b = strip.strain_operator();
   int next_row = n_free;  // the next lane state's first unknown
+  std::vector<char> yields;
   for (std::size_t s = 0; s < strip.streamlines().size(); ++s) {
     const std::vector<Index>& points = strip.streamlines()[s].points;
-    int previous_row = -1;  // the state before the point: none until the lane first yields
+    auto before = [&](std::size_t i) -> const MaterialState& {
+      return i == 0 ? upstream[s] : states[static_cast<std::size_t>(points[i - 1])];
+    };
+    auto step = [&](std::size_t i) -> Vec4 {
+      return strains[points[i]] - (i == 0 ? Vec4::Zero() : strains[points[i - 1]]);
+    };
+    yields.assign(points.size(), 0);
+    std::size_t last = points.size();  // the lane's last yielding step: none
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      yields[i] = update_material(strip.material(points[i]), step(i), before(i)).yielded ? 1 : 0;
+      if (yields[i]) last = i;
+    }
+    if (last == points.size()) continue;  // an elastic lane: K_e holds it
+    int previous_row = -1;                // the state before the point: none until the lane first yields
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Index p = points[i];
       const MaterialParams& m = strip.material(p);
-      const int d = state_size(m);
-      const MaterialState& before = i == 0 ? upstream[s] : states[static_cast<std::size_t>(points[i - 1])];
-      const Vec4 step = strains[p] - (i == 0 ? Vec4::Zero() : strains[points[i - 1]]);
-      const bool yields = update_material(m, step, before).yielded;
-      if (!yields && previous_row < 0) continue;  // elastic from upstream: K_e holds it
+      if (!yields[i] && previous_row < 0) continue;  // elastic from upstream: K_e holds it
+      // After its last yielding step a lane carries tau alone: nothing reads the rest again.
+      const int d = i <= last ? state_size(m) : 4;
       const int row = next_row;
       next_row += d;
       for (int j = 0; j < d; ++j) entries.emplace_back(row + j, row + j, 1.0);
@@ -105,13 +117,13 @@ SteadyJacobian steady_jacobian(const StationaryStrip& strip, const DofMap& dofs,
           const Index column = dofs.free_index(it.col());
           if (column >= 0) entries.emplace_back(static_cast<int>(column), row + c, strip.weight(p) * it.value());
         }
-      if (!yields) {
+      if (!yields[i]) {
         for (int j = 0; j < d; ++j) entries.emplace_back(row + j, previous_row + j, -1.0);
         previous_row = row;
         continue;
       }
       ++out.n_yielding;
-      const StepDerivatives dz = step_derivatives(m, step, before, states[p], d);
+      const StepDerivatives dz = step_derivatives(m, step(i), before(i), states[p], d);
       if (previous_row >= 0)
         for (int j = 0; j < d; ++j)
           for (int k = 0; k < d; ++k)

@@ -5,8 +5,8 @@
 // Dense along a lane if written in the displacement alone (unsymmetric and non-local), it is
 // sparse with the lanes' states as unknowns beside it:
 //   z_p = [tau, eq. plastic strain, back-stresses] at every point p from its lane's first yielding
-//   point on, with tau = sigma - C eps, so that every point's stress is tau + C eps and the
-//   displacement's block is the elastic stiffness K_e;
+//   point on (tau alone after its last), with tau = sigma - C eps, so that every point's stress is
+//   tau + C eps and the displacement's block is the elastic stiffness K_e;
 //   a yielding step ties z_p to z of the point before it through the derivatives of the step
 //   (lane_step, by finite differences: every hardening law alike); an elastic step copies it.
 // So with B_p the point's rows of the strain operator:
