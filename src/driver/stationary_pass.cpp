@@ -39,31 +39,39 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
 
 StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, const std::vector<MaterialState>& states,
                                                                const VecX& r) {
-  const bool with_jacobian = n_unknowns_ > 0 && !failed_;
+  const bool with_jacobian = n_unknowns_ > 0 && dropped_ == JacobianDropped::No;
   Result out;
   if (with_jacobian && elastic_.fixed_load()) {
     out.load = *elastic_.fixed_load();  // K_e's step would be thrown away
   } else {
     out = elastic_.correct(u, states, r);
-    if (out.du.size() == 0 || failed_) return out;
+    if (out.du.size() == 0 || dropped_ != JacobianDropped::No) return out;
   }
   const VecX load = dofs_.gather_free(out.load);
   const VecX rhs = r + load;
   const Real residual = rhs.cwiseAbs().maxCoeff() / std::max(load.cwiseAbs().maxCoeff(), 1e-300);
   if (!with_jacobian && residual > settings_.from) return out;
+  if (with_jacobian && residual > settings_.divergence * best_residual_) {
+    // J's steps diverge: back to the best iterate they reached, and K_e's correction from there.
+    dropped_ = JacobianDropped::Diverged;
+    out.du = dofs_.restrict_to_free(best_u_ - u);
+    out.new_operator = true;
+    return out;
+  }
+  if (residual < best_residual_) best_residual_ = residual, best_u_ = u;
   const bool slow = last_residual_ == 0.0 || residual > settings_.contraction * last_residual_;
   last_residual_ = residual;
   if (!with_jacobian || (slow && residual > settings_.tolerance)) {
     const SteadyJacobian j = steady_jacobian(strip_, dofs_, elastic_free_, strip_.strains(u), upstream_, states);
-    out.new_operator = true;
     if (!jacobian_.factorize(j.matrix)) {  // K_e's correction carries on alone
-      failed_ = true;
+      dropped_ = JacobianDropped::Singular;
       if (out.du.size() == 0) out = elastic_.correct(u, states, r);
       out.new_operator = true;
       return out;
     }
     n_unknowns_ = j.matrix.rows();
     ++factorizations_;
+    out.new_operator = true;
   }
   VecX b = VecX::Zero(n_unknowns_);
   b.head(rhs.size()) = rhs;

@@ -9,6 +9,7 @@
 // upstream state (r = 0 at u = 0).
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,13 +65,20 @@ struct SteadyJacobianSettings {
   // (under the roller's contact 0.5 factorised J at most steps of pass 1: 39 times).
   Real contraction = 0.9;
   Real tolerance = 1e-8;  // the pass's: a converged iterate needs no new J
+  // J is dropped for the rest of the pass when the residual grows to this multiple of the least
+  // its steps reached: they diverge. The iterate goes back to that least one, and K_e's correction,
+  // slower but safe, carries on from there.
+  Real divergence = 10.0;
 };
+
+// Why the steady Jacobian no longer corrects in a pass.
+enum class JacobianDropped { No, Diverged, Singular };
 
 // Newton's correction with the steady Jacobian (assembly/steady_jacobian.hpp) around another
 // correction with K_e, which finds the load f_c (prescribed, or the roller's contact): K_e's
 // while the iterate is far from the steady state, then the displacement's part of
-// J^-1 [r + f_c; 0] with K_e's load (docs/model.md, "The steady Jacobian"). Should J be singular,
-// K_e's carries on alone for the rest of the pass.
+// J^-1 [r + f_c; 0] with K_e's load (docs/model.md, "The steady Jacobian"). Should J be singular
+// or its steps diverge, K_e's carries on alone for the rest of the pass.
 class SteadyJacobianCorrection : public StationaryCorrection {
  public:
   SteadyJacobianCorrection(const StationaryStrip& strip, const DofMap& dofs, const SparseMatrix& elastic_free,
@@ -78,6 +86,7 @@ class SteadyJacobianCorrection : public StationaryCorrection {
                            const SteadyJacobianSettings& settings);
   Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override;
   int factorizations() const { return factorizations_; }  // of J
+  JacobianDropped dropped() const { return dropped_; }
 
  private:
   const StationaryStrip& strip_;
@@ -87,9 +96,11 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   std::vector<MaterialState> upstream_;
   SteadyJacobianSettings settings_;
   SparseSolver jacobian_{MumpsSolver::Symmetry::General};
-  Index n_unknowns_ = 0;      // of the factorised J; 0 before the first
-  Real last_residual_ = 0.0;  // |r + f_c| / |f_c| at the last step with J
-  bool failed_ = false;       // J was singular
+  Index n_unknowns_ = 0;                                        // of the factorised J; 0 before the first
+  Real last_residual_ = 0.0;                                    // |r + f_c| / |f_c| at the last step with J
+  Real best_residual_ = std::numeric_limits<Real>::infinity();  // the least since J took over
+  VecX best_u_;                                                 // its iterate (all dofs)
+  JacobianDropped dropped_ = JacobianDropped::No;
   int factorizations_ = 0;
 };
 
