@@ -1,5 +1,7 @@
 #include "roller/solver/sparse_solver.hpp"
 
+#include <algorithm>
+
 namespace roller {
 
 void SparseSolver::configure(const LinearSolverOptions& options) {
@@ -14,10 +16,18 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
     if (!mumps_) mumps_ = std::make_unique<MumpsSolver>(symmetry_, options_);
     return mumps_->factorize(a);
   }
-  // Eigen: the analysis is redone when the size or the number of entries changes.
-  const bool same = a.rows() == analysed_n_ && a.nonZeros() == analysed_nnz_;
-  analysed_n_ = a.rows();
-  analysed_nnz_ = a.nonZeros();
+  // Eigen: the analysis is redone when the pattern changes (the steady Jacobian's follows the
+  // yielding points and may keep its size and number of entries).
+  const auto* outer = a.outerIndexPtr();
+  const auto* inner = a.innerIndexPtr();
+  const bool same = a.isCompressed() && analysed_outer_.size() == static_cast<std::size_t>(a.outerSize() + 1) &&
+                    analysed_inner_.size() == static_cast<std::size_t>(a.nonZeros()) &&
+                    std::equal(analysed_outer_.begin(), analysed_outer_.end(), outer) &&
+                    std::equal(analysed_inner_.begin(), analysed_inner_.end(), inner);
+  if (!same) {
+    analysed_outer_.assign(outer, outer + a.outerSize() + 1);
+    analysed_inner_.assign(inner, inner + a.nonZeros());
+  }
   if (symmetry_ == MumpsSolver::Symmetry::Symmetric) {
     if (!same) ldlt_.analyzePattern(a);
     ldlt_.factorize(a);

@@ -7,6 +7,7 @@
 // The solver persists between calls: the symbolic analysis is reused while the pattern stays.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
@@ -33,7 +34,7 @@ class SparseSolver {
   std::unique_ptr<MumpsSolver> mumps_;
   Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
   Eigen::SparseLU<SparseMatrix> lu_;
-  Index analysed_nnz_ = -1, analysed_n_ = -1;
+  std::vector<int> analysed_outer_, analysed_inner_;  // the pattern Eigen's analysis holds
 };
 
 }  // namespace roller
