@@ -7,10 +7,9 @@
 
 #include <Eigen/SparseLU>
 
-#include "../support/strip_spec.hpp"
+#include "../support/small_stationary_strip.hpp"
 
 #include "roller/assembly/steady_jacobian.hpp"
-#include "roller/assembly/strip_model.hpp"
 #include "roller/material/j2_plasticity.hpp"
 
 using namespace roller;
@@ -42,28 +41,17 @@ TEST_CASE("steady Jacobian: its solution changes the swept forces by the right-h
       {{"perfectly plastic", steel()}, {"isotropic", hardening}, {"Armstrong-Frederick", armstrong_frederick}}));
   INFO(name);
 
-  // A strip 8 x 2 mm held at its base, under an elliptic pressure of peak 5 k over |x| < 1 mm.
-  const Mesh mesh = make_strip_mesh(test::strip_spec(ElementType::Q4, 8.0, 2.0, 48, 12));
-  const ElementOptions options{Kinematics::Small, Q4Formulation::BBar};
-  const ElementMaterials materials = uniform_materials(material, mesh.n_elements());
-  std::vector<bool> held(static_cast<std::size_t>(mesh.n_dofs()), false);
-  for (const Index a : mesh.node_set("bottom")) held[2 * a] = held[2 * a + 1] = true;
-  const DofMap dofs(held);
-  StripModel elastic(mesh, linear_elastic(materials), options);
-  elastic.set_dof_map(dofs);
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(mesh.n_dofs()), nullptr, &k);
-  const Real p0 = 5.0 * material.yield_stress / std::sqrt(3.0), a = 1.0, dx = 8.0 / 48;
-  VecX load = VecX::Zero(mesh.n_dofs());
-  for (const Index n : mesh.node_set("top")) {
-    const Real x = (mesh.nodes[n].x() - 4.0) / a;
-    if (std::abs(x) < 1.0) load[2 * n + 1] = -p0 * std::sqrt(1.0 - x * x) * dx;
-  }
+  // Under an elliptic pressure of peak 5 k, whose elastic field yields when it is swept.
+  const test::SmallStationaryStrip small(material, 5.0);
+  const Mesh& mesh = small.mesh;
+  const DofMap& dofs = small.dofs;
+  const SparseMatrix& k = small.elastic;
+  const VecX& load = small.load;
   Eigen::SimplicialLDLT<SparseMatrix> k_e(k);
   VecX u = VecX::Zero(mesh.n_dofs());
   dofs.scatter_free(k_e.solve(dofs.gather_free(load)), u);
 
-  const StationaryStrip strip(mesh, materials, options, 1.0);
+  const StationaryStrip strip(mesh, small.materials, small.options, 1.0);
   const std::vector<Vec4> strains = strip.strains(u);
   const std::vector<MaterialState> upstream = strip.virgin_upstream();
   const SteadyJacobian j = steady_jacobian(strip, dofs, k, strains, upstream, strip.sweep(strains, upstream));

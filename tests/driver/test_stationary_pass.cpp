@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "../support/small_stationary_strip.hpp"
 #include "../support/strip_spec.hpp"
 
 #include "roller/analysis/hertz.hpp"
@@ -264,26 +265,13 @@ TEST_CASE(
   steel.tangent_modulus = GENERATE(0.0, 2.0e4);
   steel.hardening = GENERATE(Hardening::Isotropic, Hardening::Kinematic);
   INFO(enum_name(steel.hardening) << ", E_T = " << steel.tangent_modulus);
-  const Mesh mesh = make_strip_mesh(test::strip_spec(ElementType::Q4, 8.0, 2.0, 48, 12));
-  const ElementOptions options{Kinematics::Small, Q4Formulation::BBar};
-  const ElementMaterials materials = uniform_materials(steel, mesh.n_elements());
-  std::vector<bool> held(static_cast<std::size_t>(mesh.n_dofs()), false);
-  for (const Index a : mesh.node_set("bottom")) held[2 * a] = held[2 * a + 1] = true;
-  const DofMap dofs(held);
-  StripModel elastic(mesh, linear_elastic(materials), options);
-  elastic.set_dof_map(dofs);
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(mesh.n_dofs()), nullptr, &k);
+  const test::SmallStationaryStrip small(steel, 4.5);
+  const DofMap& dofs = small.dofs;
+  const SparseMatrix& k = small.elastic;
+  const VecX& load = small.load;
   SparseSolver k_e(MumpsSolver::Symmetry::Symmetric);
   REQUIRE(k_e.factorize(k));
-  // An elliptic pressure of peak 4.5 k over |x - 4| < 1 mm on the nodes of the top.
-  const Real p0 = 4.5 * steel.yield_stress / std::sqrt(3.0), dx = 8.0 / 48;
-  VecX load = VecX::Zero(mesh.n_dofs());
-  for (const Index n : mesh.node_set("top")) {
-    const Real x = mesh.nodes[n].x() - 4.0;
-    if (std::abs(x) < 1.0) load[2 * n + 1] = -p0 * std::sqrt(1.0 - x * x) * dx;
-  }
-  const StationaryStrip strip(mesh, materials, options, 1.0);
+  const StationaryStrip strip(small.mesh, small.materials, small.options, 1.0);
   StationarySettings settings;
   settings.tolerance = 1e-10;
 
