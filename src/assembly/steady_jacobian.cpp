@@ -79,7 +79,7 @@ SteadyJacobian steady_jacobian(const StationaryStrip& strip, const DofMap& dofs,
   out.n_free = dofs.n_free();
   const int n_free = static_cast<int>(out.n_free);
   Triplets entries;
-  entries.reserve(static_cast<std::size_t>(elastic.nonZeros()) + 64 * static_cast<std::size_t>(strip.n_points()));
+  entries.reserve(static_cast<std::size_t>(elastic.nonZeros()) + 16 * static_cast<std::size_t>(strip.n_points()));
   for (int k = 0; k < elastic.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(elastic, k); it; ++it) entries.emplace_back(it.row(), it.col(), it.value());
 

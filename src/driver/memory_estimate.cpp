@@ -20,10 +20,14 @@ namespace {
 constexpr Real kBytesPerDofInCore = 2.6e3;
 constexpr Real kBytesPerDofInCoreHeld = 3.65e3;
 constexpr Real kBytesPerDofOutOfCore = 1.2e3;
+constexpr Real kBytesPerDofSteadyInCore = 2.1e4;
+constexpr Real kBytesPerDofSteadyOutOfCore = 9.5e3;
 constexpr Real kProgramBytes = 20e6;  // a 400-dof run peaks at 15 MiB
 constexpr Real kGiB = 1024.0 * 1024.0 * 1024.0;
 
 Real bytes_per_dof(const LinearSolverOptions& linear, HeldFactors held) {
+  if (held == HeldFactors::SteadyJacobian)
+    return linear.out_of_core ? kBytesPerDofSteadyOutOfCore : kBytesPerDofSteadyInCore;
   if (linear.out_of_core) return kBytesPerDofOutOfCore;
   return held == HeldFactors::WholeRun ? kBytesPerDofInCoreHeld : kBytesPerDofInCore;
 }

@@ -32,8 +32,10 @@ Mesh make_mesh_that_fits(const Scene& scene) {
                     scene.contact.ipopt.formulation == IpoptFormulation::Condensed &&
                     tangent_is_constant(scene.element.kinematics, scene.strip_material().any_plastic());
   if (const auto available = available_memory()) {
-    check_run_memory(scene.strip_mesh_spec(), scene.newton.linear, *available,
-                     held ? HeldFactors::WholeRun : HeldFactors::PerIncrement);
+    const HeldFactors factors = scene.passes.method == PassMethod::Stationary ? HeldFactors::SteadyJacobian
+                                : held                                        ? HeldFactors::WholeRun
+                                                                              : HeldFactors::PerIncrement;
+    check_run_memory(scene.strip_mesh_spec(), scene.newton.linear, *available, factors);
     if (available->address_space_limit) map_blas_buffers();
   }
   return make_strip_mesh(scene.strip_mesh_spec());

@@ -30,10 +30,8 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
       elastic_(elastic),
       upstream_(std::move(upstream)),
       settings_(settings) {
-  // J's pattern follows the yielding points, so most factorisations analyse it anew: AMD's analysis
-  // costs a third of METIS's there, its factorisation half as much again (docs/benchmarks-log.md).
-  LinearSolverOptions options;
-  options.ordering = "amd";
+  LinearSolverOptions options = settings.linear_solver;
+  if (options.ordering == "auto") options.ordering = "amd";
   jacobian_.configure(options);
 }
 

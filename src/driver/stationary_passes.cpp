@@ -59,7 +59,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
     : roller_y_(given_start_centre(scene).y()),
       travel_(steady_load(scene, std::nullopt).travel_sign),
       strip_(model.mesh(), model.materials(), model.options(), travel_),
-      elastic_materials_(linear_elastic(model.materials())) {
+      elastic_materials_(linear_elastic(model.materials())),
+      linear_solver_(scene.newton.linear) {
   require_held_base(scene, model);
   const SteadyLoad steady = steady_load(scene, std::nullopt);
   const Mesh& mesh = model.mesh();
@@ -180,6 +181,7 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
   const std::vector<MaterialState> upstream = upstream_of(strip);
   SteadyJacobianSettings newton;
   newton.tolerance = settings.tolerance;
+  newton.linear_solver = linear_solver_;
   PrescribedLoadCorrection hertz(strip.dof_map(), solver_, hertz_load_);
   StationaryCorrection* carrier = &hertz;  // K_e's correction, which finds the load
   if (roller_correction_) carrier = roller_correction_.get();

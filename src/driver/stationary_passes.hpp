@@ -79,6 +79,7 @@ class StationaryPasses {
   Real centre_x_ = 0.0, extraction_x_ = 0.0, travel_ = 1.0;
   StationaryStrip strip_;
   ElementMaterials elastic_materials_;
+  LinearSolverOptions linear_solver_;  // the scene's, for the steady Jacobian
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   SparseMatrix elastic_free_;                            // K_e over the free dofs, which solver_ holds factorised
   VecX hertz_load_;                                      // the Hertz pressure and its traction (all dofs)

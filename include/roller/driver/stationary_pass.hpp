@@ -69,6 +69,11 @@ struct SteadyJacobianSettings {
   // its steps reached: they diverge. The iterate goes back to that least one, and K_e's correction,
   // slower but safe, carries on from there.
   Real divergence = 10.0;
+  // MUMPS's options for J (the scene's [linear_solver]: out_of_core keeps its factors on disk).
+  // Its "auto" ordering becomes AMD: J's pattern follows the yielding points, so most
+  // factorisations analyse it anew, and AMD's analysis costs a third of METIS's there, its
+  // factorisation half as much again (docs/benchmarks-log.md).
+  LinearSolverOptions linear_solver;
 };
 
 // Why the steady Jacobian no longer corrects in a pass.
