@@ -3,7 +3,7 @@
 // the displacement u (from the upstream configuration) for which the states swept along the
 // streamlines carry the load. Each iteration is a correction, with the elastic stiffness
 //   r(u) = f(sigma_upstream) - f(sigma(u)),   K_e du = r + f_c  (f_c: the load, with du)
-// or with the steady Jacobian near the solution under a prescribed load, and the fixed point
+// or with the steady Jacobian near the solution, and the fixed point
 // u = u + du accelerated by Anderson's mixing of the last 40 corrections of one operator;
 // converged when |r + f_c| <= tolerance |f_c|. The upstream term makes an unloaded strip keep its
 // upstream state (r = 0 at u = 0).
