@@ -1,5 +1,6 @@
-"""Repeated passes under load: the time of one pass and of a multi-pass study, both backends
-(docs/benchmarks.md, "Repeated passes under load").
+"""Repeated passes under load: the time of one pass and of a multi-pass study, both backends and
+the stationary method (docs/benchmarks.md, "Repeated passes under load" and "With the steady
+Jacobian").
 
 usage: ./rollerpy bench-passes [--roller build/roller] [--out out/bench_passes]
                               [--element-size 0.1] [--load 4.5]
@@ -7,7 +8,9 @@ usage: ./rollerpy bench-passes [--roller build/roller] [--out out/bench_passes]
 
 The strip is the shakedown scene of docs/validation.md (`rollerpy make-shakedown-scenes`) with
 uniform elements of --element-size under the track (0.1 mm: 40 across 2a, 4.8e4 dofs), at p0/k
-= --load. Each backend runs the number of passes given in --passes, once, alone: one run of
+= --load. --passes names the runs: a contact backend (ipopt, penalty) marches its passes,
+`stationary` solves them with passes.method = "stationary" (ipopt=5,stationary=5 is the plan's
+comparison). Each runs the number of passes given, once, alone: one run of
 several minutes is its own average over ~20 increments a pass, so the table gives per-pass
 times from solver.csv (wall_s summed over the pass's steps) beside the whole process's wall
 time, peak memory (/usr/bin/time -v) and output folder size. Writes OUT/passes.csv and prints a
@@ -28,9 +31,16 @@ def folder_bytes(path):
     return sum(os.path.getsize(os.path.join(d, f)) for d, _, files in os.walk(path) for f in files)
 
 
+def run_options(name):
+    """A run of --passes: `stationary` is the stationary method, any other name a contact backend."""
+    if name == "stationary":
+        return ["--set", 'passes.method="stationary"']
+    return contact_option(name)
+
+
 def run(args, scene, backend, passes):
     out = os.path.join(args.out, "%s_%dpasses" % (backend, passes))
-    cmd = ["/usr/bin/time", "-v"] + roller_command(args.roller, scene, out, "--overwrite", *contact_option(backend),
+    cmd = ["/usr/bin/time", "-v"] + roller_command(args.roller, scene, out, "--overwrite", *run_options(backend),
                                                    "--set", "passes.count=%d" % passes)
     print("$", " ".join(cmd), flush=True)
     result = run_roller(cmd, out + ".log", args.timeout)
