@@ -16,13 +16,6 @@ using namespace roller;
 
 namespace {
 
-MaterialParams steel() {
-  MaterialParams m;
-  m.plastic = true;
-  m.yield_stress = 300.0;
-  return m;
-}
-
 // The free dofs' forces sum w B^T sigma of the states swept from the virgin strip at u.
 VecX swept_forces(const StationaryStrip& strip, const DofMap& dofs, const VecX& u) {
   return dofs.gather_free(strip.forces(strip.sweep(strip.strains(u), strip.virgin_upstream())));
@@ -31,14 +24,16 @@ VecX swept_forces(const StationaryStrip& strip, const DofMap& dofs, const VecX& 
 }  // namespace
 
 TEST_CASE("steady Jacobian: its solution changes the swept forces by the right-hand side", "[stationary]") {
-  MaterialParams hardening = steel();
+  MaterialParams hardening = test::plastic_steel();
   hardening.tangent_modulus = 2.0e4;
-  MaterialParams armstrong_frederick = steel();
+  MaterialParams armstrong_frederick = test::plastic_steel();
   armstrong_frederick.hardening = Hardening::Chaboche;
   armstrong_frederick.n_chaboche = 1;
   armstrong_frederick.chaboche[0] = {2.0e4, 20.0};
-  const auto [name, material] = GENERATE_COPY(table<const char*, MaterialParams>(
-      {{"perfectly plastic", steel()}, {"isotropic", hardening}, {"Armstrong-Frederick", armstrong_frederick}}));
+  const auto [name, material] =
+      GENERATE_COPY(table<const char*, MaterialParams>({{"perfectly plastic", test::plastic_steel()},
+                                                        {"isotropic", hardening},
+                                                        {"Armstrong-Frederick", armstrong_frederick}}));
   INFO(name);
 
   // Under an elliptic pressure of peak 5 k, whose elastic field yields when it is swept.

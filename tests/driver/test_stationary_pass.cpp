@@ -259,9 +259,7 @@ TEST_CASE(
   // The same pass solved twice (docs/model.md, "The steady Jacobian"): with K_e's correction alone
   // and with J's near the solution. The fixed point is the same; J's chord steps get there in a
   // fraction of the iterations.
-  MaterialParams steel;
-  steel.plastic = true;
-  steel.yield_stress = 300.0;
+  MaterialParams steel = test::plastic_steel();
   steel.tangent_modulus = GENERATE(0.0, 2.0e4);
   steel.hardening = GENERATE(Hardening::Isotropic, Hardening::Kinematic);
   INFO(enum_name(steel.hardening) << ", E_T = " << steel.tangent_modulus);

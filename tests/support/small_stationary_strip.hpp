@@ -13,6 +13,15 @@
 
 namespace roller::test {
 
+// The strips' steel: yield stress 300 MPa, perfectly plastic (isotropic, E_T = 0) until a test
+// gives it a hardening law.
+inline MaterialParams plastic_steel() {
+  MaterialParams m;
+  m.plastic = true;
+  m.yield_stress = 300.0;
+  return m;
+}
+
 struct SmallStationaryStrip {
   Mesh mesh = make_strip_mesh(strip_spec(ElementType::Q4, 8.0, 2.0, 48, 12));
   ElementOptions options{Kinematics::Small, Q4Formulation::BBar};
