@@ -79,7 +79,8 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
 
 StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs,
                                            StationaryCorrection& correction, const std::vector<MaterialState>& upstream,
-                                           const StationarySettings& settings, const LeavingStates& leaving) {
+                                           const StationarySettings& settings, const LeavingStates& leaving,
+                                           const VecX& start) {
   StationaryPassResult out;
   // f(sigma_upstream): the strip beyond both ends holds the mesh with the upstream states; with
   // `leaving`, the downstream end's share becomes the leaving states'.
@@ -87,7 +88,7 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
   const VecX upstream_downstream_end =
       leaving ? strip.end_forces(upstream, StationaryStrip::End::Downstream) : VecX::Zero(upstream_forces.size());
   VecX carried = upstream_forces;
-  out.displacement = VecX::Zero(carried.size());
+  out.displacement = start.size() == carried.size() ? start : VecX::Zero(carried.size());
   out.load = VecX::Zero(carried.size());
   Anderson anderson(kAndersonDepth);
   // Stagnation: the best residual so far and the iteration at which it last halved.

@@ -174,7 +174,7 @@ std::vector<Vec4> strains_of(const std::vector<LongTrackState>& track) {
 
 }  // namespace
 
-StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostream* progress) {
+StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX& start, std::ostream* progress) {
   StationarySettings settings;
   settings.progress = progress;
   Pass out;
@@ -189,9 +189,15 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, std::ostre
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
     return states_of(leaving(u, states, elastic_displacement(strip.dof_map(), load)));
   };
-  out.solve = solve_stationary_pass(strip_, strip.dof_map(), correction, upstream, settings, leaving_states);
+  out.solve = solve_stationary_pass(strip_, strip.dof_map(), correction, upstream, settings, leaving_states, start);
   out.factorizations = correction.factorizations();
   if (!out.solve.converged()) return out;
+  // The next pass starts from this one's displacement once this one's upstream was rolled: the
+  // passes then differ less and less (docs/benchmarks-log.md, "Warm starts"). From a virgin
+  // upstream, the first pass's large flow is a worse start for the second than none.
+  const bool rolled =
+      std::any_of(upstream.begin(), upstream.end(), [](const MaterialState& s) { return s.eq_plastic_strain > 0.0; });
+  if (rolled) out.next_start = out.solve.displacement;
   if (roller_correction_) {
     contact_ = roller_correction_->contact();
     pose_ = roller_correction_->pose();

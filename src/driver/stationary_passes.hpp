@@ -52,9 +52,11 @@ class StationaryPasses {
     std::vector<MaterialState> residual;  // the residual strip's states (every point)
     VecX permanent_displacement;          // the long track's displacement of the pass (all dofs)
     int factorizations = 0;               // of the steady Jacobian
+    VecX next_start;                      // the next pass's first iterate (all dofs), or empty: zero
   };
-  // The pass from the residual strip `strip` (or the initial state before the first pass).
-  Pass run(const StripModel& strip, std::ostream* progress);
+  // The pass from the residual strip `strip` (or the initial state before the first pass), its
+  // iteration started from `start` (all dofs; empty: zero): the last pass's next_start.
+  Pass run(const StripModel& strip, const VecX& start, std::ostream* progress);
 
   const HertzSolution& hertz() const { return hertz_; }
   Real centre_x() const { return centre_x_; }

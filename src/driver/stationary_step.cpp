@@ -18,7 +18,7 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   res.pass = step;
   res.time = step * scene_.steps.dt;
   const PassBaseline baseline = PassBaseline::of(*model_);
-  const StationaryPasses::Pass pass = passes.run(*model_, progress_);
+  const StationaryPasses::Pass pass = passes.run(*model_, state_.last_increment, progress_);
   res.counters.iterations = pass.solve.iterations;
   res.counters.factorizations = (built ? 1 : 0) + pass.factorizations;  // K_e once a run, J's a pass
   res.n_yielded = pass.solve.n_yielded;
@@ -36,6 +36,8 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   model_->restore(model_->reference_coordinates(), model_->total_displacement() + pass.permanent_displacement,
                   pass.residual);
   ++state_.steps_done;
+  state_.last_increment = pass.next_start;  // in the state files, so that a resumed run starts alike
+  state_.last_length = 0.0;
   // The pass's record over the residual strip, which is uniform along x: measured at the
   // extraction column as the transient method measures the middle of its track.
   PassTrack track;

@@ -309,3 +309,48 @@ TEST_CASE(
           1e-7 * reference.displacement.cwiseAbs().maxCoeff());
   }
 }
+
+TEST_CASE("stationary pass: a pass started from an earlier pass's displacement reaches the same fixed point",
+          "[stationary]") {
+  // The passes of a run start from the pass before once the strip is rolled
+  // (driver/stationary_passes.hpp): the start changes the path, not the answer. Three passes of
+  // the small strip, each one's upstream the states its lanes leave the last with (as read at the
+  // mesh's end, not a long track's: a perfectly plastic strip finds no steady second pass on
+  // them, so the strip hardens); pass 3 solved from zero and from pass 2's displacement, and from
+  // its own solution, where it has converged at once.
+  MaterialParams steel = test::plastic_steel();
+  steel.tangent_modulus = 2.0e4;
+  steel.hardening = GENERATE(Hardening::Isotropic, Hardening::Kinematic);
+  INFO(enum_name(steel.hardening));
+  const test::SmallStationaryStrip small(steel, 4.5);
+  SparseSolver k_e(MumpsSolver::Symmetry::Symmetric);
+  REQUIRE(k_e.factorize(small.elastic));
+  const StationaryStrip strip(small.mesh, small.materials, small.options, 1.0);
+  StationarySettings settings;
+  settings.tolerance = 1e-10;
+  auto solve = [&](const std::vector<MaterialState>& upstream, const VecX& start) {
+    PrescribedLoadCorrection correction(small.dofs, k_e, small.load);
+    return solve_stationary_pass(strip, small.dofs, correction, upstream, settings, {}, start);
+  };
+  auto leaving = [&](const StationaryPassResult& pass) {
+    std::vector<MaterialState> out;
+    for (const Streamline& s : strip.streamlines()) out.push_back(pass.states[s.points.back()]);
+    return out;
+  };
+  const StationaryPassResult first = solve(strip.virgin_upstream(), VecX());
+  REQUIRE(first.converged());
+  const StationaryPassResult second = solve(leaving(first), VecX());
+  REQUIRE(second.converged());
+  const std::vector<MaterialState> upstream = leaving(second);
+  const StationaryPassResult cold = solve(upstream, VecX());
+  const StationaryPassResult warm = solve(upstream, second.displacement);
+  REQUIRE(cold.converged());
+  REQUIRE(warm.converged());
+  INFO("iterations from zero " << cold.iterations << ", from pass 2 " << warm.iterations);
+  const Real size = cold.displacement.cwiseAbs().maxCoeff();
+  CHECK((warm.displacement - cold.displacement).cwiseAbs().maxCoeff() <= 1e-7 * size);
+  CHECK((warm.displacement - second.displacement).cwiseAbs().maxCoeff() > 1e-4 * size);  // a start, not the answer
+  const StationaryPassResult again = solve(upstream, cold.displacement);
+  CHECK(again.iterations == 0);
+  CHECK(again.displacement == cold.displacement);
+}

@@ -62,6 +62,7 @@ struct RunState {
   Vec2 load_offset = Vec2::Zero();
   Vec2 load_stiffness = Vec2::Zero();
   // The last converged increment (all dofs) and its length in steps: the next one's predictor.
+  // The stationary method: the next pass's first iterate (driver/stationary_passes.hpp), length 0.
   VecX last_increment;
   Real last_length = 0.0;
   // The contact of the last increment, and the friction history it leaves.

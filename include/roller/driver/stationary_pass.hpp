@@ -137,9 +137,10 @@ using LeavingStates = std::function<std::vector<MaterialState>(const VecX& u, co
 
 // `upstream`: one state per streamline. Constrained dofs stay at zero. Without `leaving` the strip
 // beyond the downstream end holds the upstream states; with it, the leaving states of the last
-// iterate (the load: the last correction's).
+// iterate (the load: the last correction's). `start`: the first iterate (all dofs), or empty: zero.
 StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const DofMap& dofs,
                                            StationaryCorrection& correction, const std::vector<MaterialState>& upstream,
-                                           const StationarySettings& settings, const LeavingStates& leaving = {});
+                                           const StationarySettings& settings, const LeavingStates& leaving = {},
+                                           const VecX& start = VecX());
 
 }  // namespace roller
