@@ -95,33 +95,25 @@ SteadyJacobian steady_jacobian(const StationaryStrip& strip, const DofMap& dofs,
       return strains[points[i]] - (i == 0 ? Vec4::Zero() : strains[points[i - 1]]);
     };
     yields.assign(points.size(), 0);
-    std::size_t last = points.size();  // the lane's last yielding step: none
-    for (std::size_t i = 0; i < points.size(); ++i) {
+    for (std::size_t i = 0; i < points.size(); ++i)
       yields[i] = update_material(strip.material(points[i]), step(i), before(i)).yielded ? 1 : 0;
-      if (yields[i]) last = i;
-    }
-    if (last == points.size()) continue;  // an elastic lane: K_e holds it
-    int previous_row = -1;                // the state before the point: none until the lane first yields
+    int previous_row = -1;  // the state before the point: none until the lane first yields
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Index p = points[i];
       const MaterialParams& m = strip.material(p);
       if (!yields[i] && previous_row < 0) continue;  // elastic from upstream: K_e holds it
-      // After its last yielding step a lane carries tau alone: nothing reads the rest again.
-      const int d = i <= last ? state_size(m) : 4;
-      const int row = next_row;
-      next_row += d;
-      for (int j = 0; j < d; ++j) entries.emplace_back(row + j, row + j, 1.0);
-      // The forces: w B_p^T tau.
+      // An elastic step copies the state: the point's stress is tau of the last yielding step
+      // upstream plus C eps, and its forces w B_p^T tau go to that step's unknowns.
+      const int row = yields[i] ? next_row : previous_row;
       for (int c = 0; c < 4; ++c)
         for (StationaryStrip::StrainOperator::InnerIterator it(b, static_cast<int>(4 * p + c)); it; ++it) {
           const Index column = dofs.free_index(it.col());
           if (column >= 0) entries.emplace_back(static_cast<int>(column), row + c, strip.weight(p) * it.value());
         }
-      if (!yields[i]) {
-        for (int j = 0; j < d; ++j) entries.emplace_back(row + j, previous_row + j, -1.0);
-        previous_row = row;
-        continue;
-      }
+      if (!yields[i]) continue;
+      const int d = state_size(m);
+      next_row += d;
+      for (int j = 0; j < d; ++j) entries.emplace_back(row + j, row + j, 1.0);
       ++out.n_yielding;
       const StepDerivatives dz = step_derivatives(m, step(i), before(i), states[p], d);
       if (previous_row >= 0)

@@ -20,8 +20,8 @@ namespace {
 constexpr Real kBytesPerDofInCore = 2.6e3;
 constexpr Real kBytesPerDofInCoreHeld = 3.65e3;
 constexpr Real kBytesPerDofOutOfCore = 1.2e3;
-constexpr Real kBytesPerDofSteadyInCore = 2.1e4;
-constexpr Real kBytesPerDofSteadyOutOfCore = 9.5e3;
+constexpr Real kBytesPerDofSteadyInCore = 9.5e3;
+constexpr Real kBytesPerDofSteadyOutOfCore = 7.2e3;
 constexpr Real kProgramBytes = 20e6;  // a 400-dof run peaks at 15 MiB
 constexpr Real kGiB = 1024.0 * 1024.0 * 1024.0;
 

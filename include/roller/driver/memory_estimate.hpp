@@ -22,14 +22,14 @@ struct MemoryEstimate {
 // backend's condensed formulation on a constant tangent: contact/ipopt/ipopt_condensed.cpp): they are
 // then resident beside the output and state files being written.
 // SteadyJacobian: a stationary pass's steady Jacobian (driver/stationary_pass.hpp), general and
-// unsymmetric over the dofs and the lanes' states, factorised once or twice a pass.
+// unsymmetric over the dofs and the yielding steps' states, factorised once or twice a pass.
 enum class HeldFactors { PerIncrement, WholeRun, SteadyJacobian };
 
 // In core: 2.6 kB per dof (the penalty backend's 3175 MiB at 1.3e6 dofs; ipopt 2.0 kB), 3.65 kB
 // with factors held for the run (Hertz with ipopt: 4507 MiB at 1.3e6 dofs); out of core: 1.2 kB
-// per dof (1421 MiB). The steady Jacobian: 21 kB per dof in core, 9.5 kB out of core (shakedown_p45
-// at p0/k = 4.5 from 1.8e4 to 7.1e4 dofs: its plastic zone sets the lanes' states). Plus the
-// program itself.
+// per dof (1421 MiB). The steady Jacobian: 9.5 kB per dof in core, 7.2 kB out of core (shakedown_p45
+// at p0/k = 4.5 from 1.8e4 to 6.8e4 dofs: its plastic zone sets the yielding steps' states). Plus
+// the program itself.
 MemoryEstimate estimate_run_memory(const StripMeshSpec& mesh, const LinearSolverOptions& linear,
                                    HeldFactors held = HeldFactors::PerIncrement);
 
