@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <utility>
 
@@ -156,18 +157,30 @@ std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strai
   ROLLER_ASSERT(upstream.size() == streamlines_.size(), "one upstream state per streamline");
   std::vector<MaterialState> out(n_points());
   Index yielded = 0;
-  for (std::size_t s = 0; s < streamlines_.size(); ++s) {
-    const MaterialState* state = &upstream[s];
-    Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
-    for (const Index p : streamlines_[s].points) {
-      const MaterialParams& m = materials_.of(p / points_per_element_);
-      const MaterialUpdate update = lane_step(m, strains[p] - previous, *state);
-      yielded += update.yielded ? 1 : 0;
-      previous = strains[p];
-      out[p] = update.trial;
-      state = &out[p];
+  // The lanes are independent: one thread each at a time, dynamically, because the yielding lanes
+  // take 17 return mappings a step and the others one. Each lane's states are the same whatever
+  // thread sweeps it. An exception cannot leave an OpenMP loop: the first is kept and thrown after.
+  std::exception_ptr failure;
+  const auto n_lanes = static_cast<long>(streamlines_.size());
+#pragma omp parallel for schedule(dynamic, 4) reduction(+ : yielded)
+  for (long s = 0; s < n_lanes; ++s) {
+    try {
+      const MaterialState* state = &upstream[static_cast<std::size_t>(s)];
+      Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
+      for (const Index p : streamlines_[static_cast<std::size_t>(s)].points) {
+        const MaterialParams& m = materials_.of(p / points_per_element_);
+        const MaterialUpdate update = lane_step(m, strains[p] - previous, *state);
+        yielded += update.yielded ? 1 : 0;
+        previous = strains[p];
+        out[p] = update.trial;
+        state = &out[p];
+      }
+    } catch (...) {
+#pragma omp critical(roller_sweep_failure)
+      if (!failure) failure = std::current_exception();
     }
   }
+  if (failure) std::rethrow_exception(failure);
   if (report) report->n_yielded = yielded;
   return out;
 }

@@ -4,6 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+
+#include <omp.h>
+#include <Eigen/SparseCholesky>
 
 #include <fmt/format.h>
 
@@ -12,6 +17,7 @@
 
 #include "roller/analysis/hertz.hpp"
 #include "roller/core/enum_names.hpp"
+#include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/stationary_pass.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -150,6 +156,40 @@ TEST_CASE("stationary strip: the sweep follows a strain path that turns, where o
   CHECK(error < 0.01);
   CHECK(coarse_error > 4.0 * error);
   CHECK(end.eq_plastic_strain == Approx(fine.eq_plastic_strain).epsilon(0.01));
+}
+
+TEST_CASE("stationary strip: the sweep's states do not depend on the number of threads; a failure in a lane is thrown",
+          "[stationary]") {
+  // The lanes are swept in parallel (OpenMP): each lane's states are computed by one thread, so
+  // they are the same bytes on one thread or two; a lane's NumericalError leaves the parallel loop
+  // as itself.
+  const test::SmallStationaryStrip small(test::plastic_steel(), 5.0);
+  Eigen::SimplicialLDLT<SparseMatrix> k_e(small.elastic);
+  VecX u = VecX::Zero(small.mesh.n_dofs());
+  small.dofs.scatter_free(k_e.solve(small.dofs.gather_free(small.load)), u);
+  const StationaryStrip strip(small.mesh, small.materials, small.options, 1.0);
+  const std::vector<Vec4> strains = strip.strains(u);
+  const int threads = omp_get_max_threads();
+  auto swept = [&](int n) {
+    omp_set_num_threads(n);
+    SweepReport report;
+    std::vector<MaterialState> states = strip.sweep(strains, strip.virgin_upstream(), &report);
+    omp_set_num_threads(threads);
+    return std::make_pair(states, report.n_yielded);
+  };
+  const auto [one, yielded_one] = swept(1);
+  const auto [two, yielded_two] = swept(2);
+  REQUIRE(yielded_one > 50);
+  CHECK(yielded_two == yielded_one);
+  bool same = true;
+  for (std::size_t p = 0; p < one.size(); ++p)
+    same = same && one[p].stress == two[p].stress && one[p].eq_plastic_strain == two[p].eq_plastic_strain;
+  CHECK(same);
+  std::vector<Vec4> broken = strains;
+  broken[broken.size() / 2][0] = std::numeric_limits<Real>::quiet_NaN();
+  omp_set_num_threads(2);
+  CHECK_THROWS_AS(strip.sweep(broken, strip.virgin_upstream()), NumericalError);
+  omp_set_num_threads(threads);
 }
 
 TEST_CASE("stationary strip: a state uniform along x holds the mesh at its two ends only", "[stationary]") {
