@@ -158,8 +158,9 @@ TEST_CASE("stationary strip: the sweep follows a strain path that turns, where o
   CHECK(end.eq_plastic_strain == Approx(fine.eq_plastic_strain).epsilon(0.01));
 }
 
-TEST_CASE("stationary strip: the sweep's states do not depend on the number of threads; a failure in a lane is thrown",
-          "[stationary]") {
+TEST_CASE(
+    "stationary strip: the sweep's states do not depend on the number of threads, and a failure in a lane is thrown",
+    "[stationary]") {
   // The lanes are swept in parallel (OpenMP): each lane's states are computed by one thread, so
   // they are the same bytes on one thread or two; a lane's NumericalError leaves the parallel loop
   // as itself.
