@@ -29,7 +29,8 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
       elastic_free_(elastic_free),
       elastic_(elastic),
       upstream_(std::move(upstream)),
-      settings_(settings) {
+      settings_(settings),
+      from_(settings.from) {
   LinearSolverOptions options = settings.linear_solver;
   if (options.ordering == "auto") options.ordering = "amd";
   jacobian_.configure(options);
@@ -48,10 +49,18 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
   const VecX load = dofs_.gather_free(out.load);
   const VecX rhs = r + load;
   const Real residual = rhs.cwiseAbs().maxCoeff() / std::max(load.cwiseAbs().maxCoeff(), 1e-300);
-  if (!with_jacobian && residual > settings_.from) return out;
+  if (!with_jacobian && residual > from_) return out;
   if (with_jacobian && residual > settings_.divergence * best_residual_) {
-    // J's steps diverge: back to the best iterate they reached, and K_e's correction from there.
-    dropped_ = JacobianDropped::Diverged;
+    // J's steps diverge: back to the best iterate they reached, and K_e's correction from there,
+    // for the rest of the pass or until it is `retry` times nearer.
+    if (retried_ < settings_.retries) {
+      ++retried_;
+      from_ = settings_.retry * best_residual_;
+      n_unknowns_ = 0;
+      last_residual_ = 0.0;
+    } else {
+      dropped_ = JacobianDropped::Diverged;
+    }
     out.du = dofs_.restrict_to_free(best_u_ - u);
     out.new_operator = true;
     return out;

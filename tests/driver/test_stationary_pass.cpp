@@ -325,7 +325,9 @@ TEST_CASE(
   const StationaryPassResult r = solve_stationary_pass(strip, dofs, jacobian, strip.virgin_upstream(), settings);
   REQUIRE(r.converged());
   CHECK(jacobian.factorizations() >= 1);
-  CHECK(3 * r.iterations < 2 * reference.iterations);  // measured: 49 against 104 (E_T = 0), 18-21 against 35-50
+  // Measured: 37 against 104 (E_T = 0: J's first steps diverge, and it takes over again nearer),
+  // 17-22 against 35-50.
+  CHECK(3 * r.iterations < 2 * reference.iterations);
   CHECK((r.displacement - reference.displacement).cwiseAbs().maxCoeff() <=
         1e-7 * reference.displacement.cwiseAbs().maxCoeff());
   Real largest = 0.0, gap = 0.0;
@@ -335,17 +337,29 @@ TEST_CASE(
   }
   CHECK(gap <= 1e-6 * largest);  // measured: 2e-10 to 8e-10
   CHECK(jacobian.dropped() == JacobianDropped::No);
+  INFO("iterations: K_e alone " << reference.iterations << ", with J " << r.iterations << " (J retried "
+                                << jacobian.retried() << " times)");
 
   SECTION("J from the elastic field: where its steps diverge, the pass goes back and K_e's correction carries it") {
-    // Measured: with perfect plasticity J's steps reach |r|/F 0.064, then 0.5, 4.5 and 2e5; the
-    // iterate goes back to 0.064 and K_e's correction converges (95 iterations, 3 factorisations
-    // of J). With hardening Newton's steps from the elastic field converge (12 and 21 iterations).
+    // With perfect plasticity J's steps from the elastic field diverge; the iterate goes back to
+    // the least residual they reached, and K_e's correction carries the pass, alone (no retries)
+    // or until J takes over again nearer the solution. With hardening Newton's steps from the
+    // elastic field converge.
     newton.from = 1.0;
+    newton.retries = GENERATE(0, 2);
     PrescribedLoadCorrection again(dofs, k_e, load);
     SteadyJacobianCorrection early(strip, dofs, k, again, strip.virgin_upstream(), newton);
     const StationaryPassResult e = solve_stationary_pass(strip, dofs, early, strip.virgin_upstream(), settings);
+    INFO("retries " << newton.retries << ": " << e.iterations << " iterations, J retried " << early.retried()
+                    << " times, " << early.factorizations() << " factorisations");
     REQUIRE(e.converged());
-    CHECK(early.dropped() == (steel.tangent_modulus == 0.0 ? JacobianDropped::Diverged : JacobianDropped::No));
+    const bool diverges = steel.tangent_modulus == 0.0;
+    CHECK(early.dropped() == (diverges && newton.retries == 0 ? JacobianDropped::Diverged : JacobianDropped::No));
+    // Measured: perfectly plastic, 95 iterations with K_e after the divergence; with retries J
+    // takes over again once, at 0.3 of the least residual, and the pass ends in 30 (K_e alone:
+    // 104). Hardening: 12 and 21 iterations, no divergence.
+    CHECK(early.retried() == (diverges ? std::min(newton.retries, 1) : 0));
+    if (diverges && newton.retries > 0) CHECK(3 * e.iterations < reference.iterations);
     CHECK((e.displacement - reference.displacement).cwiseAbs().maxCoeff() <=
           1e-7 * reference.displacement.cwiseAbs().maxCoeff());
   }

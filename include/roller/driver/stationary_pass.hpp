@@ -59,16 +59,21 @@ class PrescribedLoadCorrection : public StationaryCorrection {
 struct SteadyJacobianSettings {
   // From |r + f_ext| <= from |f_ext| on; further out Newton's steps from the Jacobian of a strip far
   // from its steady state overshoot (from the elastic field, the residual grows tenfold a step).
-  Real from = 3e-2;
+  // At 0.1 they still diverge at times on a perfectly plastic strip, and the retries below catch
+  // it; 3e-2 was slower by a tenth at 4.8e4 dofs, 0.3 slower still (docs/benchmarks-log.md).
+  Real from = 0.1;
   // J is factorised again at the iterate when the last step left more than this share of the
   // residual; otherwise the last J stays, and Anderson's mixing accelerates the chord iteration
   // (under the roller's contact 0.5 factorised J at most steps of pass 1: 39 times).
   Real contraction = 0.9;
   Real tolerance = 1e-8;  // the pass's: a converged iterate needs no new J
-  // J is dropped for the rest of the pass when the residual grows to this multiple of the least
-  // its steps reached: they diverge. The iterate goes back to that least one, and K_e's correction,
-  // slower but safe, carries on from there.
+  // J's steps diverge when the residual grows to this multiple of the least they reached. The
+  // iterate goes back to that least one, and K_e's correction, slower but safe, carries on from
+  // there: until its residual is `retry` times that least one, where J takes over again (at most
+  // `retries` times a pass), then for the rest of the pass.
   Real divergence = 10.0;
+  Real retry = 0.3;
+  int retries = 2;
   // MUMPS's options for J (the scene's [linear_solver]: out_of_core keeps its factors on disk).
   // Its "auto" ordering becomes AMD: J's pattern follows the yielding points, so most
   // factorisations analyse it anew, and AMD's analysis costs a third of METIS's there, its
@@ -92,6 +97,7 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override;
   int factorizations() const { return factorizations_; }  // of J
   JacobianDropped dropped() const { return dropped_; }
+  int retried() const { return retried_; }
 
  private:
   const StationaryStrip& strip_;
@@ -106,6 +112,8 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   Real best_residual_ = std::numeric_limits<Real>::infinity();  // the least since J took over
   VecX best_u_;                                                 // its iterate (all dofs)
   JacobianDropped dropped_ = JacobianDropped::No;
+  Real from_ = 0.0;  // the hand-over's residual: settings_.from, lowered after each divergence
+  int retried_ = 0;  // divergences after which J took over again
   int factorizations_ = 0;
 };
 
