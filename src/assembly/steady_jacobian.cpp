@@ -85,37 +85,30 @@ SteadyJacobian steady_jacobian(const StationaryStrip& strip, const DofMap& dofs,
 
   const StationaryStrip::StrainOperator& b = strip.strain_operator();
   int next_row = n_free;  // the next lane state's first unknown
-  std::vector<char> yields;
   for (std::size_t s = 0; s < strip.streamlines().size(); ++s) {
     const std::vector<Index>& points = strip.streamlines()[s].points;
-    auto before = [&](std::size_t i) -> const MaterialState& {
-      return i == 0 ? upstream[s] : states[static_cast<std::size_t>(points[i - 1])];
-    };
-    auto step = [&](std::size_t i) -> Vec4 {
-      return strains[points[i]] - (i == 0 ? Vec4::Zero() : strains[points[i - 1]]);
-    };
-    yields.assign(points.size(), 0);
-    for (std::size_t i = 0; i < points.size(); ++i)
-      yields[i] = update_material(strip.material(points[i]), step(i), before(i)).yielded ? 1 : 0;
     int previous_row = -1;  // the state before the point: none until the lane first yields
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Index p = points[i];
       const MaterialParams& m = strip.material(p);
-      if (!yields[i] && previous_row < 0) continue;  // elastic from upstream: K_e holds it
+      const MaterialState& before = i == 0 ? upstream[s] : states[static_cast<std::size_t>(points[i - 1])];
+      const Vec4 step = strains[p] - (i == 0 ? Vec4::Zero() : strains[points[i - 1]]);
+      const bool yields = update_material(m, step, before).yielded;
+      if (!yields && previous_row < 0) continue;  // elastic from upstream: K_e holds it
       // An elastic step copies the state: the point's stress is tau of the last yielding step
       // upstream plus C eps, and its forces w B_p^T tau go to that step's unknowns.
-      const int row = yields[i] ? next_row : previous_row;
+      const int row = yields ? next_row : previous_row;
       for (int c = 0; c < 4; ++c)
         for (StationaryStrip::StrainOperator::InnerIterator it(b, static_cast<int>(4 * p + c)); it; ++it) {
           const Index column = dofs.free_index(it.col());
           if (column >= 0) entries.emplace_back(static_cast<int>(column), row + c, strip.weight(p) * it.value());
         }
-      if (!yields[i]) continue;
+      if (!yields) continue;
       const int d = state_size(m);
       next_row += d;
       for (int j = 0; j < d; ++j) entries.emplace_back(row + j, row + j, 1.0);
       ++out.n_yielding;
-      const StepDerivatives dz = step_derivatives(m, step(i), before(i), states[p], d);
+      const StepDerivatives dz = step_derivatives(m, step, before, states[p], d);
       if (previous_row >= 0)
         for (int j = 0; j < d; ++j)
           for (int k = 0; k < d; ++k)
