@@ -38,7 +38,7 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
 
 StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, const std::vector<MaterialState>& states,
                                                                const VecX& r) {
-  const bool with_jacobian = n_unknowns_ > 0 && dropped_ == JacobianDropped::No;
+  const bool with_jacobian = jacobian_in_use_ && dropped_ == JacobianDropped::No;
   Result out;
   if (with_jacobian && elastic_.fixed_load()) {
     out.load = *elastic_.fixed_load();  // K_e's step would be thrown away
@@ -56,7 +56,7 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
     if (retried_ < settings_.retries) {
       ++retried_;
       from_ = settings_.retry * best_residual_;
-      n_unknowns_ = 0;
+      jacobian_in_use_ = false;
       last_residual_ = 0.0;
     } else {
       dropped_ = JacobianDropped::Diverged;
@@ -77,6 +77,7 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
       return out;
     }
     n_unknowns_ = j.matrix.rows();
+    jacobian_in_use_ = true;
     ++factorizations_;
     out.new_operator = true;
   }

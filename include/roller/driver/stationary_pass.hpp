@@ -107,7 +107,9 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   std::vector<MaterialState> upstream_;
   SteadyJacobianSettings settings_;
   SparseSolver jacobian_{MumpsSolver::Symmetry::General};
-  Index n_unknowns_ = 0;                                        // of the factorised J; 0 before the first
+  // J's factors correct the steps: from the hand-over on, until a divergence hands back to K_e.
+  bool jacobian_in_use_ = false;
+  Index n_unknowns_ = 0;                                        // of the factorised J
   Real last_residual_ = 0.0;                                    // |r + f_c| / |f_c| at the last step with J
   Real best_residual_ = std::numeric_limits<Real>::infinity();  // the least since J took over
   VecX best_u_;                                                 // its iterate (all dofs)
