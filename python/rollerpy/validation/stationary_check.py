@@ -12,8 +12,10 @@ frictionless contact.
 Every pass of a transient run is measured on the same stretch of its fields, from 10a to 4a before
 the end of the track (14a to 20a past the press on a 24a track: past the start's transient, clear
 of where the roller stops), down to 4a (with --periodic, the transient runs on a periodic strip of
-one period, the track, docs/model.md, Periodic strip, and is measured on the half of the period
-opposite the press, its passes.csv window; with --continuous the ring is pressed once and rolled
+one period, the track, 48a unless --track says otherwise, docs/model.md, Periodic strip, and is
+measured on the half of the period opposite the press, its passes.csv window: the start and the
+end of the ring's rolled layer stress that half, a 24a ring's residual sigma_xx by 20 MPa more
+than a 48a ring's, docs/validation.md, The ring's length; with --continuous the ring is pressed once and rolled
 on, make-shakedown-scenes --continuous, and every period is measured on the half of the ring
 opposite the roller, whose elastic field the differences over a period and the long track's
 residual sigma_xx do not hold, but the residual sigma_xx as read does): the mean increment of
@@ -23,7 +25,7 @@ stationary runs' residual strips are uniform along x; they are measured on their
 (passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
-                                   [--phases 0,0.25,0.5] [--track 24] [--passes 2]
+                                   [--phases 0,0.25,0.5] [--track 24 | 48 periodic] [--passes 2]
                                    [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
                                    [--traction Q/P --friction MU]
                                    [--out out/stationary_check/hH] [--transients-from DIR]
@@ -361,7 +363,9 @@ def main(argv=None):
     ap.add_argument("--steps", default="0.2,0.1,0.05",
                     help="the transient's steps, in a; none: the stationary runs alone, against the first")
     ap.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
-    ap.add_argument("--track", type=float, default=24.0)
+    ap.add_argument("--track", type=float, default=None,
+                    help="the track's length in a (default 24; with --periodic, the ring's period, default 48: a "
+                         "shorter ring's own rolled layer biases the reference; docs/validation.md, The ring's length)")
     ap.add_argument("--passes", type=int, default=2)
     ap.add_argument("--kinematic", type=float, default=None, metavar="E_T")
     ap.add_argument("--periodic", action="store_true",
@@ -382,6 +386,8 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.continuous and not args.periodic:
         sys.exit("stationary-check: --continuous rolls a ring: give --periodic too")
+    if args.track is None:
+        args.track = 48.0 if args.periodic else 24.0
     if args.track < 2.0 * STRETCH[0]:
         sys.exit("stationary-check: --track %g: the measured stretch starts %ga before the end, give at least %ga" % (
             args.track, STRETCH[0], 2.0 * STRETCH[0]))
