@@ -14,7 +14,7 @@ the end of the track (14a to 20a past the press on a 24a track: past the start's
 of where the roller stops), down to 4a (with --periodic, the transient runs on a periodic strip of
 one period, the track, 48a unless --track says otherwise, docs/model.md, Periodic strip, and is
 measured on the half of the period opposite the press, its passes.csv window: the start and the
-end of the ring's rolled layer stress that half, a 24a ring's residual sigma_xx by 20 MPa more
+end of the ring's rolled layer stress that half, a 24a ring's residual sigma_xx by 10-25 MPa more
 than a 48a ring's, docs/validation.md, The ring's length; with --continuous the ring is pressed once and rolled
 on, make-shakedown-scenes --continuous, and every period is measured on the half of the ring
 opposite the roller, whose elastic field the differences over a period and the long track's
