@@ -36,7 +36,7 @@ Real smallest_height(const Mesh& mesh) {
 }  // namespace
 
 StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options,
-                                 Real travel)
+                                 Real travel, int phases)
     : mesh_(mesh),
       materials_(materials),
       options_(options),
@@ -94,17 +94,24 @@ StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& mater
   streamline_of_.resize(n_points());
   for (std::size_t s = 0; s < streamlines_.size(); ++s)
     for (const Index p : streamlines_[s].points) streamline_of_[p] = static_cast<Index>(s);
-  // The ends: the upstream one lies ahead of the roller, at the largest travel * x.
-  Real lo = mesh.nodes.front().x(), hi = lo;
-  for (const Vec2& x : mesh.nodes) lo = std::min(lo, x.x()), hi = std::max(hi, x.x());
-  end_x_[0] = travel > 0.0 ? hi : lo;
-  end_x_[1] = travel > 0.0 ? lo : hi;
-  for (int end = 0; end < 2; ++end) {
-    auto on_end = [&](Index a) { return mesh.nodes[a].x() == end_x_[end]; };
-    for (Index a = 0; a < mesh.n_nodes(); ++a)
-      if (on_end(a)) end_nodes_[end].push_back(a);
-    for (Index e = 0; e < mesh.n_elements(); ++e)
-      if (std::any_of(mesh.elements[e].begin(), mesh.elements[e].end(), on_end)) end_elements_[end].push_back(e);
+  // The ends: the upstream one lies ahead of the roller, at the largest travel * x; each phase's
+  // copy has its own (assembly/phased_strip.hpp), end_x() is the first copy's.
+  ROLLER_ASSERT(phases >= 1 && mesh.n_nodes() % phases == 0 && mesh.n_elements() % phases == 0,
+                "equal copies of the strip, one per phase");
+  const Index copy_nodes = mesh.n_nodes() / phases, copy_elements = mesh.n_elements() / phases;
+  for (int k = phases - 1; k >= 0; --k) {
+    Real lo = mesh.nodes[k * copy_nodes].x(), hi = lo;
+    for (Index a = k * copy_nodes; a < (k + 1) * copy_nodes; ++a)
+      lo = std::min(lo, mesh.nodes[a].x()), hi = std::max(hi, mesh.nodes[a].x());
+    end_x_[0] = travel > 0.0 ? hi : lo;
+    end_x_[1] = travel > 0.0 ? lo : hi;
+    for (int end = 0; end < 2; ++end) {
+      auto on_end = [&](Index a) { return mesh.nodes[a].x() == end_x_[end]; };
+      for (Index a = k * copy_nodes; a < (k + 1) * copy_nodes; ++a)
+        if (on_end(a)) end_nodes_[end].push_back(a);
+      for (Index e = k * copy_elements; e < (k + 1) * copy_elements; ++e)
+        if (std::any_of(mesh.elements[e].begin(), mesh.elements[e].end(), on_end)) end_elements_[end].push_back(e);
+    }
   }
   assemble_strain_operator();
 }

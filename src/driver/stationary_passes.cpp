@@ -11,6 +11,7 @@
 #include "roller/driver/steady_load.hpp"
 #include "roller/material/j2_plasticity.hpp"
 #include "roller/material/long_track_state.hpp"
+#include "phased_roller_correction.hpp"
 #include "roller_start.hpp"
 
 namespace roller {
@@ -50,6 +51,14 @@ void require_held_base(const Scene& scene, const StripModel& model) {
   }
 }
 
+// The strip's copies for passes.stationary_phases, copy k moved against the travel by k/P of the
+// element under the contact's centre.
+PhasedStrip phased_of(const Scene& scene, const StripModel& model, Real travel) {
+  const int phases = scene.passes.stationary_phases;
+  const Real h = contact_element_length(model.mesh(), contact_centre(scene, steady_load(scene, std::nullopt)));
+  return phased_strip(model.mesh(), model.materials(), model.dof_map(), phases, -travel * h / phases);
+}
+
 }  // namespace
 
 StationaryPasses::~StationaryPasses() = default;
@@ -58,8 +67,9 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
                                    const RollerCorrectionMaker& make_roller_correction)
     : roller_y_(given_start_centre(scene).y()),
       travel_(steady_load(scene, std::nullopt).travel_sign),
-      strip_(model.mesh(), model.materials(), model.options(), travel_),
-      elastic_materials_(linear_elastic(model.materials())),
+      phased_(phased_of(scene, model, travel_)),
+      strip_(phased_.mesh, phased_.materials, model.options(), travel_, phased_.phases),
+      elastic_materials_(linear_elastic(phased_.materials)),
       linear_solver_(scene.newton.linear) {
   require_held_base(scene, model);
   const SteadyLoad steady = steady_load(scene, std::nullopt);
@@ -68,54 +78,73 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   centre_x_ = contact_centre(scene, steady);
   // Half-way between the contact's trailing edge and the strip's downstream end.
   extraction_x_ = 0.5 * (centre_x_ - travel_ * hertz_.half_width + strip_.end_x(StationaryStrip::End::Downstream));
-  for (const Streamline& s : strip_.streamlines())
-    extraction_.push_back(*std::min_element(s.points.begin(), s.points.end(), [&](Index a, Index b) {
-      return std::abs(strip_.point_position(a).x() - extraction_x_) <
-             std::abs(strip_.point_position(b).x() - extraction_x_);
-    }));
+  const Index base_points = model.mesh().n_elements() * strip_.points_per_element();
+  for (const Streamline& s : strip_.streamlines()) {
+    Index nearest = -1;  // of the first copy, whose points are the strip's
+    for (const Index p : s.points)
+      if (p < base_points && (nearest < 0 || std::abs(strip_.point_position(p).x() - extraction_x_) <
+                                                 std::abs(strip_.point_position(nearest).x() - extraction_x_)))
+        nearest = p;
+    ROLLER_ASSERT(nearest >= 0, "every lane passes the first copy");
+    extraction_.push_back(nearest);
+  }
 
   // The Hertz pressure and the traction q along the travel (q = traction p, or Carter's when the
-  // roller rolls under a horizontal force) as the work-equivalent nodal forces.
-  std::vector<Index> top = mesh.node_set("contact");
-  std::sort(top.begin(), top.end(),
-            [&](Index a, Index b) { return travel_ * mesh.nodes[a].x() < travel_ * mesh.nodes[b].x(); });
-  std::vector<Real> along;  // from the contact's centre along the travel, increasing
-  for (const Index a : top) along.push_back(travel_ * (mesh.nodes[a].x() - centre_x_));
-  const std::vector<Real> f = hertz_nodal_forces(hertz_, along);
-  std::vector<Real> q;
+  // roller rolls under a horizontal force) as the work-equivalent nodal forces, on every copy.
   std::optional<CarterTraction> carter;
-  if (steady.shape == TractionShape::Carter) {
-    carter = carter_traction(hertz_, steady.traction, steady.friction);
-    q = carter_nodal_forces(*carter, along);
-  } else {
-    for (const Real fi : f) q.push_back(steady.traction * fi);
-  }
-  VecX load = VecX::Zero(mesh.n_dofs());
-  for (std::size_t i = 0; i < top.size(); ++i) {
-    if (f[i] == 0.0) continue;
-    const Vec2 force(travel_ * q[i], -f[i]);
-    load.segment<2>(2 * top[i]) = force;
-    NodeContactRecord c;
-    c.node = top[i];
-    c.position = mesh.nodes[top[i]];
-    c.contact.normal_force = f[i];
-    c.contact.tangential_force = q[i];
-    const bool slips = carter ? !carter->sticks(along[i]) : steady.traction != 0.0;
-    c.contact.status = slips ? ContactStatus::Slip : ContactStatus::Stick;
-    c.tributary_length =
-        0.5 * std::abs((i + 1 < top.size() ? along[i + 1] : along[i]) - (i > 0 ? along[i - 1] : along[i]));
-    c.force = force;
-    contact_.push_back(c);
+  if (steady.shape == TractionShape::Carter) carter = carter_traction(hertz_, steady.traction, steady.friction);
+  VecX load = VecX::Zero(phased_.mesh.n_dofs());
+  for (int k = 0; k < phased_.phases; ++k) {
+    std::vector<Index> top = mesh.node_set("contact");
+    for (Index& a : top) a += k * phased_.base_nodes;
+    const auto& nodes = phased_.mesh.nodes;
+    std::sort(top.begin(), top.end(),
+              [&](Index a, Index b) { return travel_ * nodes[a].x() < travel_ * nodes[b].x(); });
+    std::vector<Real> along;  // from the contact's centre along the travel, increasing
+    for (const Index a : top) along.push_back(travel_ * (nodes[a].x() - centre_x_));
+    const std::vector<Real> f = hertz_nodal_forces(hertz_, along);
+    std::vector<Real> q;
+    if (carter) {
+      q = carter_nodal_forces(*carter, along);
+    } else {
+      for (const Real fi : f) q.push_back(steady.traction * fi);
+    }
+    for (std::size_t i = 0; i < top.size(); ++i) {
+      if (f[i] == 0.0) continue;
+      const Vec2 force(travel_ * q[i], -f[i]);
+      load.segment<2>(2 * top[i]) = force;
+      if (k > 0) continue;  // contact.csv: the first copy's, the strip's own nodes
+      NodeContactRecord c;
+      c.node = top[i];
+      c.position = mesh.nodes[top[i]];
+      c.contact.normal_force = f[i];
+      c.contact.tangential_force = q[i];
+      const bool slips = carter ? !carter->sticks(along[i]) : steady.traction != 0.0;
+      c.contact.status = slips ? ContactStatus::Slip : ContactStatus::Stick;
+      c.tributary_length =
+          0.5 * std::abs((i + 1 < top.size() ? along[i + 1] : along[i]) - (i > 0 ? along[i - 1] : along[i]));
+      c.force = force;
+      contact_.push_back(c);
+    }
   }
   std::sort(contact_.begin(), contact_.end(),
             [](const NodeContactRecord& a, const NodeContactRecord& b) { return a.position.x() < b.position.x(); });
-  StripModel elastic(model.mesh(), elastic_materials_, model.options());  // assembles K_e
-  elastic.set_dof_map(model.dof_map());
-  elastic.evaluate(VecX::Zero(model.n_dofs()), nullptr, &elastic_free_);
+  StripModel elastic(phased_.mesh, elastic_materials_, model.options());  // assembles K_e
+  elastic.set_dof_map(phased_.dofs);
+  elastic.evaluate(VecX::Zero(phased_.mesh.n_dofs()), nullptr, &elastic_free_);
   if (!solver_.factorize(elastic_free_)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
   hertz_load_ = std::move(load);
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
-    roller_correction_ = make_roller_correction(scene, centre_x_, hertz_.load);
+    if (phased_.phases == 1) {
+      roller_correction_ = make_roller_correction(scene, centre_x_, hertz_.load);
+    } else {  // the roller k/P of an element further along copy k, which moved back as far
+      std::vector<std::unique_ptr<RollerCorrection>> copies;
+      const Real step = contact_element_length(mesh, centre_x_) / phased_.phases;
+      for (int k = 0; k < phased_.phases; ++k)
+        copies.push_back(make_roller_correction(scene, centre_x_ + travel_ * k * step, hertz_.load));
+      roller_correction_ = std::make_unique<PhasedRollerCorrection>(
+          std::move(copies), mesh.n_dofs(), model.dof_map().n_free(), base_points);
+    }
   }
 }
 
@@ -182,14 +211,15 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
   SteadyJacobianSettings newton;
   newton.tolerance = settings.tolerance;
   newton.linear_solver = linear_solver_;
-  PrescribedLoadCorrection hertz(strip.dof_map(), solver_, hertz_load_);
+  const DofMap& dofs = phased_.dofs;
+  PrescribedLoadCorrection hertz(dofs, solver_, hertz_load_);
   StationaryCorrection* carrier = &hertz;  // K_e's correction, which finds the load
   if (roller_correction_) carrier = roller_correction_.get();
-  SteadyJacobianCorrection correction(strip_, strip.dof_map(), elastic_free_, *carrier, upstream, newton);
+  SteadyJacobianCorrection correction(strip_, dofs, elastic_free_, *carrier, upstream, newton);
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
-    return states_of(leaving(u, states, elastic_displacement(strip.dof_map(), load)));
+    return states_of(leaving(u, states, elastic_displacement(dofs, load)));
   };
-  out.solve = solve_stationary_pass(strip_, strip.dof_map(), correction, upstream, settings, leaving_states, start);
+  out.solve = solve_stationary_pass(strip_, dofs, correction, upstream, settings, leaving_states, start);
   out.factorizations = correction.factorizations();
   if (!out.solve.converged()) return out;
   // The next pass starts from this one's displacement once this one's upstream was rolled: the
@@ -202,10 +232,12 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
     contact_ = roller_correction_->contact();
     pose_ = roller_correction_->pose();
   }
-  const VecX& elastic = elastic_displacement(strip.dof_map(), out.solve.load);
+  const VecX& elastic = elastic_displacement(dofs, out.solve.load);
   const std::vector<LongTrackState> track = leaving(out.solve.displacement, out.solve.states, elastic);
+  // The strip's: the first copy's points and dofs.
   out.residual = strip_.spread(states_of(track));
-  out.permanent_displacement = strip_.uniform_displacement(strains_of(track));
+  out.residual.resize(static_cast<std::size_t>(strip.mesh().n_elements() * strip_.points_per_element()));
+  out.permanent_displacement = strip_.uniform_displacement(strains_of(track)).head(strip.n_dofs());
   return out;
 }
 

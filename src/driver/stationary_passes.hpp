@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "roller/analysis/hertz.hpp"
+#include "roller/assembly/phased_strip.hpp"
 #include "roller/assembly/stationary_strip.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/driver/run_state.hpp"
@@ -79,6 +80,7 @@ class StationaryPasses {
   Real roller_y_ = 0.0;  // the centre's height at the start (the pose written beside the load)
   HertzSolution hertz_;
   Real centre_x_ = 0.0, extraction_x_ = 0.0, travel_ = 1.0;
+  PhasedStrip phased_;  // the strip's copies, one per phase (one copy: the strip itself)
   StationaryStrip strip_;
   ElementMaterials elastic_materials_;
   LinearSolverOptions linear_solver_;  // the scene's, for the steady Jacobian
@@ -87,7 +89,7 @@ class StationaryPasses {
   VecX hertz_load_;                                      // the Hertz pressure and its traction (all dofs)
   std::unique_ptr<RollerCorrection> roller_correction_;  // passes.stationary_contact = "roller"
   std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
-  std::vector<Index> extraction_;                        // per streamline: its point at the extraction column
+  std::vector<Index> extraction_;  // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;
   VecX elastic_load_, elastic_displacement_;  // elastic_displacement()'s last load, and its displacement
 };

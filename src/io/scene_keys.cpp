@@ -763,6 +763,11 @@ std::vector<SceneKey> make_keys() {
           "the stationary pass's load: hertz, the Hertz pressure of the travel force (q = mu p when it slides); "
           "roller, the rigid roller's frictionless contact solved in every iteration"),
       key(
+          "passes.stationary_phases", [](auto& s) -> auto& { return s.passes.stationary_phases; },
+          "the stationary pass solved at this many places of the roller between two nodes at once, k/P of an "
+          "element apart, as a transient pass in steps of h/P meets them (docs/model.md, Phases)",
+          closed(1, 16)),
+      key(
           "passes.until_verdict", [](auto& s) -> auto& { return s.passes.until_verdict; },
           "stop after the first pass that decides the shakedown verdict (at most count passes)"),
 

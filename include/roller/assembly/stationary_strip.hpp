@@ -43,8 +43,11 @@ class StationaryStrip {
  public:
   // `travel`: +1 when the roller moves towards +x over the strip (the material then flows towards
   // -x under it), -1 the other way. Throws InputError when the points do not form straight rows
-  // (a T3 mesh with alternating diagonals).
-  StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options, Real travel);
+  // (a T3 mesh with alternating diagonals). `phases`: the mesh is that many equal copies of a strip,
+  // moved along x by fractions of an element (assembly/phased_strip.hpp); the lanes interleave
+  // their points and each copy has its two ends.
+  StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options, Real travel,
+                  int phases = 1);
 
   const std::vector<Streamline>& streamlines() const { return streamlines_; }
   Index n_points() const { return static_cast<Index>(geometry_.size()) * points_per_element_; }
@@ -84,7 +87,7 @@ class StationaryStrip {
   // end's nodes. Inside the mesh a state uniform along x, with no sigma_yy and sigma_xy, exerts
   // none, so forces(spread(states)) is the sum of both ends'.
   VecX end_forces(const std::vector<MaterialState>& states, End end) const;
-  // The x of that end's nodes [mm].
+  // The x of that end's nodes [mm] (the first copy's).
   Real end_x(End end) const { return end_x_[end == End::Upstream ? 0 : 1]; }
   // Each streamline's virgin state (initial_state of its material).
   std::vector<MaterialState> virgin_upstream() const;
