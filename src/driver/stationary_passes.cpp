@@ -6,12 +6,12 @@
 
 #include <fmt/format.h>
 
+#include "phased_roller_correction.hpp"
 #include "roller/analysis/carter.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/steady_load.hpp"
 #include "roller/material/j2_plasticity.hpp"
 #include "roller/material/long_track_state.hpp"
-#include "phased_roller_correction.hpp"
 #include "roller_start.hpp"
 
 namespace roller {
@@ -142,8 +142,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
       const Real step = contact_element_length(mesh, centre_x_) / phased_.phases;
       for (int k = 0; k < phased_.phases; ++k)
         copies.push_back(make_roller_correction(scene, centre_x_ + travel_ * k * step, hertz_.load));
-      roller_correction_ = std::make_unique<PhasedRollerCorrection>(
-          std::move(copies), mesh.n_dofs(), model.dof_map().n_free(), base_points);
+      roller_correction_ = std::make_unique<PhasedRollerCorrection>(std::move(copies), mesh.n_dofs(),
+                                                                    model.dof_map().n_free(), base_points);
     }
   }
 }

@@ -51,7 +51,7 @@ struct PassSpec {
   PassDirection direction = PassDirection::Same;
   PassMethod method = PassMethod::Transient;
   StationaryContact stationary_contact = StationaryContact::Hertz;
-  int stationary_phases = 1;  // places of the roller between two nodes solved together (docs/model.md, Phases)
+  int stationary_phases = 1;   // places of the roller between two nodes solved together (docs/model.md, Phases)
   bool until_verdict = false;  // stop after the first pass that decides the shakedown verdict
 };
 

@@ -3,7 +3,8 @@ against transient passes"). The shakedown strip at one load (make-shakedown-scen
 over a long track, so that the transient pass reaches its steady state, at one element size h:
 - the transient method at several step lengths (its error: the steps);
 - the stationary pass with the roller's contact, the roller's centre at several places between
-  two nodes (its error: the contact resolved at nodes that stand still under the roller);
+  two nodes (its error: the contact resolved at nodes that stand still under the roller), and
+  with --stationary-phases P at P such places together, as the transient in steps of h/P meets them;
 - the stationary pass with the Hertz load.
 With --traction Q/P --friction MU the roller rolls under the horizontal force Q = Q/P x P along the
 travel: the transient's exact contact with Coulomb friction against the stationary passes with
@@ -25,7 +26,8 @@ stationary runs' residual strips are uniform along x; they are measured on their
 (passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
-                                   [--phases 0,0.25,0.5] [--track 24 | 48 periodic] [--passes 2]
+                                   [--phases 0,0.25,0.5] [--stationary-phases 2,4]
+                                   [--track 24 | 48 periodic] [--passes 2]
                                    [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
                                    [--traction Q/P --friction MU]
                                    [--out out/stationary_check/hH] [--transients-from DIR]
@@ -363,6 +365,9 @@ def main(argv=None):
     ap.add_argument("--steps", default="0.2,0.1,0.05",
                     help="the transient's steps, in a; none: the stationary runs alone, against the first")
     ap.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
+    ap.add_argument("--stationary-phases", default="", metavar="P[,P]",
+                    help="also the stationary pass solved at P places of the roller between two nodes together "
+                         "(passes.stationary_phases = P; docs/model.md, Phases)")
     ap.add_argument("--track", type=float, default=None,
                     help="the track's length in a (default 24; with --periodic, the ring's period, default 48: a "
                          "shorter ring's own rolled layer biases the reference; docs/validation.md, The ring's length)")
@@ -429,7 +434,10 @@ def main(argv=None):
     # The roller's centre moved along x by a fraction of an element.
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
                  ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
-                for p in (float(v) for v in args.phases.split(","))]
+                for p in (float(v) for v in args.phases.split(",") if v)]
+    variants += [("stationary, roller, %d phases" % p, [("passes.stationary_contact", '"roller"'),
+                  ("passes.stationary_phases", "%d" % p)], "stationary_roller_P%d" % p)
+                 for p in (int(v) for v in args.stationary_phases.split(",") if v)]
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
