@@ -18,11 +18,6 @@ namespace {
 
 // Points closer in y than this fraction of the strip's smallest element height share a row.
 constexpr Real kRowTolerance = 1e-6;
-// A step between two points of a lane along which the material yields is walked in this many equal
-// parts of the straight strain path: at a/h = 20 the plastic increments of two passes moved by 3-5 %
-// from 1 to 4 parts and by 1-1.5 % from 4 to 16 (docs/validation.md, "Streamlines as lanes").
-constexpr int kPathSubsteps = 16;
-
 Real smallest_height(const Mesh& mesh) {
   Real h = std::numeric_limits<Real>::infinity();
   for (const auto& element : mesh.elements) {
@@ -36,10 +31,11 @@ Real smallest_height(const Mesh& mesh) {
 }  // namespace
 
 StationaryStrip::StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options,
-                                 Real travel, int phases)
+                                 Real travel, int phases, int path_parts)
     : mesh_(mesh),
       materials_(materials),
       options_(options),
+      path_parts_(path_parts),
       points_per_element_(n_integration_points(mesh.element_type)) {
   ROLLER_ASSERT(options.kinematics == Kinematics::Small, "the stationary strip is small-strain");
   geometry_.resize(mesh.n_elements());
@@ -148,11 +144,11 @@ std::vector<Vec4> StationaryStrip::strains(const VecX& u, const std::vector<Inde
   return out;
 }
 
-MaterialUpdate lane_step(const MaterialParams& m, const Vec4& step, const MaterialState& before) {
+MaterialUpdate lane_step(const MaterialParams& m, const Vec4& step, const MaterialState& before, int parts) {
   MaterialUpdate update = update_material(m, step, before);
-  if (update.yielded) {
+  if (update.yielded && parts > 1) {
     MaterialState walked = before;
-    for (int i = 0; i < kPathSubsteps; ++i) walked = update_material(m, step / kPathSubsteps, walked).trial;
+    for (int i = 0; i < parts; ++i) walked = update_material(m, step / parts, walked).trial;
     update.trial = walked;
   }
   return update;
@@ -176,7 +172,7 @@ std::vector<MaterialState> StationaryStrip::sweep(const std::vector<Vec4>& strai
       Vec4 previous = Vec4::Zero();  // the upstream state carries no strain of this pass
       for (const Index p : streamlines_[static_cast<std::size_t>(s)].points) {
         const MaterialParams& m = materials_.of(p / points_per_element_);
-        const MaterialUpdate update = lane_step(m, strains[p] - previous, *state);
+        const MaterialUpdate update = lane_step(m, strains[p] - previous, *state, path_parts_);
         yielded += update.yielded ? 1 : 0;
         previous = strains[p];
         out[p] = update.trial;

@@ -32,7 +32,7 @@ struct StepDerivatives {
 };
 
 StepDerivatives step_derivatives(const MaterialParams& m, const Vec4& step, const MaterialState& before,
-                                 const MaterialState& after, int d) {
+                                 const MaterialState& after, int d, int parts) {
   // Steps of a ten-millionth of the yield stress and strain: far above rounding (1e-16 of the
   // values), far below the walk's curvature.
   const Real stress_scale = std::max(m.yield_stress, 1e-12 * m.youngs_modulus);
@@ -44,13 +44,13 @@ StepDerivatives step_derivatives(const MaterialParams& m, const Vec4& step, cons
     MaterialState shifted = before;
     const Real h = kRelativeStep * (j == 4 ? strain_scale : stress_scale);
     component(shifted, j) += h;
-    out.a.col(j) = (packed(lane_step(m, step, shifted).trial, d) - base) / h;
+    out.a.col(j) = (packed(lane_step(m, step, shifted, parts).trial, d) - base) / h;
   }
   for (int j = 0; j < 4; ++j) {
     Vec4 shifted = step;
     const Real h = kRelativeStep * strain_scale;
     shifted[j] += h;
-    out.g.col(j) = (packed(lane_step(m, shifted, before).trial, d) - base) / h;
+    out.g.col(j) = (packed(lane_step(m, shifted, before, parts).trial, d) - base) / h;
   }
   return out;
 }
@@ -110,7 +110,7 @@ SteadyJacobian steady_jacobian(const StationaryStrip& strip, const DofMap& dofs,
       next_row += d;
       for (int j = 0; j < d; ++j) entries.emplace_back(row + j, row + j, 1.0);
       ++out.n_yielding;
-      const StepDerivatives dz = step_derivatives(m, step, before, states[p], d);
+      const StepDerivatives dz = step_derivatives(m, step, before, states[p], d, strip.path_parts());
       if (previous_row >= 0)
         for (int j = 0; j < d; ++j)
           for (int k = 0; k < d; ++k)

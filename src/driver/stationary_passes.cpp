@@ -68,7 +68,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
     : roller_y_(given_start_centre(scene).y()),
       travel_(steady_load(scene, std::nullopt).travel_sign),
       phased_(phased_of(scene, model, travel_)),
-      strip_(phased_.mesh, phased_.materials, model.options(), travel_, phased_.phases),
+      strip_(phased_.mesh, phased_.materials, model.options(), travel_, phased_.phases,
+             scene.passes.stationary_path_parts),
       elastic_materials_(linear_elastic(phased_.materials)),
       linear_solver_(scene.newton.linear) {
   require_held_base(scene, model);

@@ -4,7 +4,10 @@
 // travel segment's force (and q = mu p when it slides). Built once a run: the streamlines, the
 // elastic stiffness factorised once for every pass, the load, and the load's elastic field, which
 // unloads the state leaving a pass (the roller lifted). Near each pass's solution the steady
-// Jacobian corrects instead (SteadyJacobianCorrection), factorised once or twice a pass.
+// Jacobian corrects instead (SteadyJacobianCorrection), factorised once or twice a pass. With
+// passes.stationary_phases = P the pass is solved on P copies of the strip at once, the roller
+// k/P of an element further along copy k (assembly/phased_strip.hpp); what it leaves, the
+// residual strip and the contact, is the first copy's.
 //
 // The strip between passes is the residual strip: every point holds the residual state of its
 // streamline as it leaves the pass, a long track's (material/long_track_state.hpp), read at the

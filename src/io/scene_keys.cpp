@@ -768,6 +768,11 @@ std::vector<SceneKey> make_keys() {
           "element apart, as a transient pass in steps of h/P meets them (docs/model.md, Phases)",
           closed(1, 16)),
       key(
+          "passes.stationary_path_parts", [](auto& s) -> auto& { return s.passes.stationary_path_parts; },
+          "a lane's step along which the material yields walked in this many equal parts of its straight strain path; "
+          "1: one return mapping a step, as the transient's (docs/model.md, Stationary pass)",
+          closed(1, 64)),
+      key(
           "passes.until_verdict", [](auto& s) -> auto& { return s.passes.until_verdict; },
           "stop after the first pass that decides the shakedown verdict (at most count passes)"),
 

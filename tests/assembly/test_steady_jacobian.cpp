@@ -34,7 +34,9 @@ TEST_CASE("steady Jacobian: its solution changes the swept forces by the right-h
       GENERATE_COPY(table<const char*, MaterialParams>({{"perfectly plastic", test::plastic_steel()},
                                                         {"isotropic", hardening},
                                                         {"Armstrong-Frederick", armstrong_frederick}}));
-  INFO(name);
+  // The lanes' yielding steps walked in parts (the default) or returned at once (the transient's).
+  const int parts = GENERATE(as<int>{}, kDefaultPathParts, 1);
+  INFO(name << ", " << parts << " parts a step");
 
   // Under an elliptic pressure of peak 5 k, whose elastic field yields when it is swept.
   const test::SmallStationaryStrip small(material, 5.0);
@@ -46,7 +48,7 @@ TEST_CASE("steady Jacobian: its solution changes the swept forces by the right-h
   VecX u = VecX::Zero(mesh.n_dofs());
   dofs.scatter_free(k_e.solve(dofs.gather_free(load)), u);
 
-  const StationaryStrip strip(mesh, small.materials, small.options, 1.0);
+  const StationaryStrip strip(mesh, small.materials, small.options, 1.0, 1, parts);
   const std::vector<Vec4> strains = strip.strains(u);
   const std::vector<MaterialState> upstream = strip.virgin_upstream();
   const SteadyJacobian j = steady_jacobian(strip, dofs, k, strains, upstream, strip.sweep(strains, upstream));

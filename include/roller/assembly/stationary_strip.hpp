@@ -34,10 +34,16 @@ struct SweepReport {
   Index n_yielded = 0;  // points that yield on their way
 };
 
+// A step between two points of a lane along which the material yields is walked in this many equal
+// parts of the straight strain path by default (passes.stationary_path_parts): at a/h = 20 the
+// plastic increments of two passes moved by 3-5 % from 1 to 4 parts and by 1-1.5 % from 4 to 16
+// (docs/validation.md, "Streamlines as lanes"). One part is the transient's return mapping a step.
+constexpr int kDefaultPathParts = 16;
+
 // One step of a lane: the return mapping of the strain `step` from the state `before`, and where the
-// material yields, the straight strain path walked in equal parts instead (the step's trial state;
-// its other fields are the whole step's).
-MaterialUpdate lane_step(const MaterialParams& m, const Vec4& step, const MaterialState& before);
+// material yields, the straight strain path walked in `parts` equal parts instead (the step's trial
+// state; its other fields are the whole step's).
+MaterialUpdate lane_step(const MaterialParams& m, const Vec4& step, const MaterialState& before, int parts);
 
 class StationaryStrip {
  public:
@@ -45,13 +51,14 @@ class StationaryStrip {
   // -x under it), -1 the other way. Throws InputError when the points do not form straight rows
   // (a T3 mesh with alternating diagonals). `phases`: the mesh is that many equal copies of a strip,
   // moved along x by fractions of an element (assembly/phased_strip.hpp); the lanes interleave
-  // their points and each copy has its two ends.
+  // their points and each copy has its two ends. `path_parts`: lane_step's.
   StationaryStrip(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options, Real travel,
-                  int phases = 1);
+                  int phases = 1, int path_parts = kDefaultPathParts);
 
   const std::vector<Streamline>& streamlines() const { return streamlines_; }
   Index n_points() const { return static_cast<Index>(geometry_.size()) * points_per_element_; }
   int points_per_element() const { return points_per_element_; }
+  int path_parts() const { return path_parts_; }
   const Vec2& point_position(Index p) const { return positions_[p]; }
 
   // B: the points' strains of u, four rows a point ([xx, yy, zz, 2xy]), a column a dof (all dofs).
@@ -98,6 +105,7 @@ class StationaryStrip {
   const Mesh& mesh_;
   const ElementMaterials& materials_;
   ElementOptions options_;
+  int path_parts_;
   int points_per_element_;
   std::vector<std::vector<PointGeometry>> geometry_;  // per element, in the initial mesh
   std::vector<Vec2> positions_;                       // per point

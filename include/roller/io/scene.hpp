@@ -51,8 +51,9 @@ struct PassSpec {
   PassDirection direction = PassDirection::Same;
   PassMethod method = PassMethod::Transient;
   StationaryContact stationary_contact = StationaryContact::Hertz;
-  int stationary_phases = 1;   // places of the roller between two nodes solved together (docs/model.md, Phases)
-  bool until_verdict = false;  // stop after the first pass that decides the shakedown verdict
+  int stationary_phases = 1;       // places of the roller between two nodes solved together (docs/model.md, Phases)
+  int stationary_path_parts = 16;  // a lane's yielding step walked in this many parts (docs/model.md, The sweep)
+  bool until_verdict = false;      // stop after the first pass that decides the shakedown verdict
 };
 
 // Selects nodes by set name ("top", "left", ...) or by the thesis's 1-based node numbers.
