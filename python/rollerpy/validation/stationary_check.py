@@ -26,7 +26,8 @@ stationary runs' residual strips are uniform along x; they are measured on their
 (passes.csv), where their displacement is the pass's.
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
-                                   [--phases 0,0.25,0.5] [--stationary-phases 2,4]
+                                   [--phases 0,0.25,0.5] [--stationary-phases 2,4,2:1]
+                                   [--reference RUN]
                                    [--track 24 | 48 periodic] [--passes 2]
                                    [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
                                    [--traction Q/P --friction MU]
@@ -37,7 +38,8 @@ A run whose summary.json says completed is not run again (remove its folder to r
 --transients-from DIR links the transient runs of an earlier check with the same options into OUT,
 so that only the stationary runs are made: a new build's stationary pass against references that
 took hours.
-Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step;
+Writes OUT/stationary_check.md (the table, each run against the transient of the shortest step or the
+run --reference names;
 the residual sigma_xx at a few depths, with the finest transient also read on the middle of its
 track, where its ends relieve it least) and OUT/stationary_check.png (pass 1's increment against
 the step, or with one step every pass's; the net shear per pass; the surface's horizontal
@@ -365,9 +367,13 @@ def main(argv=None):
     ap.add_argument("--steps", default="0.2,0.1,0.05",
                     help="the transient's steps, in a; none: the stationary runs alone, against the first")
     ap.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
-    ap.add_argument("--stationary-phases", default="", metavar="P[,P]",
+    ap.add_argument("--stationary-phases", default="", metavar="P[:N][,P[:N]]",
                     help="also the stationary pass solved at P places of the roller between two nodes together "
-                         "(passes.stationary_phases = P; docs/model.md, Phases)")
+                         "(passes.stationary_phases = P; docs/model.md, Phases), its yielding steps walked in N parts "
+                         "(passes.stationary_path_parts, default 16; 1: the transient's steps of h/P)")
+    ap.add_argument("--reference", default=None, metavar="RUN",
+                    help="the run the table is made against: a run's folder name in OUT (e.g. "
+                         "stationary_roller_P8_n1); default the transient of the shortest step")
     ap.add_argument("--track", type=float, default=None,
                     help="the track's length in a (default 24; with --periodic, the ring's period, default 48: a "
                          "shorter ring's own rolled layer biases the reference; docs/validation.md, The ring's length)")
@@ -435,10 +441,15 @@ def main(argv=None):
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
                  ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
                 for p in (float(v) for v in args.phases.split(",") if v)]
-    variants += [("stationary, roller, %d phases" % p, [("passes.stationary_contact", '"roller"'),
-                  ("passes.stationary_phases", "%d" % p)], "stationary_roller_P%d" % p)
-                 for p in (int(v) for v in args.stationary_phases.split(",") if v)]
+    for item in (v for v in args.stationary_phases.split(",") if v):
+        p, n = (int(x) for x in (item.split(":") + ["16"])[:2])
+        parts = "" if n == 16 else ", %d part%s" % (n, "" if n == 1 else "s")
+        variants.append(("stationary, roller, %d phases%s" % (p, parts),
+                         [("passes.stationary_contact", '"roller"'), ("passes.stationary_phases", "%d" % p),
+                          ("passes.stationary_path_parts", "%d" % n)],
+                         "stationary_roller_P%d%s" % (p, "" if n == 16 else "_n%d" % n)))
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
+    names = []  # of the stationary runs' folders, in rows' order
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
@@ -447,6 +458,7 @@ def main(argv=None):
                           elastic_constants(scene))
         stationaries.append((label, metrics))
         rows.append((label, metrics))
+        names.append(name)
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
     middle = None
     if transients:  # `fields`: the finest transient's
@@ -454,6 +466,11 @@ def main(argv=None):
         middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
                   measure(fields, middle_windows(args.passes, A, args.track, transient_press), A, elastic, period))
     reference = rows[len(transients) - 1] if transients else rows[0]
+    if args.reference:
+        if args.reference not in names:
+            sys.exit("stationary-check: --reference %s: not one of this check's stationary runs (%s)" % (
+                args.reference, ", ".join(names)))
+        reference = rows[len(transients) + names.index(args.reference)]
     as_read = ", as read, roller on" if args.continuous else ", as read"  # its elastic field in it
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
