@@ -27,7 +27,7 @@ stationary runs' residual strips are uniform along x; they are measured on their
 
 usage: ./rollerpy stationary-check [--load 4.5] [--element-size 0.4] [--steps 0.2,0.1,0.05]
                                    [--phases 0,0.25,0.5] [--stationary-phases 2,4,2:1]
-                                   [--reference RUN]
+                                   [--reference RUN | endless] [--shorter-ring DIR]
                                    [--track 24 | 48 periodic] [--passes 2]
                                    [--kinematic E_T] [--periodic [--continuous]] [--set KEY=VALUE ...]
                                    [--traction Q/P --friction MU]
@@ -179,6 +179,28 @@ def link_transients(source, out, steps):
                 source, name, ", ".join(held) or "none"))
         if not os.path.lexists(link):
             os.symlink(os.path.relpath(os.path.abspath(target), os.path.abspath(out)), link)
+
+
+def endless_ring(shorter, longer):
+    """The residual sigma_xx of an endless ring from two rings' (metrics of the same passes and rows):
+    as read and as a long track's, each ring's two profiles close in on each other as the ring grows,
+    their difference shrinking by a ratio r (0.25-0.3 from 24a to 48a, docs/validation.md, Phases);
+    taking r for both gives their common limit, L1 + (L2 - L1) / (1 - r). Where the difference does
+    not shrink (r outside [0, 0.9)), the longer ring's two profiles' mean. The other metrics are the
+    longer ring's."""
+    out = []
+    for short, long_ in zip(shorter, longer):
+        l1, r1, l2, r2 = (m[key][:, 1] for m in (short, long_) for key in ("sxx_long", "sxx"))
+        if short["sxx"].shape != long_["sxx"].shape or not np.allclose(short["sxx"][:, 0], long_["sxx"][:, 0]):
+            sys.exit("stationary-check: --shorter-ring: the two rings' rows differ (give the same element size)")
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = (r2 - l2) / (r1 - l1)
+        converging = (ratio >= 0.0) & (ratio < 0.9)
+        limit = np.where(converging, l1 + (l2 - l1) / (1.0 - np.where(converging, ratio, 0.0)), 0.5 * (l2 + r2))
+        metrics = dict(long_)
+        metrics["sxx"] = metrics["sxx_long"] = np.column_stack([long_["sxx"][:, 0], limit])
+        out.append(metrics)
+    return out
 
 
 def elastic_constants(scene):
@@ -374,6 +396,10 @@ def main(argv=None):
     ap.add_argument("--reference", default=None, metavar="RUN",
                     help="the run the table is made against: a run's folder name in OUT (e.g. "
                          "stationary_roller_P8_n1); default the transient of the shortest step")
+    ap.add_argument("--shorter-ring", default=None, metavar="DIR",
+                    help="with --periodic: an earlier check's folder with a shorter ring (the same options but "
+                         "--track), whose transient of the shortest step gives, with this one's, the endless ring's "
+                         "residual sigma_xx (a row of the table; --reference endless makes it the reference)")
     ap.add_argument("--track", type=float, default=None,
                     help="the track's length in a (default 24; with --periodic, the ring's period, default 48: a "
                          "shorter ring's own rolled layer biases the reference; docs/validation.md, The ring's length)")
@@ -395,6 +421,8 @@ def main(argv=None):
     ap.add_argument("--roller", default="./build/roller")
     ap.add_argument("--timeout", type=float, default=14400.0)
     args = ap.parse_args(argv)
+    if args.shorter_ring and (not args.periodic or args.continuous or args.steps == "none"):
+        sys.exit("stationary-check: --shorter-ring extrapolates two periodic rings: give --periodic and --steps")
     if args.continuous and not args.periodic:
         sys.exit("stationary-check: --continuous rolls a ring: give --periodic too")
     if args.track is None:
@@ -432,6 +460,17 @@ def main(argv=None):
         kind = ", ring rolled on" if args.continuous else ", periodic" if args.periodic else ""
         rows.append(("transient%s, step %ga" % (kind, s), metrics))
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
+    endless = []  # the endless ring's row, extrapolated from a shorter ring's (--shorter-ring)
+    if args.shorter_ring:
+        run_short = os.path.join(args.shorter_ring, "transient_s%g" % steps[-1])
+        with open(os.path.join(run_short, "scene.resolved.toml"), "rb") as f:
+            short_track = tomllib.load(f)["mesh"]["length"] / A
+        shorter = measure(pass_fields(run_short, args.passes),
+                          measured_windows(run_short, args.passes, A, short_track, True, 0.0), A, elastic,
+                          A * short_track)
+        endless = [("transient, periodic, step %ga, endless ring (σ_xx from the %ga and %ga rings; the rest the %ga's)"
+                    % (steps[-1], short_track, args.track, args.track), endless_ring(shorter, transients[-1][1]))]
+        rows += endless
     if not steps or args.periodic:  # the stationary runs' scene (its step does not enter a stationary pass)
         scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track,
                               traction=args.traction, friction=args.friction)
@@ -466,11 +505,13 @@ def main(argv=None):
         middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
                   measure(fields, middle_windows(args.passes, A, args.track, transient_press), A, elastic, period))
     reference = rows[len(transients) - 1] if transients else rows[0]
-    if args.reference:
+    if args.reference == "endless" and endless:
+        reference = endless[0]
+    elif args.reference:
         if args.reference not in names:
-            sys.exit("stationary-check: --reference %s: not one of this check's stationary runs (%s)" % (
-                args.reference, ", ".join(names)))
-        reference = rows[len(transients) + names.index(args.reference)]
+            sys.exit("stationary-check: --reference %s: not one of this check's stationary runs (%s)%s" % (
+                args.reference, ", ".join(names), ", nor endless (with --shorter-ring)" if endless else ""))
+        reference = rows[len(transients) + len(endless) + names.index(args.reference)]
     as_read = ", as read, roller on" if args.continuous else ", as read"  # its elastic field in it
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
