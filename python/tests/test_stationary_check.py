@@ -11,9 +11,9 @@ import pytest
 from rollerpy.outputs import read_numbers, read_rows
 from rollerpy.runner import roller_command, run, set_options
 from rollerpy.validation.make_shakedown_scenes import A, write_scenes
-from rollerpy.validation.stationary_check import (SXX_DEPTHS, elastic_constants, link_transients, long_track_sxx,
-                                                  measure, middle_windows, pass_fields, plastic_shear,
-                                                  stretch_metrics, sxx_table)
+from rollerpy.validation.stationary_check import (SXX_DEPTHS, elastic_constants, endless_ring, link_transients,
+                                                  long_track_sxx, measure, middle_windows, pass_fields,
+                                                  plastic_shear, stretch_metrics, sxx_table)
 
 
 @pytest.fixture(scope="module")
@@ -195,3 +195,25 @@ def test_transients_from_an_earlier_check_are_linked_not_run(tmp_path):
         assert not os.path.exists(out / name)
     with pytest.raises(SystemExit, match=r"holds no transient_s0.3 \(its steps: 0.05, 0.1, 0.2\)"):
         link_transients(str(source), str(out), [0.3])
+
+
+def test_the_endless_ring_is_the_common_limit_of_two_rings_profiles():
+    """Profiles that close in on a limit X geometrically as the ring doubles (as read from above, a
+    long track's from below, each by the ratio r of its depth) give X back; where the two rings'
+    profiles do not close in, the longer ring's mean."""
+    depth = np.array([0.5, 1.0, 1.5, 2.0])
+    limit, ratio = np.array([-300.0, -650.0, -500.0, -350.0]), np.array([0.25, 0.3, 0.28, 0.95])
+    above, below = np.array([-120.0, -150.0, -110.0, -40.0]), np.array([80.0, 60.0, 70.0, 30.0])
+
+    def ring(k):
+        shrink = ratio ** k
+        return {"mean": 1.0 + k, "sxx": np.column_stack([depth, limit + above * shrink]),
+                "sxx_long": np.column_stack([depth, limit + below * shrink])}
+
+    shorter, longer = ring(0), ring(1)
+    endless, = endless_ring([shorter], [longer])
+    assert np.allclose(endless["sxx"][:3, 1], limit[:3], atol=1e-9)
+    assert np.allclose(endless["sxx_long"][:3, 1], limit[:3], atol=1e-9)
+    assert endless["sxx"][3, 1] == pytest.approx(0.5 * (longer["sxx"][3, 1] + longer["sxx_long"][3, 1]))
+    assert endless["mean"] == longer["mean"]
+    assert np.array_equal(endless["sxx"][:, 0], depth)
