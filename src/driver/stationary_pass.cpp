@@ -38,13 +38,14 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
 
 StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, const std::vector<MaterialState>& states,
                                                                const VecX& r) {
-  const bool with_jacobian = jacobian_in_use_ && dropped_ == JacobianDropped::No;
+  const bool with_jacobian = stage_ == Stage::Jacobian;
+  const bool dropped = stage_ == Stage::Diverged || stage_ == Stage::Singular;
   Result out;
   if (with_jacobian && elastic_.fixed_load()) {
     out.load = *elastic_.fixed_load();  // K_e's step would be thrown away
   } else {
     out = elastic_.correct(u, states, r);
-    if (out.du.size() == 0 || dropped_ != JacobianDropped::No) return out;
+    if (out.du.size() == 0 || dropped) return out;
   }
   const VecX load = dofs_.gather_free(out.load);
   const VecX rhs = r + load;
@@ -56,10 +57,10 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
     if (retried_ < settings_.retries) {
       ++retried_;
       from_ = settings_.retry * best_residual_;
-      jacobian_in_use_ = false;
+      stage_ = Stage::Elastic;
       last_residual_ = 0.0;
     } else {
-      dropped_ = JacobianDropped::Diverged;
+      stage_ = Stage::Diverged;
     }
     out.du = dofs_.restrict_to_free(best_u_ - u);
     out.new_operator = true;
@@ -71,13 +72,13 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
   if (!with_jacobian || (slow && residual > settings_.tolerance)) {
     const SteadyJacobian j = steady_jacobian(strip_, dofs_, elastic_free_, strip_.strains(u), upstream_, states);
     if (!jacobian_.factorize(j.matrix)) {  // K_e's correction carries on alone
-      dropped_ = JacobianDropped::Singular;
+      stage_ = Stage::Singular;
       if (out.du.size() == 0) out = elastic_.correct(u, states, r);
       out.new_operator = true;
       return out;
     }
     n_unknowns_ = j.matrix.rows();
-    jacobian_in_use_ = true;
+    stage_ = Stage::Jacobian;
     ++factorizations_;
     out.new_operator = true;
   }

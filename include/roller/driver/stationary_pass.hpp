@@ -96,7 +96,11 @@ class SteadyJacobianCorrection : public StationaryCorrection {
                            const SteadyJacobianSettings& settings);
   Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override;
   int factorizations() const { return factorizations_; }  // of J
-  JacobianDropped dropped() const { return dropped_; }
+  JacobianDropped dropped() const {
+    return stage_ == Stage::Diverged   ? JacobianDropped::Diverged
+           : stage_ == Stage::Singular ? JacobianDropped::Singular
+                                       : JacobianDropped::No;
+  }
   int retried() const { return retried_; }
 
  private:
@@ -107,13 +111,14 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   std::vector<MaterialState> upstream_;
   SteadyJacobianSettings settings_;
   SparseSolver jacobian_{MumpsSolver::Symmetry::General};
-  // J's factors correct the steps: from the hand-over on, until a divergence hands back to K_e.
-  bool jacobian_in_use_ = false;
+  // Which correction the steps take: K_e's until the hand-over (and again after a divergence with
+  // retries left), then J's; after a last divergence, or a singular J, K_e's for the rest of the pass.
+  enum class Stage { Elastic, Jacobian, Diverged, Singular };
+  Stage stage_ = Stage::Elastic;
   Index n_unknowns_ = 0;                                        // of the factorised J
   Real last_residual_ = 0.0;                                    // |r + f_c| / |f_c| at the last step with J
   Real best_residual_ = std::numeric_limits<Real>::infinity();  // the least since J took over
   VecX best_u_;                                                 // its iterate (all dofs)
-  JacobianDropped dropped_ = JacobianDropped::No;
   Real from_ = 0.0;  // the hand-over's residual: settings_.from, lowered after each divergence
   int retried_ = 0;  // divergences after which J took over again
   int factorizations_ = 0;
