@@ -15,6 +15,7 @@ PhasedStrip phased_strip(const Mesh& mesh, const ElementMaterials& materials, co
     throw InputError("the stationary pass needs a strip with two ends, not a periodic one");
   PhasedStrip out;
   out.phases = phases;
+  out.shift = shift;
   out.base_nodes = mesh.n_nodes();
   out.base_elements = mesh.n_elements();
   out.mesh.element_type = mesh.element_type;

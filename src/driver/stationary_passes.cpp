@@ -136,13 +136,13 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   if (!solver_.factorize(elastic_free_)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
   hertz_load_ = std::move(load);
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
-    if (phased_.phases == 1) {
-      roller_correction_ = make_roller_correction(scene, centre_x_, hertz_.load);
-    } else {  // the roller k/P of an element further along copy k, which moved back as far
-      std::vector<std::unique_ptr<RollerCorrection>> copies;
-      const Real step = contact_element_length(mesh, centre_x_) / phased_.phases;
-      for (int k = 0; k < phased_.phases; ++k)
-        copies.push_back(make_roller_correction(scene, centre_x_ + travel_ * k * step, hertz_.load));
+    // The roller k/P of an element further along copy k, which moved back as far (phased_.shift).
+    std::vector<std::unique_ptr<RollerCorrection>> copies;
+    for (int k = 0; k < phased_.phases; ++k)
+      copies.push_back(make_roller_correction(scene, centre_x_ - k * phased_.shift, hertz_.load));
+    if (copies.size() == 1) {  // the strip itself: no blocks to split
+      roller_correction_ = std::move(copies.front());
+    } else {
       roller_correction_ = std::make_unique<PhasedRollerCorrection>(std::move(copies), mesh.n_dofs(),
                                                                     model.dof_map().n_free(), base_points);
     }

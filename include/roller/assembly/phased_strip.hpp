@@ -16,6 +16,7 @@ namespace roller {
 
 struct PhasedStrip {
   int phases = 1;
+  Real shift = 0.0;            // how far copy k is moved along x per k [mm]
   Mesh mesh;                   // the copies' union: copy k's nodes and elements in the k-th block
   ElementMaterials materials;  // per element of the union
   DofMap dofs;                 // the base's constraints in every copy

@@ -60,6 +60,7 @@ from ..runner import run, set_options
 from ..vtu import available_steps, read_vtu, vtu_path
 from .make_shakedown_scenes import A, PRESS_STEPS, write_scenes
 
+PATH_PARTS = 16                # passes.stationary_path_parts' default (kDefaultPathParts)
 STRETCH = (10.0, 4.0)          # the measured stretch: from 10a to 4a before the track's end
 MIDDLE = 3.0                   # the middle stretch: 3a either side of the track's middle
 WINDOW_DEPTH, BAND_DEPTH = 4.0, 0.78
@@ -481,14 +482,17 @@ def main(argv=None):
                  ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
                 for p in (float(v) for v in args.phases.split(",") if v)]
     for item in (v for v in args.stationary_phases.split(",") if v):
-        p, n = (int(x) for x in (item.split(":") + ["16"])[:2])
-        parts = "" if n == 16 else ", %d part%s" % (n, "" if n == 1 else "s")
+        p, n = (int(x) for x in (item.split(":") + [str(PATH_PARTS)])[:2])
+        parts = "" if n == PATH_PARTS else ", %d part%s" % (n, "" if n == 1 else "s")
         variants.append(("stationary, roller, %d phases%s" % (p, parts),
                          [("passes.stationary_contact", '"roller"'), ("passes.stationary_phases", "%d" % p),
                           ("passes.stationary_path_parts", "%d" % n)],
-                         "stationary_roller_P%d%s" % (p, "" if n == 16 else "_n%d" % n)))
+                         "stationary_roller_P%d%s" % (p, "" if n == PATH_PARTS else "_n%d" % n)))
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
-    names = []  # of the stationary runs' folders, in rows' order
+    names = [name for _, _, name in variants]  # the stationary runs' folders, in stationaries' order
+    if args.reference and args.reference not in names and not (args.reference == "endless" and endless):
+        sys.exit("stationary-check: --reference %s: not one of this check's stationary runs (%s)%s" % (
+            args.reference, ", ".join(names), ", nor endless (with --shorter-ring)" if endless else ""))
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
@@ -497,7 +501,6 @@ def main(argv=None):
                           elastic_constants(scene))
         stationaries.append((label, metrics))
         rows.append((label, metrics))
-        names.append(name)
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
     middle = None
     if transients:  # `fields`: the finest transient's
@@ -508,10 +511,7 @@ def main(argv=None):
     if args.reference == "endless" and endless:
         reference = endless[0]
     elif args.reference:
-        if args.reference not in names:
-            sys.exit("stationary-check: --reference %s: not one of this check's stationary runs (%s)%s" % (
-                args.reference, ", ".join(names), ", nor endless (with --shorter-ring)" if endless else ""))
-        reference = rows[len(transients) + len(endless) + names.index(args.reference)]
+        reference = stationaries[names.index(args.reference)]
     as_read = ", as read, roller on" if args.continuous else ", as read"  # its elastic field in it
     with open(os.path.join(out, "stationary_check.md"), "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
