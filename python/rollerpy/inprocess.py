@@ -31,9 +31,24 @@ Scene = _roller.Scene
 SceneSource = Union[str, os.PathLike, dict, Scene]
 
 
+def _require(ok: bool, name: str, value, expected: str) -> None:
+    """InputError naming the argument, its value's type and what was expected."""
+    if not ok:
+        raise InputError(f"{name} = {value!r:.80}: a {type(value).__name__}; expected {expected}")
+
+
+def _is_path(value) -> bool:
+    return isinstance(value, (str, os.PathLike))
+
+
 def load_scene(source: SceneSource, set: Optional[dict] = None,
                base_dir: Union[str, os.PathLike] = ".") -> Scene:
     """A checked scene from a file, a dict (relative paths in it from `base_dir`) or a Scene."""
+    _require(_is_path(source) or isinstance(source, (dict, Scene)), "scene", source,
+             "a scene file's path, a dict of its tables or a loaded Scene")
+    _require(set is None or isinstance(set, dict), "set", set,
+             "a dict of overrides {'key': value}, e.g. {'steps.count': 2}")
+    _require(_is_path(base_dir), "base_dir", base_dir, "a folder's path")
     overrides = dict(set or {})
     if isinstance(source, Scene):
         if overrides:
@@ -139,6 +154,12 @@ def run(scene: SceneSource, *, set: Optional[dict] = None,
     run's step count. An exception it raises stops the run after that step and is raised again.
     verbose: roller's progress lines on standard output.
     """
+    _require(out is None or _is_path(out), "out", out, "None or an output folder's path")
+    for name, flag in (("overwrite", overwrite), ("verbose", verbose)):
+        _require(isinstance(flag, (bool, np.bool_)), name, flag, "True or False")
+    _require(progress is None or callable(progress), "progress", progress,
+             "None or a function called with each step's row")
+    overwrite, verbose = bool(overwrite), bool(verbose)
     loaded = load_scene(scene, set)
     raw = _roller.run(loaded, None if out is None else os.fspath(out), overwrite, progress, verbose)
     result = _result(raw)

@@ -5,6 +5,7 @@ import csv
 import json
 import math
 import os
+import re
 import tomllib
 from dataclasses import dataclass
 
@@ -85,6 +86,10 @@ def parse_collect(name):
     parts = name.split(":")
     if len(parts) > 3 or not parts[0].endswith(".csv") or not parts[1]:
         raise ValueError("expected FILE.csv:COLUMN, optionally :last, :max, :min or :step=N")
+    # A file of the point's own output folder only: a study never reads outside it.
+    if os.path.isabs(parts[0]) or ".." in re.split(r"[/\\]", parts[0]):
+        raise ValueError("%s: expected a file of the point's output folder (a name such as passes.csv, "
+                         "no absolute path and no '..')" % parts[0])
     pick = parts[2] if len(parts) == 3 else "last"
     if pick in CSV_PICKS:
         return parts[0], parts[1], pick, None
@@ -116,8 +121,12 @@ def collect(out, fields):
         if spec is None:
             values[name] = summary_field(summary, name)
             continue
+        path = os.path.realpath(os.path.join(out, spec[0]))
+        if os.path.commonpath([path, os.path.realpath(out)]) != os.path.realpath(out):
+            values[name] = None  # a link out of the folder: never followed
+            continue
         try:
-            values[name] = csv_value(read_rows(os.path.join(out, spec[0])), *spec[1:])
+            values[name] = csv_value(read_rows(path), *spec[1:])
         except OSError:
             values[name] = None
     return values

@@ -56,3 +56,35 @@ def test_signal_stops_after_the_step_and_resumes(roller, tmp_path, signum):
     assert rc == 0, text
     problems = same_outputs(reference, out, RESUME_COLUMNS)
     assert not problems, "interrupted after step %d and resumed: %s" % (steps, "; ".join(problems))
+
+
+# Two stationary passes on the roller's contact (about 3 s each): a signal sent during the second
+# is heard inside its iteration, not after it.
+STATIONARY = ["--set", 'passes.method="stationary"', "--set", 'passes.stationary_contact="roller"',
+              "--set", "passes.count=2"]
+
+
+def test_signal_stops_a_stationary_pass_inside_its_iteration_and_resumes(roller, tmp_path):
+    reference = str(tmp_path / "whole")
+    rc, text = run(roller, ["run", scene("shakedown_p45"), "--out", reference] + STATIONARY)
+    assert rc == 0, text
+    out = str(tmp_path / "interrupted")
+    proc = subprocess.Popen([roller, "run", scene("shakedown_p45"), "--out", out] + STATIONARY,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 300
+    while rows(os.path.join(out, "solver.csv")) < 1:  # pass 1 done: pass 2 under way
+        assert proc.poll() is None, "the run ended before it could be interrupted"
+        assert time.time() < deadline, "pass 1 did not end within 300 s"
+        time.sleep(0.01)
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=300) == 128 + signal.SIGTERM
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    # Heard after the pass, the run would have ended with pass 2 done (exit 0 or steps_done 2).
+    assert summary["status"] == "interrupted" and summary["steps_done"] == 1, summary
+    assert rows(os.path.join(out, "solver.csv")) == 1  # no row of the pass that was left
+    rc, text = run(roller, ["run", scene("shakedown_p45"), "--out", out, "--resume"] + STATIONARY)
+    assert rc == 0, text
+    problems = same_outputs(reference, out, RESUME_COLUMNS)
+    assert not problems, "a stationary pass interrupted and resumed: " + "; ".join(problems)

@@ -72,8 +72,9 @@ int run_scene(const RunArgs& args) {
   std::optional<roller::Simulation> built;
   try {
     built.emplace(scene);
-  } catch (const roller::SystemError& e) {  // the memory check before the mesh is built
-    roller::write_stopped_summary(scene, options, roller::RunStatus::SystemError, e.what());
+  } catch (const std::exception& e) {  // the memory check before the mesh is built, or memory refused
+    if (roller::status_of(e) == roller::RunStatus::SystemError)
+      roller::write_stopped_summary(scene, options, roller::RunStatus::SystemError, roller::message_of(e));
     throw;
   }
   roller::Simulation& sim = *built;
@@ -116,7 +117,9 @@ int main(int argc, char** argv) {
   run->add_option("--out,-o", run_args.out, "output folder (default out/<scene name>)");
   run->add_option("--refine", run_args.refine, "mesh refinement factor (overrides mesh.refine)")
       ->check(CLI::Range(1, 64));
-  run->add_option("--steps", run_args.steps, "number of steps to run (overrides steps.count)")
+  run->add_option("--steps", run_args.steps,
+                  "number of steps to run (overrides steps.count; refused where it would cut a pass of a scene with "
+                  "[passes] short: use --set passes.count=N there)")
       ->check(CLI::Range(1, 1000000));
   run->add_option("--contact", run_args.contact, "contact backend (overrides contact.backend)")
       ->check(CLI::IsMember({"penalty", "ipopt"}));
@@ -153,9 +156,8 @@ int main(int argc, char** argv) {
   } catch (const roller::SystemError& e) {
     std::cerr << "roller: system error: " << e.what() << "\n";
     return system_exit();
-  } catch (const std::bad_alloc&) {
-    std::cerr << "roller: system error: out of memory; use a coarser mesh (smaller refine) or "
-                 "[linear_solver] out_of_core = true, or raise the memory limit (ulimit -v)\n";
+  } catch (const std::bad_alloc& e) {
+    std::cerr << "roller: system error: " << roller::message_of(e) << "\n";
     return system_exit();
   } catch (const std::exception& e) {
     std::cerr << "roller: internal error: " << e.what() << " (please report it with the scene file)\n";

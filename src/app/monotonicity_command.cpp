@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_checks.hpp"
 #include "commands.hpp"
 #include "roller/analysis/monotonicity_map.hpp"
 #include "roller/core/error.hpp"
@@ -234,26 +235,30 @@ Command add_monotonicity_command(CLI::App& app) {
   auto args = std::make_shared<MonotonicityArgs>();
   CLI::App* cmd = app.add_subcommand(
       "monotonicity", "maps of the positive definiteness of operator A (docs/monotonicity.md, thesis Fig. 3.1)");
-  cmd->add_option("--E", args->youngs_modulus, "Young's modulus [MPa]")->capture_default_str();
-  cmd->add_option("--nu", args->poisson_ratio, "Poisson's ratio")->capture_default_str();
-  cmd->add_option("--Et", args->tangent_modulus, "tangent modulus E_T [MPa] (default E/3)");
+  cmd->add_option("--E", args->youngs_modulus, "Young's modulus [MPa]")->check(finite_number())->capture_default_str();
+  cmd->add_option("--nu", args->poisson_ratio, "Poisson's ratio")->check(finite_number())->capture_default_str();
+  cmd->add_option("--Et", args->tangent_modulus, "tangent modulus E_T [MPa] (default E/3)")->check(finite_number());
   cmd->add_option("--sigma-range", args->sigma_range, "yield stress range lo,hi [MPa]")
       ->delimiter(',')
       ->expected(2)
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--ab-range", args->ab_range, "range lo,hi of a and b [MPa]")
       ->delimiter(',')
       ->expected(2)
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--c-range", args->c_range, "range lo,hi of c [MPa]")
       ->delimiter(',')
       ->expected(2)
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--grid", args->grid, "points per axis of the 4-D grid")
       ->check(CLI::Range(2, 201))
       ->capture_default_str();
   cmd->add_option("--slice-sigma", args->slice_sigma,
                   "yield stress of the twelve Fig. 3.1 slices [MPa] (the thesis's s = 40)")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--slice-grid", args->slice_grid, "points per axis of the fine slices")
       ->check(CLI::Range(2, 2001))
@@ -266,9 +271,9 @@ Command add_monotonicity_command(CLI::App& app) {
                   "out-of-plane stress: zero (a = 3 s11, the thesis) or elastic (nu (t11 + t22))")
       ->check(CLI::IsMember({"zero", "elastic"}))
       ->capture_default_str();
-  cmd->add_option("--density", args->density, "rho [t/mm^3] of the dynamic term (with --dt, --h)");
-  cmd->add_option("--dt", args->dt, "time step [s] of the dynamic term rho h^2/dt^2");
-  cmd->add_option("--h", args->h, "inverse-estimate length h [mm] of the dynamic term");
+  cmd->add_option("--density", args->density, "rho [t/mm^3] of the dynamic term (with --dt, --h)")->check(finite_number());
+  cmd->add_option("--dt", args->dt, "time step [s] of the dynamic term rho h^2/dt^2")->check(finite_number());
+  cmd->add_option("--h", args->h, "inverse-estimate length h [mm] of the dynamic term")->check(finite_number());
   cmd->add_option("--out,-o", args->out, "output folder")->capture_default_str();
   cmd->add_flag("--no-plot", args->no_plot, "write the data only; print the plotting command");
   return [args]() -> int { return run_monotonicity(*args); };

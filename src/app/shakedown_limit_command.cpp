@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_checks.hpp"
 #include "commands.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/shakedown_limit.hpp"
@@ -134,17 +135,20 @@ Command add_shakedown_limit_command(CLI::App& app) {
   cmd->add_option("--traction", args->traction,
                   "a uniform traction q/p (default: Carter's traction of the rolling segment's fx when it has one, the "
                   "friction coefficient when the roller slides, 0 when it rolls freely)")
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file");
-  cmd->add_option("--json", args->json, "write the limits to this JSON file");
-  return [args] {
+      ->check(finite_range(0.0, 10.0));
+  cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file (a new or a regular file)");
+  cmd->add_option("--json", args->json, "write the limits to this JSON file (a new or a regular file)");
+  return [args, cmd] {
+    // The files named are checked before anything is computed.
+    if (cmd->count("--csv") > 0) check_output_file(args->csv, "--csv");
+    if (cmd->count("--json") > 0) check_output_file(args->json, "--json");
     std::vector<SceneOverride> overrides;
     for (const auto& s : args->sets) overrides.push_back(parse_override(s));
     if (args->refine > 0) overrides.push_back({"mesh.refine", std::to_string(args->refine)});
     const Scene scene = load_scene(args->scene, overrides);
     ShakedownLimitSettings settings;
     settings.traction = args->traction;
-    if (!args->csv.empty()) settings.search = MelanSearch::EveryRow;
+    if (cmd->count("--csv") > 0) settings.search = MelanSearch::EveryRow;
     settings.progress = &std::cout;
     ShakedownLimitResult result;
     try {
@@ -154,8 +158,8 @@ Command add_shakedown_limit_command(CLI::App& app) {
       return 1;
     }
     print_result(scene, result);
-    if (!args->csv.empty()) write_csv(args->csv, result);
-    if (!args->json.empty()) write_json(args->json, result);
+    if (cmd->count("--csv") > 0) write_csv(args->csv, result);
+    if (cmd->count("--json") > 0) write_json(args->json, result);
     return 0;
   };
 }

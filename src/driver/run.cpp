@@ -145,6 +145,13 @@ int exit_code(RunStatus status, int signal) {
   return 4;
 }
 
+std::string message_of(const std::exception& e) {
+  if (dynamic_cast<const std::bad_alloc*>(&e))
+    return "out of memory; use a coarser mesh (smaller refine) or [linear_solver] out_of_core = true, or raise the "
+           "memory limit (ulimit -v)";
+  return e.what();
+}
+
 RunStatus status_of(const std::exception& e) {
   if (dynamic_cast<const InputError*>(&e)) return RunStatus::InputError;
   if (dynamic_cast<const SystemError*>(&e) || dynamic_cast<const std::bad_alloc*>(&e)) return RunStatus::SystemError;
@@ -154,7 +161,8 @@ RunStatus status_of(const std::exception& e) {
 RunSummary Simulation::run(const RunOptions& options) {
   const auto t_start = Clock::now();
   progress_ = options.progress;
-  start_or_resume(options);
+  stop_ = options.stop_signal;
+  const bool resumed = start_or_resume(options);
   const int first_step = state_.steps_done + 1;
   const bool files = options.write_files;
   const std::filesystem::path summary_file = options.out_dir / "summary.json";
@@ -163,7 +171,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   // Written now with room to spare, so that the run's end can still say why it stopped when the
   // disk fills up meanwhile.
   if (files)
-    write_with_reserve(summary_file, summary_json(*this, summary, first_step, options.resume), kSummaryReserve);
+    write_with_reserve(summary_file, summary_json(*this, summary, first_step, resumed), kSummaryReserve);
   // VTU and state files are written while the next step is solved (io/background_writer.hpp),
   // except when the factors go to disk to save memory: the jobs' copies would undo that.
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);
@@ -182,7 +190,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     summary.message = message;
     finish_summary();
     try {
-      if (files) write_summary(summary_file, *this, summary, first_step, options.resume);
+      if (files) write_summary(summary_file, *this, summary, first_step, resumed);
     } catch (const std::exception&) {
     }
   };
@@ -196,11 +204,11 @@ RunSummary Simulation::run(const RunOptions& options) {
     std::optional<FileOutputs> file_outputs;
     std::vector<OutputSink*> sinks;
     if (files) {
-      file_outputs.emplace(scene_, model_->mesh(), options.out_dir, options.resume, state_.steps_done, writer);
+      file_outputs.emplace(scene_, model_->mesh(), options.out_dir, resumed, state_.steps_done, writer);
       sinks.push_back(&*file_outputs);
     }
     if (options.sink) sinks.push_back(options.sink);
-    RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, !options.resume, std::move(sinks));
+    RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, !resumed, std::move(sinks));
     StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                         scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
                         options.progress);
@@ -226,7 +234,7 @@ RunSummary Simulation::run(const RunOptions& options) {
       writer.finish();  // the files of the steps done; a second error adds nothing to the first
     } catch (const std::exception&) {
     }
-    record_stop(status_of(e), e.what());
+    record_stop(status_of(e), message_of(e));
     throw;
   }
   finish_summary();
@@ -238,26 +246,34 @@ RunSummary Simulation::run(const RunOptions& options) {
             ? fmt::format("{} steps converged; the verdict was decided after pass {} of {} (passes.until_verdict)",
                           summary.steps_done, state_.pass_records.size(), scene_.passes.count)
             : fmt::format("{} steps converged", summary.steps_done);
-  if (files) write_summary(summary_file, *this, summary, first_step, options.resume);
+  if (files) write_summary(summary_file, *this, summary, first_step, resumed);
   return summary;
 }
 
 void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
                            BackgroundWriter& writer, RunSummary& summary) {
+  auto interrupt = [&](int step) {
+    summary.status = RunStatus::Interrupted;
+    summary.signal = *options.stop_signal;
+    summary.converged = false;
+    summary.message =
+        fmt::format("interrupted by signal {} after step {}; continue with --resume", summary.signal, step - 1);
+    if (options.progress) *options.progress << "roller: " << summary.message << "\n";
+  };
   for (int step = first_step; step <= scene_.total_steps(); ++step) {
     if (options.stop_signal && *options.stop_signal != 0) {
-      summary.status = RunStatus::Interrupted;
-      summary.signal = *options.stop_signal;
-      summary.converged = false;
-      summary.message =
-          fmt::format("interrupted by signal {} after step {}; continue with --resume", summary.signal, step - 1);
-      if (options.progress) *options.progress << "roller: " << summary.message << "\n";
+      interrupt(step);
       break;
     }
     const auto t_step = Clock::now();
     const std::size_t passes_before = state_.pass_records.size();
     const StepRecord res = advance_step(step);
     const double wall = seconds_since(t_step);
+    // A stationary pass left for a stop request: nothing of it is kept, the run resumes before it.
+    if (res.status == Termination::Interrupted && options.stop_signal && *options.stop_signal != 0) {
+      interrupt(step);
+      break;
+    }
     state_.totals.iterations += res.counters.iterations;
     state_.totals.cuts += res.cuts;
     state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
@@ -281,25 +297,36 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
   }
 }
 
-void Simulation::start_or_resume(const RunOptions& options) {
+bool Simulation::start_or_resume(const RunOptions& options) {
   const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
   if (!options.write_files) {
     if (options.resume) throw InputError("a run that writes no files cannot resume: it has no checkpoint");
-    return;
+    return false;
   }
-  if (!options.resume) {
+  bool resume = options.resume;
+  std::error_code ec;
+  if (resume && !std::filesystem::exists(checkpoint, ec)) {
+    if (scene_.output.checkpoint_every < 1)
+      throw InputError(
+          fmt::format("--resume: {} does not exist: this scene keeps no checkpoint (output.checkpoint_every = {}); "
+                      "run it without --resume, with output.checkpoint_every >= 1 to make later runs resumable",
+                      checkpoint.string(), scene_.output.checkpoint_every));
+    // Stopped before its first checkpoint: nothing done is lost by starting over.
+    if (options.progress)
+      *options.progress << fmt::format(
+          "roller: --resume: {} holds no checkpoint yet (the run stopped before its first one): starting over\n",
+          options.out_dir.string());
+    resume = false;
+  }
+  if (!resume) {
     prepare_output_folder(options.out_dir, scene_.name, options.overwrite);
     write_file_atomically(options.out_dir / "scene.resolved.toml", scene_to_toml(scene_));
-    return;
+    return false;
   }
-  if (!std::filesystem::exists(checkpoint))
-    throw InputError(
-        fmt::format("--resume: {} does not exist (the run wrote no checkpoint; set "
-                    "output.checkpoint_every >= 1)",
-                    checkpoint.string()));
   load_state(checkpoint, /*strip_only=*/false);
   if (options.progress)
     *options.progress << fmt::format("resuming after step {} from {}\n", state_.steps_done, checkpoint.string());
+  return true;
 }
 
 void Simulation::save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const {

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "roller/analysis/hertz.hpp"
+#include "roller/core/error.hpp"
 #include "roller_start.hpp"
 
 namespace roller {
@@ -51,6 +52,24 @@ std::optional<Real> expected_half_width(const Scene& scene) {
 }
 
 }  // namespace
+
+void check_load_fits_strip(const Scene& scene) {
+  if (!scene.roller) return;
+  const Real e_star = scene.contact_modulus();
+  const Real length = scene.mesh.length;
+  for (std::size_t i = 0; i < scene.roller->path.size(); ++i) {
+    const std::optional<Real> fy = scene.roller->path[i].fy;
+    if (!fy || !(*fy > 0.0)) continue;
+    const Real a = hertz_line_contact(*fy, scene.roller->radius, e_star).half_width;
+    if (!(2.0 * a >= length)) continue;
+    const MaterialParams surface = scene.strip_material().surface();
+    throw InputError(fmt::format(
+        "{}: roller.path[{}].fy = {:g} N/mm on the top surface's E = {:g} MPa (nu = {:g}) makes a Hertz contact "
+        "2a = {:.4g} mm wide, wider than the strip (mesh.length = {:g} mm): the load would not fit on it. A modulus "
+        "in Pa or GPa, or a force in N rather than N/mm? roller works in mm, N/mm and MPa (steel: E = 2.1e5 MPa)",
+        scene.file.string(), i, *fy, surface.youngs_modulus, surface.poisson_ratio, 2.0 * a, length));
+  }
+}
 
 std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
   std::vector<std::string> out;

@@ -15,6 +15,8 @@
 #include "roller/contact/rolling_predictor.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/memory_estimate.hpp"
+#include "roller/driver/scene_warnings.hpp"
+#include "roller/driver/steady_load.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/mesh/mesh.hpp"
 #include "roller/solver/blas_buffers.hpp"
@@ -43,6 +45,7 @@ Mesh make_mesh_that_fits(const Scene& scene) {
 
 // The strip of the scene: each element of the mesh made of its centroid's layer.
 std::unique_ptr<StripModel> make_strip(const Scene& scene) {
+  check_load_fits_strip(scene);
   Mesh mesh = make_mesh_that_fits(scene);
   ElementMaterials materials = assign_materials(mesh, scene.strip_material());
   return std::make_unique<StripModel>(std::move(mesh), std::move(materials), scene.element);
@@ -247,11 +250,16 @@ void Simulation::record_state(StepRecord& res) const {
   r.pose = state_.pose;
   r.force = roller_force();
   r.velocity = state_.roller_velocity;
-  r.anchor_y = program_.pose(res.step).centre.y();
+  // A stationary pass (one step) carries its travel segment's load whole, not the ramp the step's
+  // number would read in a transient pass's program.
+  const int program_step = scene_.passes.method == PassMethod::Stationary
+                               ? steady_load(scene_, std::nullopt).travel->last_step
+                               : res.step;
+  r.anchor_y = program_.pose(program_step).centre.y();
   if (const Suspension* suspension = dynamics_.suspension()) r.deflection = suspension->deflection();
   r.deflection_velocity = dynamics_.suspension_velocity();
   r.deflection_acceleration = dynamics_.suspension_acceleration();
-  r.prescribed = program_.force(res.step);
+  r.prescribed = program_.force(program_step);
   r.load_offset = state_.load_offset;
   res.roller = r;
 }

@@ -106,6 +106,11 @@ StationaryPassResult solve_stationary_pass(const StationaryStrip& strip, const D
   Real mark = std::numeric_limits<Real>::infinity();
   int mark_iteration = 0;
   for (int k = 0;; ++k) {
+    if (settings.stop && settings.stop->load() != 0) {
+      out.status = Termination::Interrupted;
+      out.message = fmt::format("interrupted by signal {} at iteration {}", settings.stop->load(), k);
+      return out;
+    }
     SweepReport report;
     out.states = strip.sweep(strip.strains(out.displacement), upstream, &report);
     out.n_yielded = report.n_yielded;

@@ -137,15 +137,14 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   hertz_load_ = std::move(load);
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
     // The roller k/P of an element further along copy k, which moved back as far (phased_.shift).
-    std::vector<std::unique_ptr<RollerCorrection>> copies;
-    for (int k = 0; k < phased_.phases; ++k)
-      copies.push_back(make_roller_correction(scene, centre_x_ - k * phased_.shift, hertz_.load));
-    if (copies.size() == 1) {  // the strip itself: no blocks to split
-      roller_correction_ = std::move(copies.front());
-    } else {
-      roller_correction_ = std::make_unique<PhasedRollerCorrection>(std::move(copies), mesh.n_dofs(),
-                                                                    model.dof_map().n_free(), base_points);
-    }
+    new_roller_correction_ = [this, &scene, make_roller_correction, n_dofs = mesh.n_dofs(),
+                              n_free = model.dof_map().n_free(), base_points]() -> std::unique_ptr<RollerCorrection> {
+      std::vector<std::unique_ptr<RollerCorrection>> copies;
+      for (int k = 0; k < phased_.phases; ++k)
+        copies.push_back(make_roller_correction(scene, centre_x_ - k * phased_.shift, hertz_.load));
+      if (copies.size() == 1) return std::move(copies.front());  // the strip itself: no blocks to split
+      return std::make_unique<PhasedRollerCorrection>(std::move(copies), n_dofs, n_free, base_points);
+    };
   }
 }
 
@@ -204,9 +203,11 @@ std::vector<Vec4> strains_of(const std::vector<LongTrackState>& track) {
 
 }  // namespace
 
-StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX& start, std::ostream* progress) {
+StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX& start, std::ostream* progress,
+                                             const std::atomic<int>* stop) {
   StationarySettings settings;
   settings.progress = progress;
+  settings.stop = stop;
   Pass out;
   const std::vector<MaterialState> upstream = upstream_of(strip);
   SteadyJacobianSettings newton;
@@ -215,7 +216,12 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
   const DofMap& dofs = phased_.dofs;
   PrescribedLoadCorrection hertz(dofs, solver_, hertz_load_);
   StationaryCorrection* carrier = &hertz;  // K_e's correction, which finds the load
-  if (roller_correction_) carrier = roller_correction_.get();
+  // The roller's contact made anew for every pass: a pass then depends on the strip it starts
+  // from alone (the twin's roller height and contact of the pass before are not in the state
+  // files), so that a run resumed from a checkpoint gives the same passes.
+  std::unique_ptr<RollerCorrection> roller_correction;
+  if (new_roller_correction_) roller_correction = new_roller_correction_();
+  if (roller_correction) carrier = roller_correction.get();
   SteadyJacobianCorrection correction(strip_, dofs, elastic_free_, *carrier, upstream, newton);
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
     return states_of(leaving(u, states, elastic_displacement(dofs, load)));
@@ -229,9 +235,9 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
   const bool rolled =
       std::any_of(upstream.begin(), upstream.end(), [](const MaterialState& s) { return s.eq_plastic_strain > 0.0; });
   if (rolled) out.next_start = out.solve.displacement;
-  if (roller_correction_) {
-    contact_ = roller_correction_->contact();
-    pose_ = roller_correction_->pose();
+  if (roller_correction) {
+    contact_ = roller_correction->contact();
+    pose_ = roller_correction->pose();
   }
   const VecX& elastic = elastic_displacement(dofs, out.solve.load);
   const std::vector<LongTrackState> track = leaving(out.solve.displacement, out.solve.states, elastic);

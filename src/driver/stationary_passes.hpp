@@ -59,8 +59,9 @@ class StationaryPasses {
     VecX next_start;                      // the next pass's first iterate (all dofs), or empty: zero
   };
   // The pass from the residual strip `strip` (or the initial state before the first pass), its
-  // iteration started from `start` (all dofs; empty: zero): the last pass's next_start.
-  Pass run(const StripModel& strip, const VecX& start, std::ostream* progress);
+  // iteration started from `start` (all dofs; empty: zero): the last pass's next_start. A
+  // signal's number in `stop` ends the iteration as interrupted (checked every iteration).
+  Pass run(const StripModel& strip, const VecX& start, std::ostream* progress, const std::atomic<int>* stop);
 
   const HertzSolution& hertz() const { return hertz_; }
   Real centre_x() const { return centre_x_; }
@@ -90,7 +91,8 @@ class StationaryPasses {
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   SparseMatrix elastic_free_;                            // K_e over the free dofs, which solver_ holds factorised
   VecX hertz_load_;                                      // the Hertz pressure and its traction (all dofs)
-  std::unique_ptr<RollerCorrection> roller_correction_;  // passes.stationary_contact = "roller"
+  // Makes the correction on the roller's contact (passes.stationary_contact = "roller"), one a pass.
+  std::function<std::unique_ptr<RollerCorrection>()> new_roller_correction_;
   std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
   std::vector<Index> extraction_;  // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;

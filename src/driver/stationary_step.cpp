@@ -18,7 +18,7 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   res.pass = step;
   res.time = step * scene_.steps.dt;
   const PassBaseline baseline = PassBaseline::of(*model_);
-  const StationaryPasses::Pass pass = passes.run(*model_, state_.last_increment, progress_);
+  const StationaryPasses::Pass pass = passes.run(*model_, state_.last_increment, progress_, stop_);
   res.counters.iterations = pass.solve.iterations;
   res.counters.factorizations = (built ? 1 : 0) + pass.factorizations;  // K_e once a run, J's a pass
   res.n_yielded = pass.solve.n_yielded;

@@ -1,10 +1,10 @@
 #include "roller/io/atomic_file.hpp"
 
 #include <cerrno>
-#include <fstream>
 #include <system_error>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -43,19 +43,38 @@ fs::path temporary_of(const fs::path& path) {
 
 void write_file_atomically(const fs::path& path, std::string_view content, std::string_view what) {
   const fs::path tmp = temporary_of(path);
-  {
-    errno = 0;
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw_file_error(fmt::format("cannot write {}: cannot create '{}'", named(path, what), tmp.string()), errno);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      const int err = errno;
-      std::error_code ignored;
-      fs::remove(tmp, ignored);
-      throw_file_error(fmt::format("cannot write {} (through '{}')", named(path, what), tmp.string()), err);
-    }
+  // The temporary file only as a regular file of ours: never through a symbolic link, and never
+  // blocking on a FIFO that stands under its name.
+  errno = 0;
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+  struct stat info {};
+  const int open_error = fd < 0 ? errno : 0;
+  const bool regular = fd >= 0 && ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+  if (!regular) {
+    if (fd >= 0) ::close(fd);
+    // A link (ELOOP), a FIFO without a reader (ENXIO), a folder or a device under the name: the
+    // user's folder holds something roller does not write through (exit 2).
+    if (fd >= 0 || open_error == ELOOP || open_error == ENXIO || open_error == EISDIR)
+      throw InputError(fmt::format("cannot write {}: something other than a regular file stands at '{}'; "
+                                   "remove it (roller never writes through or replaces it)",
+                                   named(path, what), tmp.string()));
+    throw_file_error(fmt::format("cannot write {}: cannot create '{}'", named(path, what), tmp.string()),
+                     open_error);
+  }
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  const int write_error = done == content.size() ? 0 : (errno != 0 ? errno : EIO);
+  const bool closed = ::close(fd) == 0;
+  if (write_error != 0 || !closed) {
+    const int err = write_error != 0 ? write_error : errno;
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw_file_error(fmt::format("cannot write {} (through '{}')", named(path, what), tmp.string()), err);
   }
   rename_into_place(tmp, path, what);
 }

@@ -1147,6 +1147,13 @@ std::vector<SceneTable> make_tables() {
       s.fail("method", "the stationary method is small-strain: set kinematics = \"small\" (or method = \"transient\")");
     if (scene.dynamics.strip_inertia)
       s.fail("method", "the stationary method is quasi-static: set dynamics.strip_inertia = false");
+    // A lane follows one integration point of every element along a row, on one side of the
+    // elements' centres; T3's one point is its centroid, the centre itself.
+    if (scene.mesh.element != ElementType::Q4)
+      s.fail("method", fmt::format("the stationary method needs mesh.element = \"Q4\" (its lanes follow the Q4 "
+                                   "integration points along a row; mesh.element = \"{}\" has none such): set "
+                                   "mesh.element = \"Q4\", or method = \"transient\" for T3",
+                                   enum_name(scene.mesh.element)));
   };
   passes.count = [](const Scene& s) -> std::size_t { return s.passes.count > 1; };
   add("newton").check = [](TomlSection& s, Scene& scene, Ref) {

@@ -67,6 +67,12 @@ void apply_override(toml::table& root, const SceneOverride& o) {
   std::vector<std::string> parts;
   std::stringstream ss(o.key);
   for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
+  // "", ".a", "a..b", "a.": a component without a name (a Python dict's keys are not parsed).
+  if (parts.empty() || o.key.back() == '.' ||
+      std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
+    throw InputError(fmt::format("--set '{}={}': expected a key of dotted names, e.g. material.E or "
+                                 "roller.path[1].fy",
+                                 o.key, o.value));
   toml::table* t = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) t = enter_part(*t, o, parse_part(o, parts[i]));
   if (parse_part(o, parts.back()).block)
@@ -188,6 +194,39 @@ void check_path_within_steps(const Scene& scene, int steps, const char* when) {
   }
 }
 
+// A pass ends with the lift of its last path segment, and every pass after the first starts from
+// it: a shorter pass (--steps N, --set steps.count=N) would cut the lift off every pass.
+void check_passes_not_shortened(const Scene& written, const Scene& scene) {
+  const bool passes = scene.passes.count > 1 || scene.passes.method == PassMethod::Stationary;
+  if (!passes || !scene.roller || scene.steps.n_steps >= written.steps.n_steps) return;
+  throw InputError(fmt::format(
+      "{}: steps.count = {} (--steps or --set) on a scene with [passes] ({} passes of {} steps, method \"{}\"): "
+      "every pass runs the whole roller.path and ends with its lift, so a pass cannot be shortened; expected "
+      "steps.count >= {}, or fewer passes (--set passes.count=N)",
+      scene.file.string(), scene.steps.n_steps, scene.passes.count, written.steps.n_steps,
+      enum_name(scene.passes.method), written.steps.n_steps));
+}
+
+// Each key once among the overrides (--set, --steps, --refine, --contact): a later one would
+// replace an earlier one before it is checked, and hide a bad value (--set steps.count=nan
+// --steps 2). A segment's fy, p0 and p0_over_k are one key: each replaces the others.
+void check_overrides_distinct(const std::vector<SceneOverride>& overrides) {
+  auto canonical = [](const std::string& key) {
+    const auto dot = key.rfind('.');
+    const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
+    if (last == "fy" || last == "p0" || last == "p0_over_k")
+      return (dot == std::string::npos ? std::string() : key.substr(0, dot + 1)) + "fy|p0|p0_over_k";
+    return key;
+  };
+  for (std::size_t i = 0; i < overrides.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (canonical(overrides[i].key) == canonical(overrides[j].key))
+        throw InputError(fmt::format(
+            "{}={} and {}={} set the same scene value twice (--steps, --refine and --contact set steps.count, "
+            "mesh.refine and contact.backend; a segment's fy, p0 and p0_over_k are one force); expected each once",
+            overrides[j].key, overrides[j].value, overrides[i].key, overrides[i].value));
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::filesystem::path& file_name,
@@ -205,9 +244,12 @@ Scene parse_scene(const std::string& text, const std::filesystem::path& file_nam
   const Scene written = scene_from_table(table, file_name);
   check_path_within_steps(written, written.steps.n_steps, "");
   if (overrides.empty()) return written;
+  check_overrides_distinct(overrides);
   for (const auto& o : overrides) apply_override(table, o);
   Scene scene = scene_from_table(table, file_name);
-  // Fewer steps than the file's (--steps) may cut a path short; more steps than both may not.
+  // Fewer steps than the file's (--steps) may cut a path short, except a pass's; more steps than
+  // both may not.
+  check_passes_not_shortened(written, scene);
   check_path_within_steps(scene, std::max(written.steps.n_steps, scene.steps.n_steps), " (after --set/--steps)");
   return scene;
 }

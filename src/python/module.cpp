@@ -2,8 +2,11 @@
 // are loaded from a file or a dict with --set's overrides, runs give their tables and fields as
 // numpy arrays, with or without the output folder's files. The package's rollerpy.inprocess wraps
 // this module in typed results; use that.
+#include <atomic>
 #include <iostream>
+#include <mutex>
 #include <optional>
+#include <thread>
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -46,11 +49,26 @@ py::dict summary_dict(const RunSummary& s) {
   return d;
 }
 
+// One run at a time in the process: MUMPS's sequential build and the libraries under it keep
+// global state, and two runs from two threads at once crashed the interpreter in MUMPS's
+// initialisation. A second thread waits (without the GIL) for the first run to end; a run started
+// from a run's own progress callback would wait for ever, so it is refused.
+std::mutex run_mutex;
+std::atomic<std::thread::id> run_owner{};
+
 py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out, bool overwrite,
              const py::object& progress, bool verbose) {
-  std::optional<Simulation> sim;
+  if (run_owner.load() == std::this_thread::get_id())
+    throw InputError("rollerpy.run was called from within a run (its progress callback): one run at a time");
+  std::unique_lock<std::mutex> lock(run_mutex, std::defer_lock);
+  std::optional<Simulation> sim;  // after the lock: destroyed before the lock is released
+  struct Owner {
+    ~Owner() { run_owner.store(std::thread::id{}); }
+  } owner;
   {
     const py::gil_scoped_release nogil;
+    lock.lock();
+    run_owner.store(std::this_thread::get_id());
     sim.emplace(scene);
   }
   py::dict result;

@@ -26,7 +26,7 @@ VecX first_pass(int phases, Real shift, Real* element = nullptr) {
   const Simulation sim(scene);
   StationaryPasses passes(sim.scene(), sim.model(), make_roller_contact_correction);
   if (element) *element = contact_element_length(sim.model().mesh(), passes.centre_x());
-  const StationaryPasses::Pass pass = passes.run(sim.model(), VecX(), nullptr);
+  const StationaryPasses::Pass pass = passes.run(sim.model(), VecX(), nullptr, nullptr);
   REQUIRE(pass.solve.converged());
   return pass.solve.displacement;
 }

@@ -12,4 +12,10 @@ namespace roller {
 
 std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh);
 
+// A slip of units that would give a wrong answer rather than a failed step is an error: a
+// segment's force whose Hertz contact on the top surface's modulus is wider than the strip (a
+// modulus in Pa, a force in N rather than N/mm) would spread the load off the strip. Throws
+// InputError naming the key, the value and the likely unit.
+void check_load_fits_strip(const Scene& scene);
+
 }  // namespace roller

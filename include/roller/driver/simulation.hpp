@@ -67,6 +67,9 @@ struct EnumNames<RunStatus> {
 int exit_code(RunStatus status, int signal = 0);
 // The status of a run stopped by `e` (InputError, SystemError or out of memory, or a bug).
 RunStatus status_of(const std::exception& e);
+// What summary.json and the console say of `e`: its text, or for an allocation that failed what
+// to do about it (std::bad_alloc's own text is "std::bad_alloc").
+std::string message_of(const std::exception& e);
 
 struct RunSummary {
   RunStatus status = RunStatus::Running;
@@ -187,7 +190,9 @@ class Simulation {
   // The state at the end of the step (converged or not) into its record.
   void record_state(StepRecord& res) const;
   // The step loop's pieces (run.cpp).
-  void start_or_resume(const RunOptions& options);
+  // Whether the run resumes: false when it starts (over), a --resume before the first checkpoint
+  // included.
+  bool start_or_resume(const RunOptions& options);
   void run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
                  BackgroundWriter& writer, RunSummary& summary);
   void save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const;
@@ -203,6 +208,7 @@ class Simulation {
   DynamicsState dynamics_;
   std::unique_ptr<StationaryPasses> stationary_;  // the stationary method's set-up, built at its first pass
   std::ostream* progress_ = nullptr;              // run()'s progress stream, for the stationary iterations
+  const std::atomic<int>* stop_ = nullptr;        // run()'s stop request, which the stationary iterations hear
 };
 
 }  // namespace roller

@@ -7,6 +7,7 @@
 // u = u + du accelerated by Anderson's mixing of the last 40 corrections of one operator;
 // converged when |r + f_c| <= tolerance |f_c|. The upstream term makes an unloaded strip keep its
 // upstream state (r = 0 at u = 0).
+#include <atomic>
 #include <functional>
 #include <iosfwd>
 #include <limits>
@@ -130,6 +131,8 @@ struct StationarySettings {
   int stagnation_window = 500;       // limit_reached when |r|/F has not halved in this many iterations
   std::ostream* progress = nullptr;  // a line every `report_every` iterations
   int report_every = 100;
+  // Checked every iteration: when it holds a signal's number the solve ends as interrupted.
+  const std::atomic<int>* stop = nullptr;
 };
 
 struct StationaryPassResult {

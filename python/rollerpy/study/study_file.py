@@ -100,6 +100,8 @@ def load(path):
         raise StudyError("%s: cannot read: %s" % (path, e.strerror))
     except tomllib.TOMLDecodeError as e:
         raise StudyError("%s: not valid TOML: %s" % (path, e))
+    except RecursionError:  # tomllib parses nested arrays and inline tables recursively
+        raise StudyError("%s: arrays or inline tables nested too deeply for a study file (docs/studies.md)" % path)
     unknown = sorted(set(doc) - TOP_KEYS)
     if unknown:
         _fail(path, unknown[0], doc[unknown[0]], "unknown key; expected one of %s" % ", ".join(sorted(TOP_KEYS)))

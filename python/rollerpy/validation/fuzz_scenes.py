@@ -11,7 +11,15 @@ inserted, deeply nested dotted keys, or a --set override of a random key with su
 runs `roller run` on it for a few steps (--steps, default 2) under a timeout. One case in three
 also varies the command line: one or more of `--steps 1|2|3` (instead of the default),
 `--contact penalty|ipopt`, `--refine 1|2` (`--refine 2` with `--steps 1`), now and then an
-invalid value of one of them (which must end in exit 2).
+invalid value of one of them (which must end in exit 2). Shares of their own (fuzz_shares):
+5 % of the cases run a multi-pass scene (shakedown_case_hardened, shakedown_thin_strip,
+shakedown_p45; 1-4 s each) with `passes.method = "stationary"`, 1 or 2 passes, both `stationary_contact`
+values, `stationary_phases` 1 or 2, now and then `stationary_path_parts`, `until_verdict`,
+`direction`, --refine 1, without --steps; one in seven of them sets a [passes] key to a value
+that must be refused and one in ten adds --steps, which a multi-pass scene must refuse (exit 2 is
+due); 8 % append [[layer]] blocks (1-3, or 200 thin ones; now and then a hostile value,
+mesh.follow_layers) to a scene (the layered case_hardened is a seed as well); 4 % give one --set
+key twice with nan or inf as one of the values (exit 2 is due).
 
 A case passes when roller ends with a documented exit code (0 converged, 1 a step failed with an
 "error:" line, 2 input error with "input error" or CLI11's "Run with --help", 3 a system error
@@ -26,7 +34,8 @@ is malformed. A case fails on
     UBSan's "runtime error:"), whatever the exit code;
   - a crash (signal), a timeout (hang);
   - an internal error (exit 4, "roller: internal error:") or "roller: error:";
-  - an undocumented exit code, or exit 1/2/3 without its message;
+  - an undocumented exit code, or exit 1/2/3 without its message; another exit code where exit 2
+    is due;
   - "exit 0 (converged) but nan/inf in an output": the run claimed success with a non-finite
     value in a file;
   - "nan/inf in an output after exit N" (a failed run must not write non-finite values either);
@@ -46,7 +55,9 @@ VTU, each array's name, type and shape; exit code 1 when any holds nan/inf or is
 
 The CTest "fuzz" label runs a short fixed-seed variant (300 cases); a sanitizer build
 (-DROLLER_SANITIZE=ON) also runs 40 cases with --sanitized under the "fast" label
-(scripts/test_sanitized.sh). A long run for a night: --cases 10000 --seed $RANDOM.
+(scripts/test_sanitized.sh; there the pass share takes shakedown_case_hardened, one pass). A
+long run for a night: --cases 10000 --seed $RANDOM. The other ways in have fuzzers of their own:
+fuzz-shakedown-limit, fuzz-python (rollerpy.run), fuzz-study (their modules' docstrings).
 """
 import os
 import random
@@ -61,13 +72,18 @@ from ..paths import DEFAULT_ROLLER, PROBLEMS, ROOT
 from ..runner import roller_command, run
 from ..scan import FolderScan, Finding, files_under, scan_file, scan_outputs, self_check
 from ..vtu import decode_vtu
+from .fuzz_shares import PASS_SEEDS, SMALL_PASS_SEEDS, layer_case, pass_case, twice_case
+
 # Scenes that run on their own (z3_data02 needs z3_data01's final state); small ones weigh more.
 SEEDS = ["block_compression", "hertz", "cattaneo", "bar_impact", "z1_outf05", "z2_infini", "z2_large",
          "z4_v25", "stability_thin", "rolling_friction", "hertz_nu049", "block_compression", "hertz",
-         "cattaneo_mindlin", "burnishing"]
+         "cattaneo_mindlin", "case_hardened", "burnishing"]
 # For a Debug + ASan binary (--sanitized): the scenes whose first two steps take at most 0.2 s
 # with the release build (burnishing: 0.3 s for one step, 1 s when a mutation makes it fail).
 SMALL_SEEDS = [s for s in SEEDS if s != "burnishing"]
+# The shares of the cases (fuzz_shares): multi-pass scenes solved with the stationary method,
+# [[layer]] blocks added, a --set key given twice with a non-finite value.
+PASS_SHARE, LAYER_SHARE, TWICE_SHARE = 0.05, 0.08, 0.04
 HOSTILE_NUMBERS = ["nan", "inf", "-inf", "0", "-0.0", "-1", "1e308", "-1e308", "1e-308", "1e-300", "1e300",
                    "4294967297", "9007199254740993", "-4294967298", "2147483648", "1e20", "0.5", "3"]
 WRONG_TYPES = ['"x"', "true", "[]", "{}", "[1, 2, 3]", '""', "{ value = nan }", "[nan, 0.0]"]
@@ -136,13 +152,13 @@ def set_override(keys, rng):
 def cli_options(rng, default_steps, sanitized):
     """The case's --steps value and further options: for one case in three one or more of --steps,
     --contact, --refine with valid values (--refine 2 with --steps 1), and in one such case in ten
-    an invalid value."""
+    an invalid value (then the third value, why exit 2 is due, is not empty)."""
     if rng.random() >= 1.0 / 3.0:
-        return ["--steps", str(default_steps)], ""
+        return ["--steps", str(default_steps)], "", ""
     if rng.random() < 0.1:
         bad = list(rng.choice(BAD_OPTIONS))
         steps = [] if bad[0] == "--steps" else ["--steps", str(default_steps)]
-        return steps + bad, " ".join(bad)
+        return steps + bad, " ".join(bad), "invalid option"
     chosen = [o for o in ("--steps", "--contact", "--refine") if rng.random() < 0.5]
     if not chosen:
         chosen = [rng.choice(["--steps", "--contact", "--refine"])]
@@ -159,7 +175,7 @@ def cli_options(rng, default_steps, sanitized):
             steps = 1
             chosen.append("--steps")
     what = " ".join((["--steps", str(steps)] if "--steps" in chosen else []) + extra)
-    return ["--steps", str(steps)] + extra, what
+    return ["--steps", str(steps)] + extra, what, ""
 
 
 def scene_keys(roller, work):
@@ -206,25 +222,38 @@ class Verdict:
     scan: FolderScan = None     # the scan of the outputs, when they were scanned
 
 
-def verdict(rc, output, timed_out, out_dir):
+def exit_problem(rc, output, timed_out, expect_exit2="", failed_lines=("error:",)):
+    """Why roller's exit code and output fail a case ("" when they are documented): a sanitizer
+    report, a hang, a crash, an internal error, an exit code without its message; expect_exit2: why
+    the case must end in exit 2 (an invalid option or value), "" when any documented code will do;
+    failed_lines: what exit 1's message holds (one of them)."""
     report = sanitizer_report(output)
     if report:
-        return Verdict("sanitizer report (exit %s): %s" % ("timeout" if timed_out else rc, report), [])
+        return "sanitizer report (exit %s): %s" % ("timeout" if timed_out else rc, report)
     if timed_out:
-        return Verdict("hang (timeout)", [])
+        return "hang (timeout)"
     if rc is None or rc < 0 or rc >= 128:
-        return Verdict("crash (signal %s)" % (-rc if rc is not None and rc < 0 else rc), [])
+        return "crash (signal %s)" % (-rc if rc is not None and rc < 0 else rc)
     if "roller: internal error:" in output or "roller: error:" in output:
         tail = output.split("error:", 1)[-1].strip().splitlines()
-        return Verdict("unexpected exception (exit %d): %s" % (rc, tail[0][:120] if tail else ""), [])
+        return "unexpected exception (exit %d): %s" % (rc, tail[0][:120] if tail else "")
     if rc == 2 and "input error" not in output and "Run with --help" not in output:
-        return Verdict("exit 2 without an input-error message", [])
-    if rc == 1 and "error:" not in output:
-        return Verdict("exit 1 without an error line", [])
+        return "exit 2 without an input-error message"
+    if rc == 1 and not any(line in output for line in failed_lines):
+        return "exit 1 without an error line"
     if rc == 3 and "system error" not in output:
-        return Verdict("exit 3 without a system-error message", [])
+        return "exit 3 without a system-error message"
     if rc not in (0, 1, 2, 3):
-        return Verdict("undocumented exit code %d" % rc, [])
+        return "undocumented exit code %d" % rc
+    if expect_exit2 and rc != 2:
+        return "exit %d where exit 2 was due (%s)" % (rc, expect_exit2)
+    return ""
+
+
+def verdict(rc, output, timed_out, out_dir, expect_exit2=""):
+    problem = exit_problem(rc, output, timed_out, expect_exit2)
+    if problem:
+        return Verdict(problem, [])
     scan = scan_outputs(out_dir, endings=SCANNED_OUTPUTS)
     malformed = [f for f in scan.flagged if f[1].finding == Finding.MALFORMED]
     nonfinite = [f for f in scan.flagged if f[1].finding == Finding.NONFINITE]
@@ -314,15 +343,26 @@ def main(argv=None):
     n_failed = 0
     t0 = time.monotonic()
     for case in range(1, args.cases + 1):
-        seed = rng.choice(seeds)
+        share = rng.random()
+        seed = rng.choice((SMALL_PASS_SEEDS if args.sanitized else PASS_SEEDS) if share < PASS_SHARE else seeds)
         with open(os.path.join(PROBLEMS, seed + ".toml")) as f:
             text = f.read()
-        extra, what = [], ""
-        if rng.random() < 0.3:
-            extra, what = set_override(keys, rng)
+        extra, what, due = [], "", ""
+        if share < PASS_SHARE:  # stationary passes: a pass's steps are the scene's, no --steps
+            if rng.random() < 0.3:
+                text, what = mutate_text(text, rng)
+            options, options_what, due = pass_case(rng, args.sanitized)
         else:
-            text, what = mutate_text(text, rng)
-        options, options_what = cli_options(rng, steps, args.sanitized)
+            if share < PASS_SHARE + LAYER_SHARE:
+                text, extra, what = layer_case(text, rng, HOSTILE_NUMBERS + WRONG_TYPES)
+            elif share < PASS_SHARE + LAYER_SHARE + TWICE_SHARE:
+                extra, what, due = twice_case(rng)
+            elif rng.random() < 0.3:
+                extra, what = set_override(keys, rng)
+            else:
+                text, what = mutate_text(text, rng)
+            options, options_what, bad_option = cli_options(rng, steps, args.sanitized)
+            due = due or bad_option
         if options_what:
             what += ", " + options_what
         scene_path = os.path.join(work, "case.toml")
@@ -331,7 +371,7 @@ def main(argv=None):
         out_dir = os.path.join(work, "out")
         result = run_case(args.roller, scene_path, options + extra, out_dir, args.timeout)
         output = result.output()
-        judged = verdict(result.exit_code, output, result.timed_out, out_dir)
+        judged = verdict(result.exit_code, output, result.timed_out, out_dir, due)
         if judged.scan:
             scanned["files"] += judged.scan.files
             scanned["vtu"] += judged.scan.vtu_files
