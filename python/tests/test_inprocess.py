@@ -147,3 +147,62 @@ def test_the_documented_example_draws_its_figure(tmp_path):
     subprocess.run([sys.executable, os.path.join(ROOT, "docs", "examples", "load_sweep.py"), str(figure)],
                    cwd=ROOT, env=env, check=True, timeout=120)
     assert figure.stat().st_size > 10000
+
+
+def test_two_threads_run_one_after_the_other_without_a_crash():
+    """MUMPS's sequential build is not thread-safe: runs from two threads at once are serialised
+    (the second waits), and both give the answer of a run alone."""
+    import threading
+    results, errors = [], []
+
+    def one():
+        try:
+            results.append(rollerpy.run(HERTZ, set={"steps.count": 2, "roller.path[0].steps": [1, 2]}))
+        except Exception as e:  # recorded, the test fails on it below
+            errors.append(e)
+
+    threads = [threading.Thread(target=one) for _ in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert not errors and len(results) == 2 and all(r.ok for r in results)
+    np.testing.assert_array_equal(results[0].roller["fy"], results[1].roller["fy"])
+
+
+def test_a_run_from_a_progress_callback_is_refused():
+    def nested(row):
+        rollerpy.run(HERTZ, set={"steps.count": 1, "roller.path[0].steps": [1, 1]})
+
+    with pytest.raises(rollerpy.InputError, match="from within a run"):
+        rollerpy.run(HERTZ, set={"steps.count": 1, "roller.path[0].steps": [1, 1]}, progress=nested)
+
+
+def test_python_values_are_taken_as_the_scene_file_would_hold_them_or_refused():
+    with open(HERTZ, "rb") as f:
+        scene = tomllib.load(f)
+    # numpy's integers and floats are ints and floats; its arrays are lists.
+    scene["steps"]["count"] = np.int64(2)
+    scene["roller"]["path"][0]["steps"] = np.array([1, 2])
+    scene["material"]["E"] = np.float64(scene["material"]["E"])
+    assert rollerpy.run(scene).steps_done == 2
+    refused = {
+        "an integer beyond 64 bits": dict(set={"steps.count": 2 ** 70}),
+        "expected a key of dotted names": dict(set={"": 1}),
+        "expected a dict of overrides": dict(set="steps.count=2"),
+        "expected None or an output folder": dict(out=5),
+        "expected True or False": dict(verbose="no"),
+        "expected None or a function": dict(progress=5),
+    }
+    deep = x = {}
+    for _ in range(100000):
+        x["a"] = {}
+        x = x["a"]
+    refused["nested deeper than 100 levels"] = dict(set={"material.E": deep})
+    for message, kwargs in refused.items():
+        with pytest.raises(rollerpy.InputError, match=message):
+            rollerpy.run(HERTZ, **kwargs)
+    with pytest.raises(rollerpy.InputError, match="expected a scene file's path"):
+        rollerpy.run(None)
+    with pytest.raises(rollerpy.InputError, match="nested deeper than 100 levels"):
+        rollerpy.run(deep)

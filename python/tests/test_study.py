@@ -104,7 +104,12 @@ def test_ranges(folder):
     (TINY.replace("solver.csv:iterations", "solver.csv:iterations:step=two"), "the row choice 'step=two'"),
     (TINY.replace("solver.csv:iterations", "solver:iterations"),
      "collect = 'solver:iterations': expected FILE.csv:COLUMN, optionally :last, :max, :min or :step=N"),
-    (TINY.replace("solver.csv:iterations", "solver.csv:iterations:max:min"), "expected FILE.csv:COLUMN")])
+    (TINY.replace("solver.csv:iterations", "solver.csv:iterations:max:min"), "expected FILE.csv:COLUMN"),
+    # A study reads the point's own output folder only.
+    (TINY.replace("solver.csv:iterations", "/etc/x.csv:col"), "no absolute path and no '..'"),
+    (TINY.replace("solver.csv:iterations", "../../x.csv:col"), "no absolute path and no '..'"),
+    (TINY.replace("solver.csv:iterations", "sub/../../x.csv:col"), "no absolute path and no '..'"),
+    (TINY.replace('"steps.count" = 2', '"steps.count" = ' + "[" * 2000 + "]" * 2000), "nested too deeply")])
 def test_unknown_keys_and_bad_ranges_are_rejected(folder, text, expected):
     assert expected in error(folder, text)
 
@@ -219,3 +224,22 @@ collect = [%s]
     assert got["roller.csv:fy:min"] == min(fy.values(), key=float)
     assert got["roller.csv:fy:step=2"] == fy[2] != fy[max(fy)]
     assert got["roller.csv:fy:step=99"] == got["roller.csv:nothing:max"] == ""
+
+
+def test_collect_never_follows_a_link_out_of_the_point_folder(roller, folder):
+    """A link in a point's folder that points outside it is not read: the cell stays empty."""
+    outside = write(folder, "outside.csv", "step,secret\n1,4242\n")
+    study = write(folder, "link.toml", """
+scene = "%s"
+collect = ["leak.csv:secret", "solver.csv:iterations"]
+[[point]]
+"steps.count" = 1
+""" % BLOCK)
+    out = os.path.join(folder, "out")
+    r = run_study(roller, study, "--out", out, "--serial")
+    assert r.returncode == 0, r.stderr
+    point = rows(os.path.join(out, "study.csv"))[0]["out"]
+    os.symlink(outside, os.path.join(point, "leak.csv"))
+    from rollerpy.outputs import collect
+    values = collect(point, ["leak.csv:secret", "solver.csv:iterations"])
+    assert values["leak.csv:secret"] is None and values["solver.csv:iterations"] not in (None, "")

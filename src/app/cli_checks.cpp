@@ -49,10 +49,10 @@ void check_output_file(const std::string& path, const std::string& option) {
   std::error_code ec;
   const fs::file_status status = fs::symlink_status(path, ec);
   if (!ec && fs::exists(status) && !fs::is_regular_file(status)) {
-    const char* what = fs::is_directory(status)  ? "a folder"
-                       : fs::is_symlink(status)  ? "a symbolic link"
-                       : fs::is_fifo(status)     ? "a FIFO"
-                       : fs::is_socket(status)   ? "a socket"
+    const char* what = fs::is_directory(status)                                     ? "a folder"
+                       : fs::is_symlink(status)                                     ? "a symbolic link"
+                       : fs::is_fifo(status)                                        ? "a FIFO"
+                       : fs::is_socket(status)                                      ? "a socket"
                        : fs::is_block_file(status) || fs::is_character_file(status) ? "a device"
                                                                                     : "not a regular file";
     throw InputError(fmt::format(
@@ -62,8 +62,8 @@ void check_output_file(const std::string& path, const std::string& option) {
   }
   const fs::path folder = fs::path(path).parent_path();
   if (!folder.empty() && !fs::is_directory(folder, ec))
-    throw InputError(fmt::format("{} {}: the folder {} does not exist (create it first)", option, path,
-                                 folder.string()));
+    throw InputError(
+        fmt::format("{} {}: the folder {} does not exist (create it first)", option, path, folder.string()));
 }
 
 }  // namespace roller::app

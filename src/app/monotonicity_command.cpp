@@ -271,7 +271,8 @@ Command add_monotonicity_command(CLI::App& app) {
                   "out-of-plane stress: zero (a = 3 s11, the thesis) or elastic (nu (t11 + t22))")
       ->check(CLI::IsMember({"zero", "elastic"}))
       ->capture_default_str();
-  cmd->add_option("--density", args->density, "rho [t/mm^3] of the dynamic term (with --dt, --h)")->check(finite_number());
+  cmd->add_option("--density", args->density, "rho [t/mm^3] of the dynamic term (with --dt, --h)")
+      ->check(finite_number());
   cmd->add_option("--dt", args->dt, "time step [s] of the dynamic term rho h^2/dt^2")->check(finite_number());
   cmd->add_option("--h", args->h, "inverse-estimate length h [mm] of the dynamic term")->check(finite_number());
   cmd->add_option("--out,-o", args->out, "output folder")->capture_default_str();

@@ -170,8 +170,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   summary.steps_done = state_.steps_done;
   // Written now with room to spare, so that the run's end can still say why it stopped when the
   // disk fills up meanwhile.
-  if (files)
-    write_with_reserve(summary_file, summary_json(*this, summary, first_step, resumed), kSummaryReserve);
+  if (files) write_with_reserve(summary_file, summary_json(*this, summary, first_step, resumed), kSummaryReserve);
   // VTU and state files are written while the next step is solved (io/background_writer.hpp),
   // except when the factors go to disk to save memory: the jobs' copies would undo that.
   BackgroundWriter writer(!scene_.newton.linear.out_of_core);

@@ -252,9 +252,8 @@ void Simulation::record_state(StepRecord& res) const {
   r.velocity = state_.roller_velocity;
   // A stationary pass (one step) carries its travel segment's load whole, not the ramp the step's
   // number would read in a transient pass's program.
-  const int program_step = scene_.passes.method == PassMethod::Stationary
-                               ? steady_load(scene_, std::nullopt).travel->last_step
-                               : res.step;
+  const int program_step =
+      scene_.passes.method == PassMethod::Stationary ? steady_load(scene_, std::nullopt).travel->last_step : res.step;
   r.anchor_y = program_.pose(program_step).centre.y();
   if (const Suspension* suspension = dynamics_.suspension()) r.deflection = suspension->deflection();
   r.deflection_velocity = dynamics_.suspension_velocity();

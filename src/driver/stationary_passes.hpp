@@ -89,12 +89,12 @@ class StationaryPasses {
   ElementMaterials elastic_materials_;
   LinearSolverOptions linear_solver_;  // the scene's, for the steady Jacobian
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
-  SparseMatrix elastic_free_;                            // K_e over the free dofs, which solver_ holds factorised
-  VecX hertz_load_;                                      // the Hertz pressure and its traction (all dofs)
+  SparseMatrix elastic_free_;  // K_e over the free dofs, which solver_ holds factorised
+  VecX hertz_load_;            // the Hertz pressure and its traction (all dofs)
   // Makes the correction on the roller's contact (passes.stationary_contact = "roller"), one a pass.
   std::function<std::unique_ptr<RollerCorrection>()> new_roller_correction_;
-  std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
-  std::vector<Index> extraction_;  // per streamline: its point at the extraction column (of the first copy)
+  std::optional<RollerPose> pose_;  // the roller's, with the roller's contact
+  std::vector<Index> extraction_;   // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;
   VecX elastic_load_, elastic_displacement_;  // elastic_displacement()'s last load, and its displacement
 };

@@ -55,11 +55,11 @@ void write_file_atomically(const fs::path& path, std::string_view content, std::
     // A link (ELOOP), a FIFO without a reader (ENXIO), a folder or a device under the name: the
     // user's folder holds something roller does not write through (exit 2).
     if (fd >= 0 || open_error == ELOOP || open_error == ENXIO || open_error == EISDIR)
-      throw InputError(fmt::format("cannot write {}: something other than a regular file stands at '{}'; "
-                                   "remove it (roller never writes through or replaces it)",
-                                   named(path, what), tmp.string()));
-    throw_file_error(fmt::format("cannot write {}: cannot create '{}'", named(path, what), tmp.string()),
-                     open_error);
+      throw InputError(
+          fmt::format("cannot write {}: something other than a regular file stands at '{}'; "
+                      "remove it (roller never writes through or replaces it)",
+                      named(path, what), tmp.string()));
+    throw_file_error(fmt::format("cannot write {}: cannot create '{}'", named(path, what), tmp.string()), open_error);
   }
   std::size_t done = 0;
   while (done < content.size()) {

@@ -70,9 +70,10 @@ void apply_override(toml::table& root, const SceneOverride& o) {
   // "", ".a", "a..b", "a.": a component without a name (a Python dict's keys are not parsed).
   if (parts.empty() || o.key.back() == '.' ||
       std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
-    throw InputError(fmt::format("--set '{}={}': expected a key of dotted names, e.g. material.E or "
-                                 "roller.path[1].fy",
-                                 o.key, o.value));
+    throw InputError(
+        fmt::format("--set '{}={}': expected a key of dotted names, e.g. material.E or "
+                    "roller.path[1].fy",
+                    o.key, o.value));
   toml::table* t = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) t = enter_part(*t, o, parse_part(o, parts[i]));
   if (parse_part(o, parts.back()).block)

@@ -24,9 +24,10 @@ std::unique_ptr<toml::node> integer_node(const py::handle& value, const std::str
   int overflow = 0;
   const long long v = PyLong_AsLongLongAndOverflow(integer.ptr(), &overflow);
   if (overflow != 0)
-    throw InputError(fmt::format("{} = {}: an integer beyond 64 bits; expected a value such as the scene file "
-                                 "holds (docs/scenes.md)",
-                                 key, integer.attr("__str__")().cast<std::string>()));
+    throw InputError(
+        fmt::format("{} = {}: an integer beyond 64 bits; expected a value such as the scene file "
+                    "holds (docs/scenes.md)",
+                    key, integer.attr("__str__")().cast<std::string>()));
   return std::make_unique<toml::value<int64_t>>(static_cast<int64_t>(v));
 }
 
@@ -34,9 +35,10 @@ std::unique_ptr<toml::node> integer_node(const py::handle& value, const std::str
 // floats floats.
 std::unique_ptr<toml::node> to_node(const py::handle& value, const std::string& key, int depth) {
   if (depth > kMaxNesting)
-    throw InputError(fmt::format("{}: dicts or lists nested deeper than {} levels; expected a scene's tables "
-                                 "(docs/scenes.md)",
-                                 key.substr(0, 200), kMaxNesting));
+    throw InputError(
+        fmt::format("{}: dicts or lists nested deeper than {} levels; expected a scene's tables "
+                    "(docs/scenes.md)",
+                    key.substr(0, 200), kMaxNesting));
   if (py::isinstance<py::bool_>(value) || py::type::handle_of(value).attr("__name__").cast<std::string>() == "bool_")
     return std::make_unique<toml::value<bool>>(py::bool_(py::reinterpret_borrow<py::object>(value)).cast<bool>());
   if (py::isinstance<py::str>(value)) return std::make_unique<toml::value<std::string>>(value.cast<std::string>());

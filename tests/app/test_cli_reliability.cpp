@@ -104,8 +104,10 @@ TEST_CASE("roller run --resume before the first checkpoint starts over and says 
     CHECK(summary["resumed"] == false);
   }
   // A scene that keeps no checkpoint can never resume: said, with the key.
-  const Run never = run_roller("run problems/block_compression.toml --steps 2 --set output.checkpoint_every=0 "
-                               "--resume --out " + (dir.path() / "never").string());
+  const Run never = run_roller(
+      "run problems/block_compression.toml --steps 2 --set output.checkpoint_every=0 "
+      "--resume --out " +
+      (dir.path() / "never").string());
   CHECK(never.exit_code == 2);
   CHECK_THAT(never.output, Contains("output.checkpoint_every = 0") && Contains("without --resume"));
 }
@@ -113,9 +115,9 @@ TEST_CASE("roller run --resume before the first checkpoint starts over and says 
 TEST_CASE("a load whose Hertz contact is wider than the strip is an error naming the unit slip", "[app][errors]") {
   // A surface modulus in the wrong unit: a stationary pass would spread the load far beyond the
   // strip's ends and put a fraction of it on the strip.
-  const Run r = run_roller(
-      "run problems/shakedown_p45.toml --set 'passes.method=\"stationary\"' --set material.E=1e-6 --out " +
-      (fs::temp_directory_path() / ("roller_cli_soft_" + std::to_string(::getpid()))).string());
+  const Run r =
+      run_roller("run problems/shakedown_p45.toml --set 'passes.method=\"stationary\"' --set material.E=1e-6 --out " +
+                 (fs::temp_directory_path() / ("roller_cli_soft_" + std::to_string(::getpid()))).string());
   INFO(r.output);
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.output, Contains("roller.path[0].fy") && Contains("wider than the strip") &&

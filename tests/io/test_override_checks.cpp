@@ -8,8 +8,8 @@
 #include "../support/scene_errors.hpp"
 
 using namespace roller;
-using test::error_of;
 using Catch::Contains;
+using test::error_of;
 
 namespace {
 
@@ -72,9 +72,9 @@ TEST_CASE("fewer steps cut a single pass short but never a pass of a scene with 
   CHECK(error_of(kStrip, {{"steps.count", "3"}}).empty());  // one pass: run its first 3 steps
   const std::string passes = kStrip + "[passes]\ncount = 2\n";
   CHECK(error_of(passes).empty());
-  CHECK_THAT(error_of(passes, {{"steps.count", "3"}}),
-             Contains("steps.count = 3") && Contains("[passes]") && Contains("2 passes of 6 steps") &&
-                 Contains("cannot be shortened") && Contains("passes.count"));
+  CHECK_THAT(error_of(passes, {{"steps.count", "3"}}), Contains("steps.count = 3") && Contains("[passes]") &&
+                                                           Contains("2 passes of 6 steps") &&
+                                                           Contains("cannot be shortened") && Contains("passes.count"));
   CHECK(error_of(passes, {{"passes.count", "1"}}).empty());
   CHECK_THAT(error_of(kStrip + "[passes]\nmethod = \"stationary\"\n", {{"steps.count", "5"}}),
              Contains("cannot be shortened"));

@@ -257,7 +257,8 @@ TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", 
   const fs::path whole = dir.path() / "whole", split = dir.path() / "split";
   const std::string run =
       "run problems/shakedown_p37.toml --set 'passes.method=\"stationary\"' --set passes.count=3 --set "
-      "output.save_states=[2] --set 'passes.stationary_contact=\"" + contact + "\"' --out ";
+      "output.save_states=[2] --set 'passes.stationary_contact=\"" +
+      contact + "\"' --out ";
   const test::Run r = test::run_roller(run + whole.string());
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -281,7 +282,8 @@ TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", 
   std::string line;
   std::getline(rows, line);
   const std::vector<std::string> header = cells(line);
-  const auto column = static_cast<std::size_t>(std::find(header.begin(), header.end(), "fy_prescribed") - header.begin());
+  const auto column =
+      static_cast<std::size_t>(std::find(header.begin(), header.end(), "fy_prescribed") - header.begin());
   REQUIRE(column < header.size());
   int passes = 0;
   while (std::getline(rows, line)) {

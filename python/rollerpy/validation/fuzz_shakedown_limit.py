@@ -16,16 +16,17 @@ mutated as fuzz-scenes mutates (fuzz_scenes.mutate_text), or one option's value 
   --csv/--json  a path of one of these kinds: a new file, an existing regular file, a file in a
               folder that does not exist, '' (empty), a folder, a FIFO (os.mkfifo in the case's
               folder), a symbolic link to another file, a null device node of the case's folder
-              (mknod c 1 3), /dev/null (only once the node of the same option survived a case).
+              (mknod c 1 3; a FIFO in its place where the fuzzer may not make device nodes). The
+              machine's own /dev/null is never a target: a regression would replace it.
 A case passes when roller ends as fuzz-scenes judges (fuzz_scenes.exit_problem: documented exit
 code with its message, no crash, hang or sanitizer report; exit 1's message is "shakedown-limit
 failed"), exit 2 where it is due: an empty path or an existing target that is not a regular file
 (a folder, a FIFO, a device, a symbolic link: lstat) must be refused; no such target is replaced
 or written through (a FIFO is still a FIFO, a link still the same link, the file it points to
-unchanged, a device still a device; a replaced /dev/null is made again at once, and fails the
-case); on exit 0 every requested regular file exists; the CSV holds no nan and no inf but in its
-p0/k columns (an unlimited row), the JSON no nan, inf or null but a bound's load factor and p0/k
-when no depth limits it (the bound has no depth); roller's printed result holds no nan.
+unchanged, a device still a device); on exit 0 every requested regular file exists; the CSV
+holds no nan and no inf but in its p0/k columns (an unlimited row), the JSON no nan, inf or null
+but a bound's load factor and p0/k when no depth limits it (the bound has no depth); roller's
+printed result holds no nan.
 Reproducers in OUT/failures/<case>/. Exit code 0 when every case passed, 1 otherwise.
 
 --sanitized: ROLLER is a sanitizer build: case_hardened and shakedown_case_hardened only, no
@@ -52,22 +53,18 @@ BAD_TRACTIONS = ["nan", "NaN", "inf", "-inf", "-1", "1e308", "10.000001", "x", "
 BAD_REFINES = ["0", "65", "nan", "-1", "x"]
 GOOD_SETS = [["--set", "contact.friction=0.2"], ["--set", "material.yield_stress=900.0"],
              ["--set", "material.nu=0.25"], ["--set", "contact.friction=0.0"]]
-TARGETS = ["new", "new", "existing", "missing_folder", "empty", "folder", "fifo", "symlink", "device", "dev_null"]
-REFUSED = {"empty", "folder", "fifo", "symlink", "device", "dev_null"}  # exit 2 is due
+TARGETS = ["new", "new", "existing", "missing_folder", "empty", "folder", "fifo", "symlink", "device"]
+REFUSED = {"empty", "folder", "fifo", "symlink", "device"}  # exit 2 is due
 P0K_COLUMNS = {"first_yield_p0_over_k", "elastic_p0_over_k", "kinematic_p0_over_k"}  # "inf": an unlimited row
 UNLIMITED_KEYS = {"load_factor", "p0_over_k"}  # null in a bound without a depth: no depth limits it
 
 
-def make_target(kind, folder, ending, flag, dev_null_ok):
+def make_target(kind, folder, ending, flag):
     """The path of one output option's target, made in `folder` as its kind asks."""
     name = flag.strip("-")
-    if kind == "dev_null" and not dev_null_ok:
-        kind = "device"
     path = os.path.join(folder, "%s_%s%s" % (name, kind, ending))
     if kind == "empty":
         return kind, ""
-    if kind == "dev_null":
-        return kind, "/dev/null"
     if kind == "missing_folder":
         return kind, os.path.join(folder, "no", "such", "folder", "limit" + ending)
     if kind == "existing":
@@ -78,7 +75,11 @@ def make_target(kind, folder, ending, flag, dev_null_ok):
     elif kind == "fifo":
         os.mkfifo(path)
     elif kind == "device":
-        os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        try:
+            os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(1, 3))
+        except PermissionError:  # not root: a FIFO is refused alike
+            os.mkfifo(path)
+            kind = "fifo"
     elif kind == "symlink":
         with open(path + ".linked", "w") as f:
             f.write("the file a link points to: %s\n" % path)
@@ -96,13 +97,6 @@ def setup_line(kind, path):
 
 def target_problem(kind, path):
     """Why a refused target is no longer what it was ("" when it is)."""
-    if kind == "dev_null":
-        if not stat.S_ISCHR(os.stat("/dev/null").st_mode):
-            os.unlink("/dev/null")
-            os.mknod("/dev/null", stat.S_IFCHR | 0o666, os.makedev(1, 3))
-            os.chmod("/dev/null", 0o666)
-            return "/dev/null replaced by a file (made again)"
-        return ""
     try:
         mode = os.lstat(path).st_mode
     except FileNotFoundError:
@@ -190,7 +184,6 @@ def main(argv=None):
     fuzz = Campaign("fuzz-shakedown-limit", args)
     rng = fuzz.rng
     keys = scene_keys(args.roller, fuzz.work)
-    dev_null_ok = {"--csv": False, "--json": False}  # the device node survived this option
     for case in range(1, args.cases + 1):
         folder = fuzz.case_dir(case)
         seed = rng.choice(SMALL_SEEDS if args.sanitized else SEEDS)
@@ -227,7 +220,7 @@ def main(argv=None):
         for flag, ending in (("--csv", ".csv"), ("--json", ".json")):
             if hostile == flag or rng.random() < 0.5:
                 kinds = [k for k in TARGETS if (k in REFUSED) == (hostile == flag)]
-                kind, path = make_target(rng.choice(kinds), folder, ending, flag, dev_null_ok[flag])
+                kind, path = make_target(rng.choice(kinds), folder, ending, flag)
                 targets.append((flag, kind, path))
                 words += [flag, path]
                 dues += ["%s to %s %r" % (flag, kind, path)] if kind in REFUSED else []
@@ -235,9 +228,6 @@ def main(argv=None):
         result = run(command, os.path.join(folder, "output.txt"), args.timeout, sanitizer_env())
         output = result.output()
         problem = judge(result.exit_code, output, result.timed_out, "; ".join(dues), targets)
-        for flag, kind, path in targets:
-            if kind == "device" and not problem:
-                dev_null_ok[flag] = True
         outcome = "timeout" if result.timed_out else str(result.exit_code)
         setup = [setup_line(k, p) for _, k, p in targets]
         fuzz.record(case, outcome, problem, " ".join(what + words[:40]), command, output, [scene],
