@@ -7,6 +7,7 @@ import json
 import os
 import shutil
 import signal
+import stat
 import subprocess
 import time
 from dataclasses import dataclass
@@ -111,13 +112,42 @@ def run(cmd, log, timeout=None, env=None):
     return RunResult(command=list(cmd), log=log, exit_code=rc, timed_out=timed_out, wall_s=time.monotonic() - t0)
 
 
+def output_file_problem(path, option):
+    """Why `path` cannot be a file the user named for writing ("" when it can): as roller's own
+    --csv/--json (docs/reliability.md), only a new or a regular file in an existing folder."""
+    if not path:
+        return "%s '': expected a file name" % option
+    if os.path.lexists(path) and not stat.S_ISREG(os.lstat(path).st_mode):
+        return ("%s %s: something other than a regular file stands there (a folder, a link, a FIFO or a device); "
+                "expected a new or a regular file" % (option, path))
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        return "%s %s: the folder %s does not exist" % (option, path, folder)
+    return ""
+
+
 @contextlib.contextmanager
-def atomic_file(path, newline=None):
-    """A text file written whole or not at all: written beside as PATH.tmp, renamed on success."""
+def atomic_file(path, newline=None, mode="w"):
+    """A file written whole or not at all: written beside as PATH.tmp (a regular file of ours,
+    never through a link or into a FIFO), renamed on success."""
     tmp = path + ".tmp"
-    with open(tmp, "w", newline=newline) as f:
-        yield f
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW | os.O_NONBLOCK, 0o666)
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise OSError("%s: not a regular file; roller never writes through it" % tmp)
+    try:
+        with os.fdopen(fd, mode, **({} if "b" in mode else {"newline": newline})) as f:
+            yield f
+    except BaseException:
+        os.unlink(tmp)
+        raise
     os.replace(tmp, path)
+
+
+def save_figure(fig, path, **savefig_options):
+    """A matplotlib figure written atomically as PNG (the format from the name: .png)."""
+    with atomic_file(path, mode="wb") as f:
+        fig.savefig(f, format=os.path.splitext(path)[1][1:] or "png", **savefig_options)
 
 
 def write_record(path, record):

@@ -3,12 +3,14 @@ a VTU round-trips raw and zlib-compressed, the arrays of a run's VTU match its p
 tables (points, cells, the roller's last step), the CSV readers give the rows and numbers of the
 files, fields.pvd names every step; and the nan/inf scanner finds planted values."""
 import os
+import subprocess
 
 import numpy as np
 import pytest
 from conftest import run_scene
 
 from rollerpy import outputs, scan, vtu
+from rollerpy.paths import ROOT
 
 
 @pytest.fixture(scope="module")
@@ -93,3 +95,31 @@ def test_a_run_scans_clean_and_the_scanner_finds_planted_values(hertz_out):
     folder = scan.scan_outputs(hertz_out)
     assert folder.flagged == [] and folder.vtu_files == len(vtu.available_steps(hertz_out))
     assert folder.arrays >= 19 * folder.vtu_files
+
+
+def test_files_named_for_writing_are_new_or_regular_and_written_atomically(tmp_path, hertz_out):
+    """As roller's --csv/--json: a link, a FIFO or a folder is refused and left as it was; a regular
+    file is replaced whole; the temporary file is never written through a link."""
+    from rollerpy.runner import atomic_file, output_file_problem
+    victim = tmp_path / "victim.png"
+    victim.write_text("keep me\n")
+    (tmp_path / "link.png").symlink_to(victim)
+    os.mkfifo(tmp_path / "fifo.png")
+    assert "expected a file name" in output_file_problem("", "--output")
+    for name in ("link.png", "fifo.png", "."):
+        assert "something other than a regular file" in output_file_problem(str(tmp_path / name), "--output")
+    assert "does not exist" in output_file_problem(str(tmp_path / "no" / "x.png"), "--output")
+    assert output_file_problem(str(victim), "--output") == ""
+    (tmp_path / "new.png.tmp").symlink_to(victim)
+    with pytest.raises(OSError):
+        with atomic_file(str(tmp_path / "new.png")) as f:
+            f.write("x")
+    assert victim.read_text() == "keep me\n" and not (tmp_path / "new.png").exists()
+    with atomic_file(str(victim)) as f:
+        f.write("new\n")
+    assert victim.read_text() == "new\n" and (tmp_path / "link.png").is_symlink()
+    for name in ("fifo.png", "link.png"):
+        r = subprocess.run([os.path.join(ROOT, "rollerpy"), "plot-forces", hertz_out, "--output", str(tmp_path / name)],
+                           capture_output=True, text=True)
+        assert r.returncode == 2 and "regular file" in r.stderr, r.stderr
+    assert (tmp_path / "fifo.png").is_fifo() and victim.read_text() == "new\n"

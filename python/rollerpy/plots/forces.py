@@ -13,6 +13,7 @@ import numpy as np
 
 from ..command import parser
 from ..outputs import num, read_rows
+from ..runner import output_file_problem, save_figure
 from . import plt
 
 
@@ -64,9 +65,12 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if not os.path.exists(os.path.join(args.out, "roller.csv")):
         sys.exit("plot-forces: %s has no roller.csv (a run without a roller, or not an output folder)" % args.out)
+    if args.output is not None and output_file_problem(args.output, "--output"):
+        print("plot-forces: " + output_file_problem(args.output, "--output"), file=sys.stderr)
+        return 2
     path = args.output or os.path.join(args.out, "figures", "forces.png")
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     fig = forces_figure(args.out, args.label)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     print("plot-forces: %s" % path)

@@ -23,6 +23,7 @@ import numpy as np
 from ..command import parser
 from ..outputs import read_rows
 from ..paths import DEFAULT_ROLLER
+from ..runner import output_file_problem, save_figure
 from ..line_contact_shakedown import shakedown_limit
 from . import plt
 
@@ -52,6 +53,9 @@ def main(argv=None):
     ap.add_argument("--melan", metavar="SCENE", help="draw roller shakedown-limit's line for this scene")
     ap.add_argument("--roller", default=DEFAULT_ROLLER)
     args = ap.parse_args(argv)
+    if args.out is not None and output_file_problem(args.out, "--out"):
+        print("plot-shakedown-map: " + output_file_problem(args.out, "--out"), file=sys.stderr)
+        return 2
     rows = read_rows(args.csv)
     if not rows:
         sys.exit("plot_shakedown_map: %s has no points" % args.csv)
@@ -101,5 +105,5 @@ def main(argv=None):
         print("| %.2f | %.2f | %.2f | %s | %s | %s | %.0f |" % (
             load, mu, limits[mu], expected, r.get("passes.verdict") or "—", r["status"], float(r["wall_s"])))
     out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.csv)), "shakedown_map.png")
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out, dpi=110)
     print("wrote", out)
