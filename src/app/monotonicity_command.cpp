@@ -23,14 +23,13 @@
 #include "commands.hpp"
 #include "roller/analysis/monotonicity_map.hpp"
 #include "roller/core/error.hpp"
+#include "rollerpy_plot.hpp"
 
 namespace roller::app {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kPython = "/usr/bin/python3";
 
 struct MonotonicityArgs {
   Real youngs_modulus = 2.1e5;
@@ -101,11 +100,6 @@ std::ofstream open_output(const fs::path& path) {
 }
 
 // "'launcher' plot-monotonicity 'dir'" with single quotes escaped for the shell.
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return q + "'";
-}
 
 // The 4-D grid into monotonicity_grid.csv: its points, how many are positive definite, and at
 // how many the three tests disagree.
@@ -165,25 +159,7 @@ nlohmann::json write_slices(const MonotonicityMapOptions& options, const Monoton
 
 // The PNG maps from the data in `dir` by the Python package (exit code of the command).
 int render_maps(const MonotonicityArgs& args, const fs::path& dir) {
-  const fs::path script = fs::path(ROLLER_SOURCE_DIR) / "rollerpy";
-  const std::string command =
-      fmt::format("{} plot-monotonicity {}", shell_quote(script.string()), shell_quote(dir.string()));
-  if (args.no_plot) {
-    std::cout << "roller monotonicity: PNG maps not rendered (--no-plot); run: " << command << "\n";
-    return 0;
-  }
-  if (!fs::exists(kPython) || !fs::exists(script)) {
-    std::cout << "roller monotonicity: " << kPython << " or " << script.string()
-              << " not found; render the PNG maps with: " << command << "\n";
-    return 0;
-  }
-  std::cout.flush();
-  if (std::system(command.c_str()) != 0) {
-    std::cerr << "roller monotonicity: plotting failed (data are in " << dir.string() << "); rerun: " << command
-              << "\n";
-    return 1;
-  }
-  return 0;
+  return render_with_rollerpy("plot-monotonicity", dir, args.no_plot, "roller monotonicity");
 }
 
 int run_monotonicity(const MonotonicityArgs& args) {

@@ -1,6 +1,8 @@
 // roller shakedown-limit SCENE: Melan's bound of the scene's strip, roller and traction from one
 // elastic solution (docs/model.md, "Melan's bound"; docs/tutorial.md shows a session).
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -16,6 +18,7 @@
 #include "roller/driver/shakedown_limit.hpp"
 #include "roller/io/atomic_file.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "rollerpy_plot.hpp"
 
 namespace roller::app {
 
@@ -27,9 +30,15 @@ struct ShakedownLimitArgs {
   int refine = 0;
   std::optional<Real> traction;
   std::string csv, json;
+  std::string map;      // the folder of the map over q/p
+  int map_points = 11;  // q/p = 0 .. 0.5
+  bool no_plot = false;
 };
 
-const char* where(Real depth, Real half_width) { return depth <= 0.05 * half_width ? "at the surface" : "below it"; }
+// The map's file names in its folder.
+constexpr const char* kMapCsv = "shakedown_limit_map.csv";
+
+const char* where(Real depth) { return depth == 0.0 ? "at the surface" : "below it"; }
 
 // A limit as its load factor, the p0 it puts on the scene and p0/k with the k where it is reached.
 std::string bound_line(const char* name, const ShakedownLimitResult& r, const MelanLimit& b) {
@@ -39,8 +48,7 @@ std::string bound_line(const char* name, const ShakedownLimitResult& r, const Me
       "  {:<26} load factor {:.4g}: p0 = {:.5g} MPa, p0/k = {:.4g} (k = {:.4g} MPa there), at depth {:.3g} mm "
       "({:.3g} a, {}), x = {:.4g} mm\n",
       name, b.load_factor(), b.load_factor() * r.load.hertz_peak, r.p0_over_k(b),
-      c.critical_yield_stress / std::sqrt(3.0), c.depth, c.depth / r.load.half_width, where(c.depth, r.load.half_width),
-      c.critical_x);
+      c.critical_yield_stress / std::sqrt(3.0), c.depth, c.depth / r.load.half_width, where(c.depth), c.critical_x);
 }
 
 void print_result(const Scene& scene, const ShakedownLimitResult& r) {
@@ -60,10 +68,59 @@ void print_result(const Scene& scene, const ShakedownLimitResult& r) {
   // With p0 = sqrt(P E*/(pi R)) the load scales with the square of the factor (a grows with it).
   std::cout << fmt::format("  the load P at the elastic shakedown limit (Hertz: P ~ p0^2): {:.6g} N/mm\n",
                            l.load * r.elastic.load_factor() * r.elastic.load_factor());
+  for (const std::string& w : r.warnings) std::cerr << "roller: warning: " << w << "\n";
+}
+
+// The bound's governing mode: the surface or below it.
+std::string mode_of(const MelanLimit& b) {
+  if (b.critical_row < 0) return "none";
+  return b.rows[b.critical_row].depth == 0.0 ? "surface" : "subsurface";
+}
+
+// The map over q/p: a line per traction, in the folder `dir` as CSV, and its figure.
+int write_map(const Scene& scene, const ShakedownLimitArgs& args) {
+  namespace fs = std::filesystem;
+  std::vector<Real> tractions;
+  for (int i = 0; i < args.map_points; ++i) tractions.push_back(0.5 * i / (args.map_points - 1));
+  ShakedownLimitSettings settings;
+  settings.progress = &std::cout;
+  std::vector<ShakedownLimitResult> map;
+  try {
+    map = compute_shakedown_map(scene, tractions, settings);
+  } catch (const NumericalError& e) {
+    std::cerr << "roller: shakedown-limit failed: " << e.what() << "\n";
+    return 1;
+  }
+  std::string text =
+      "q_over_p,elastic_p0_over_k,elastic_depth_over_a,elastic_mode,kinematic_p0_over_k,kinematic_depth_over_a,"
+      "kinematic_mode,nu\n";
+  auto cells = [](const ShakedownLimitResult& r, const std::optional<MelanLimit>& b) {
+    if (!b || b->critical_row < 0) return std::string(",,");
+    return fmt::format("{:.6g},{:.6g},{}", r.p0_over_k(*b), b->rows[b->critical_row].depth / r.load.half_width,
+                       mode_of(*b));
+  };
+  for (const ShakedownLimitResult& r : map)
+    text += fmt::format("{:.6g},{},{},{:.6g}\n", r.load.traction, cells(r, r.elastic), cells(r, r.kinematic),
+                        scene.strip_material().surface().poisson_ratio);
+  std::error_code ec;
+  fs::create_directories(args.map, ec);
+  if (ec) throw InputError(fmt::format("--map {}: cannot create the folder ({})", args.map, ec.message()));
+  write_file_atomically(fs::path(args.map) / kMapCsv, text, "the shakedown map's CSV");
+  std::cout << fmt::format("roller: shakedown map of '{}' over q/p = 0..0.5 in {}\n", scene.name,
+                           (fs::path(args.map) / kMapCsv).string());
+  std::vector<std::string> warned;
+  for (const ShakedownLimitResult& r : map)
+    for (const std::string& w : r.warnings)
+      if (std::find(warned.begin(), warned.end(), w) == warned.end()) warned.push_back(w);
+  for (const std::string& w : warned) std::cerr << "roller: warning: " << w << "\n";
+  return render_with_rollerpy("plot-melan-map", args.map, args.no_plot, "roller shakedown-limit");
 }
 
 nlohmann::json bound_json(const ShakedownLimitResult& r, const MelanLimit& b) {
-  nlohmann::json j{{"bound", enum_name(b.bound)}, {"load_factor", b.load_factor()}, {"p0_over_k", r.p0_over_k(b)}};
+  nlohmann::json j{{"bound", enum_name(b.bound)},
+                   {"load_factor", b.load_factor()},
+                   {"p0_over_k", r.p0_over_k(b)},
+                   {"mode", mode_of(b)}};
   if (b.critical_row >= 0) {
     const MelanRowLimit& c = b.rows[b.critical_row];
     j["depth"] = c.depth;
@@ -89,6 +146,7 @@ void write_json(const std::string& path, const ShakedownLimitResult& r) {
                    {"first_yield_p0_over_k", r.elastic.first_yield() * r.scene_p0_over_k(r.elastic)},
                    {"elastic", bound_json(r, r.elastic)}};
   if (r.kinematic) j["kinematic"] = bound_json(r, *r.kinematic);
+  j["warnings"] = r.warnings;
   write_file_atomically(path, j.dump(2) + "\n", "the shakedown limit's JSON");
 }
 
@@ -138,6 +196,12 @@ Command add_shakedown_limit_command(CLI::App& app) {
       ->check(finite_range(0.0, 10.0));
   cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file (a new or a regular file)");
   cmd->add_option("--json", args->json, "write the limits to this JSON file (a new or a regular file)");
+  cmd->add_option(
+      "--map", args->map,
+      "sweep a uniform traction q/p from 0 to 0.5 and write the map to this folder (shakedown_limit_map.csv "
+      "and .png, beside Johnson's line-contact limits)");
+  cmd->add_option("--map-points", args->map_points, "tractions of the map, from 0 to 0.5")->check(CLI::Range(2, 101));
+  cmd->add_flag("--no-plot", args->no_plot, "with --map: write the CSV only; print the plotting command");
   return [args, cmd] {
     // The files named are checked before anything is computed.
     if (cmd->count("--csv") > 0) check_output_file(args->csv, "--csv");
@@ -146,6 +210,14 @@ Command add_shakedown_limit_command(CLI::App& app) {
     for (const auto& s : args->sets) overrides.push_back(parse_override(s));
     if (args->refine > 0) overrides.push_back({"mesh.refine", std::to_string(args->refine)});
     const Scene scene = load_scene(args->scene, overrides);
+    if (cmd->count("--map") > 0) {
+      if (args->traction || cmd->count("--csv") > 0 || cmd->count("--json") > 0)
+        throw InputError(
+            "--map sweeps the traction and writes its own files: give it without --traction, --csv "
+            "and --json");
+      if (args->map.empty()) throw InputError("--map '': expected a folder name");
+      return write_map(scene, *args);
+    }
     ShakedownLimitSettings settings;
     settings.traction = args->traction;
     if (cmd->count("--csv") > 0) settings.search = MelanSearch::EveryRow;

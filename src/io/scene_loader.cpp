@@ -196,16 +196,20 @@ void check_path_within_steps(const Scene& scene, int steps, const char* when) {
 }
 
 // A pass ends with the lift of its last path segment, and every pass after the first starts from
-// it: a shorter pass (--steps N, --set steps.count=N) would cut the lift off every pass.
+// it: fewer steps than the path's (--steps N, --set steps.count=N) would cut the lift off every
+// pass. A path overridden to fit the fewer steps is a pass of its own.
 void check_passes_not_shortened(const Scene& written, const Scene& scene) {
   const bool passes = scene.passes.count > 1 || scene.passes.method == PassMethod::Stationary;
-  if (!passes || !scene.roller || scene.steps.n_steps >= written.steps.n_steps) return;
+  if (!passes || !scene.roller) return;
+  int path_end = 0;
+  for (const PathSegment& seg : scene.roller->path) path_end = std::max(path_end, seg.last_step);
+  if (path_end <= scene.steps.n_steps) return;
   throw InputError(fmt::format(
-      "{}: steps.count = {} (--steps or --set) on a scene with [passes] ({} passes of {} steps, method \"{}\"): "
-      "every pass runs the whole roller.path and ends with its lift, so a pass cannot be shortened; expected "
-      "steps.count >= {}, or fewer passes (--set passes.count=N)",
-      scene.file.string(), scene.steps.n_steps, scene.passes.count, written.steps.n_steps,
-      enum_name(scene.passes.method), written.steps.n_steps));
+      "{}: steps.count = {} (--steps or --set) on a scene with [passes] ({} passes, method \"{}\"): every pass runs "
+      "the whole roller.path, which ends at step {}, with its lift, so a pass cannot be shortened (the file has "
+      "steps.count = {}); expected steps.count >= {}, or fewer passes (--set passes.count=N)",
+      scene.file.string(), scene.steps.n_steps, scene.passes.count, enum_name(scene.passes.method), path_end,
+      written.steps.n_steps, path_end));
 }
 
 // Each key once among the overrides (--set, --steps, --refine, --contact): a later one would

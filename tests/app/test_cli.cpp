@@ -107,12 +107,13 @@ TEST_CASE("roller run --resume continues a shortened run to the same results as 
   CHECK(roller::test::read_text(split / "contact.csv") == roller::test::read_text(whole / "contact.csv"));
   CHECK(roller::test::read_text(split / "step_0010.vtu") == roller::test::read_text(whole / "step_0010.vtu"));
   CHECK(roller::test::read_text(split / "fields.pvd") == roller::test::read_text(whole / "fields.pvd"));
-  // Without a checkpoint there is nothing to resume: a clear input error.
+  // Without a checkpoint there is nothing to lose: the run starts over and says so.
   const fs::path empty = fs::temp_directory_path() / ("roller_cli_empty_" + std::to_string(::getpid()));
   fs::create_directories(empty);
   const Run none = run_roller(scene + empty.string() + " --resume");
-  CHECK(none.exit_code == 2);
-  CHECK_THAT(none.output, Catch::Contains("checkpoint.cbor does not exist"));
+  CHECK(none.exit_code == 0);
+  CHECK_THAT(none.output, Catch::Contains("holds no checkpoint yet") && Catch::Contains("starting over"));
+  CHECK(roller::test::read_text(empty / "roller.csv") == roller::test::read_text(whole / "roller.csv"));
   for (const auto& d : {whole, split, empty}) fs::remove_all(d);
 }
 
@@ -215,7 +216,8 @@ TEST_CASE("a state file that cannot be written ends the run with exit code 2, it
   const Run r = run_roller("run problems/block_compression.toml --steps 3 --overwrite --out " + out.string());
   INFO(r.output);
   CHECK(r.exit_code == 2);
-  CHECK_THAT(r.output, Catch::Contains("Is a directory"));
+  CHECK_THAT(r.output, Catch::Contains("something other than a regular file stands at") &&
+                           Catch::Contains("checkpoint.cbor.tmp"));
   CHECK_THAT(r.output, Catch::Contains("roller: input error:") && Catch::Contains("cannot write the state file"));
   REQUIRE(fs::exists(out / "summary.json"));
   const auto summary = nlohmann::json::parse(roller::test::read_text(out / "summary.json"));

@@ -73,9 +73,15 @@ TEST_CASE("fewer steps cut a single pass short but never a pass of a scene with 
   const std::string passes = kStrip + "[passes]\ncount = 2\n";
   CHECK(error_of(passes).empty());
   CHECK_THAT(error_of(passes, {{"steps.count", "3"}}), Contains("steps.count = 3") && Contains("[passes]") &&
-                                                           Contains("2 passes of 6 steps") &&
+                                                           Contains("ends at step 6") &&
                                                            Contains("cannot be shortened") && Contains("passes.count"));
   CHECK(error_of(passes, {{"passes.count", "1"}}).empty());
+  // A path given anew to fit the fewer steps is a shorter pass, not a cut one.
+  CHECK(error_of(passes, {{"steps.count", "3"},
+                          {"roller.path",
+                           "[{ steps = [1, 1], fy = 100.0 }, { steps = [2, 2], dx = 5.0, fy = 100.0 }, "
+                           "{ steps = [3, 3], dy = 1.0 }]"}})
+            .empty());
   CHECK_THAT(error_of(kStrip + "[passes]\nmethod = \"stationary\"\n", {{"steps.count", "5"}}),
              Contains("cannot be shortened"));
 }

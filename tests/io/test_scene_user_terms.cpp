@@ -86,10 +86,12 @@ TEST_CASE("command-line overrides reach a block of an array of tables (--set rol
   const Real k = s.material.yield_stress / std::sqrt(3.0);
   CHECK(hertz_line_contact(*s.roller->path[0].fy, s.roller->radius, s.material.plane_strain_modulus()).peak / k ==
         Approx(3.0).epsilon(1e-12));
-  // An override of the force replaces the block's force, however it was given.
-  CHECK(*load_scene(kBurnishing, {{"roller.path[0].p0_over_k", "3.0"}, {"roller.path[0].fy", "1.0"}})
-             .roller->path[0]
-             .fy == 1.0);
+  // An override of the force replaces the block's force, however it was given; two overrides of
+  // one force are refused (the later would hide the earlier).
+  CHECK(*load_scene(kBurnishing, {{"roller.path[0].p0", "800.0"}}).roller->path[0].fy !=
+        *load_scene(kBurnishing).roller->path[0].fy);
+  CHECK_THROWS_WITH(load_scene(kBurnishing, {{"roller.path[0].p0_over_k", "3.0"}, {"roller.path[0].fy", "1.0"}}),
+                    Catch::Contains("twice"));
   CHECK_THROWS_WITH(load_scene(kBurnishing, {{"roller.path[7].fy", "1.0"}}),
                     Catch::Contains("the scene has 3 [[path]] block(s), numbered from 0"));
   CHECK_THROWS_WITH(load_scene(kBurnishing, {{"roller.path[x].fy", "1.0"}}), Catch::Contains("name[N]"));

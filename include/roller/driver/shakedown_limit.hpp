@@ -9,6 +9,7 @@
 // (analysis/melan.hpp).
 #include <iosfwd>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "roller/analysis/melan.hpp"
@@ -43,6 +44,8 @@ struct ShakedownLimitResult {
   MelanLimit elastic;                   // Melan: residual stresses only
   std::optional<MelanLimit> kinematic;  // with a back-stress: when the strip hardens kinematically
   Real top = 0.0;                       // y of the strip's top [mm]
+  // Where the mesh cannot resolve the mode that governs (too few elements across the contact).
+  std::vector<std::string> warnings;
   // p0/k at the bound's limit (k = sigma_y/sqrt(3) at its critical point), and that of the
   // scene's own load (load factor 1).
   Real p0_over_k(const MelanLimit& bound) const;
@@ -53,5 +56,10 @@ struct ShakedownLimitResult {
 // (0 < slip < 1) without fx or an explicit traction, or a strip that cannot yield; NumericalError when
 // the elastic press does not converge.
 ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const ShakedownLimitSettings& settings);
+
+// The limits at each uniform traction q/p of `tractions` (the shakedown map over q/p), from one
+// elastic press and one elastic response to a unit traction (the stresses are linear in q/p).
+std::vector<ShakedownLimitResult> compute_shakedown_map(const Scene& scene, const std::vector<Real>& tractions,
+                                                        const ShakedownLimitSettings& settings);
 
 }  // namespace roller
