@@ -55,6 +55,24 @@ void print_progress(std::ostream& out, const Scene& scene, const Simulation::Ste
       << std::flush;
 }
 
+// A line at each pass's end: what it left (the mean increment of plastic strain in the track, and
+// its ratio to pass 1's, which the verdict reads), the time so far and the time the passes left
+// would take at this run's pace.
+void print_pass_line(std::ostream& out, const std::vector<PassRecord>& passes, int count, std::size_t done_here,
+                     double elapsed) {
+  const PassRecord& last = passes.back();
+  const Real first = passes.front().mean_plastic_increment;
+  const std::string ratio = first > 0.0 && passes.size() > 1
+                                ? fmt::format(" ({:.3g} of pass 1's)", last.mean_plastic_increment / first)
+                                : std::string();
+  const int left = count - static_cast<int>(passes.size());
+  const std::string eta =
+      left > 0 && done_here > 0 ? fmt::format(", about {:.0f} s to go", elapsed / done_here * left) : std::string();
+  out << fmt::format("roller: pass {}/{} done: mean plastic strain increment {:.3g}{}, largest {:.3g}; {:.1f} s{}\n",
+                     last.pass, count, last.mean_plastic_increment, ratio, last.max_plastic_increment, elapsed, eta)
+      << std::flush;
+}
+
 // The Hertz peak pressure of the largest prescribed force over the shear yield stress
 // k = sigma_y / sqrt(3): Johnson's load measure for shakedown (docs/validation.md, Shakedown);
 // none without a yield stress or a prescribed force.
@@ -104,6 +122,7 @@ std::string summary_json(const Simulation& sim, const RunSummary& summary, int f
   j["cuts_total"] = summary.totals.cuts;
   j["max_penetration"] = summary.totals.max_penetration;
   j["warnings"] = scene_warnings(scene, sim.model().mesh());
+  for (const std::string& w : summary.warnings) j["warnings"].push_back(w);
   if (const std::optional<ShakedownClassification>& c = summary.verdict) {
     j["passes"] = {
         {"count", sim.state().pass_records.size()}, {"verdict", enum_name(c->verdict)}, {"criterion", c->criterion}};
@@ -245,6 +264,10 @@ RunSummary Simulation::run(const RunOptions& options) {
             ? fmt::format("{} steps converged; the verdict was decided after pass {} of {} (passes.until_verdict)",
                           summary.steps_done, state_.pass_records.size(), scene_.passes.count)
             : fmt::format("{} steps converged", summary.steps_done);
+  // The answer of a multi-pass run on its last line: the verdict and the rule that gave it.
+  if (summary.status == RunStatus::Completed && summary.verdict)
+    summary.message += fmt::format("; verdict after {} passes: {} ({})", state_.pass_records.size(),
+                                   enum_name(summary.verdict->verdict), summary.verdict->criterion);
   if (files) write_summary(summary_file, *this, summary, first_step, resumed);
   return summary;
 }
@@ -259,6 +282,8 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
         fmt::format("interrupted by signal {} after step {}; continue with --resume", summary.signal, step - 1);
     if (options.progress) *options.progress << "roller: " << summary.message << "\n";
   };
+  const std::size_t passes_at_start = state_.pass_records.size();
+  double elapsed = 0.0;  // the steps' wall time in this run
   for (int step = first_step; step <= scene_.total_steps(); ++step) {
     if (options.stop_signal && *options.stop_signal != 0) {
       interrupt(step);
@@ -276,7 +301,15 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     state_.totals.iterations += res.counters.iterations;
     state_.totals.cuts += res.cuts;
     state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
-    outputs.write_solver_row(res, monitor.check(step, *model_), wall);
+    const MonitorReport checked = monitor.check(step, *model_);
+    for (const std::string& w : checked.warnings) {
+      // Each kind once: the text after "step N: " up to its numbers.
+      const std::string kind = w.substr(w.find(": ") + 2, 40);
+      if (std::none_of(summary.warnings.begin(), summary.warnings.end(),
+                       [&](const std::string& seen) { return seen.substr(seen.find(": ") + 2, 40) == kind; }))
+        summary.warnings.push_back(w);
+    }
+    outputs.write_solver_row(res, checked, wall);
     if (!res.converged()) {
       summary.converged = false;
       summary.message = res.message;
@@ -287,7 +320,11 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     outputs.write_step(res);
     if (options.write_files)
       save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
+    elapsed += wall;
     if (options.progress) print_progress(*options.progress, scene_, res, wall);
+    if (options.progress && res.pass_end && scene_.passes.count > 1)
+      print_pass_line(*options.progress, state_.pass_records, scene_.passes.count,
+                      state_.pass_records.size() - passes_at_start, elapsed);
     if (scene_.passes.until_verdict && state_.pass_records.size() > passes_before &&
         classify_passes(state_.pass_records).verdict != ShakedownVerdict::Undetermined) {
       summary.decided = true;

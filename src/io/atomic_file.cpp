@@ -33,6 +33,18 @@ void rename_into_place(const fs::path& tmp, const fs::path& path, std::string_vi
                    ec.value());
 }
 
+// Writes as much of `content` to the open file as it takes; the bytes written (fewer: errno says why).
+std::size_t write_all(int fd, std::string_view content) {
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  return done;
+}
+
 fs::path temporary_of(const fs::path& path) {
   fs::path tmp = path;
   tmp += ".tmp";
@@ -61,13 +73,7 @@ void write_file_atomically(const fs::path& path, std::string_view content, std::
                       named(path, what), tmp.string()));
     throw_file_error(fmt::format("cannot write {}: cannot create '{}'", named(path, what), tmp.string()), open_error);
   }
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    done += static_cast<std::size_t>(n);
-  }
+  const std::size_t done = write_all(fd, content);
   const int write_error = done == content.size() ? 0 : (errno != 0 ? errno : EIO);
   const bool closed = ::close(fd) == 0;
   if (write_error != 0 || !closed) {
@@ -103,13 +109,7 @@ namespace {
 bool overwrite_in_place(const fs::path& path, const std::string& content) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) return false;
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    done += static_cast<std::size_t>(n);
-  }
+  const std::size_t done = write_all(fd, content);
   const bool ok = done == content.size() && ::ftruncate(fd, static_cast<off_t>(content.size())) == 0;
   return ::close(fd) == 0 && ok;
 }

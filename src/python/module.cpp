@@ -74,7 +74,7 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
   py::dict result;
   result["scene"] = sim->scene().name;
   result["steps"] = sim->scene().total_steps();
-  result["warnings"] = scene_warnings(sim->scene(), sim->model().mesh());
+  std::vector<std::string> warnings = scene_warnings(sim->scene(), sim->model().mesh());
   result["mesh"] = mesh_dict(sim->model().mesh());
   PythonSink sink(progress, sim->scene().total_steps());
   RunOptions options;
@@ -89,6 +89,8 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
     const py::gil_scoped_release nogil;
     summary = sim->run(options);
   }
+  warnings.insert(warnings.end(), summary.warnings.begin(), summary.warnings.end());  // the run-time monitor's
+  result["warnings"] = warnings;
   result["summary"] = summary_dict(summary);
   result["tables"] = tables_dict(sink);
   result["fields"] = fields_list(sink);

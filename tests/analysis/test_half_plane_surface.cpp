@@ -11,7 +11,8 @@
 
 using namespace roller;
 
-TEST_CASE("the half-plane's surface stress of Hertz's pressure and q = mu p is McEwen's at z = 0", "[analysis][melan]") {
+TEST_CASE("the half-plane's surface stress of Hertz's pressure and q = mu p is McEwen's at z = 0",
+          "[analysis][melan]") {
   for (const Real mu : {0.0, 0.25, 0.5}) {
     // McEwen's shear is -mu p (a = 1, p0 = 1): the traction's sigma_xy.
     const EllipticLoad pressure{0.0, 1.0, 1.0}, shear{0.0, 1.0, -mu};

@@ -134,3 +134,34 @@ TEST_CASE("an allocation that fails is reported with what to do, not as std::bad
   CHECK(roller::status_of(std::bad_alloc()) == roller::RunStatus::SystemError);
   CHECK(roller::message_of(roller::InputError("x.toml: bad")) == "x.toml: bad");
 }
+
+TEST_CASE("a run of passes says each pass and its verdict on the console", "[app][passes]") {
+  roller::test::TempDir dir("roller_cli_verdict");
+  const Run r = run_roller(
+      "run problems/shakedown_p45.toml --set 'passes.method=\"stationary\"' --set passes.count=3 "
+      "--out " +
+      (dir.path() / "out").string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.output, Contains("roller: pass 1/3 done: mean plastic strain increment") &&
+                           Contains("roller: pass 3/3 done:") && Contains("of pass 1's") && Contains("s to go"));
+  // The last line gives the verdict and its rule, as summary.json's message does.
+  const std::string last = r.output.substr(r.output.rfind("roller: ", r.output.size() - 2));
+  CHECK_THAT(last, Contains("verdict after 3 passes: ") && Contains("mean increment of equivalent plastic strain"));
+  const auto summary = nlohmann::json::parse(roller::test::read_text(dir.path() / "out" / "summary.json"));
+  CHECK_THAT(summary["message"].get<std::string>(), Contains("verdict after 3 passes: "));
+}
+
+TEST_CASE("the monotonicity warning says what it means once, and summary.json records it", "[app][monitor]") {
+  roller::test::TempDir dir("roller_cli_monitor");
+  const Run r = run_roller("run problems/z4_v25.toml --steps 10 --out " + (dir.path() / "out").string());
+  INFO(r.output);
+  REQUIRE(r.exit_code == 0);
+  const std::string needle = "operator A (the strip's incremental constitutive operator";
+  REQUIRE_THAT(r.output, Contains(needle) && Contains("routine") && Contains("does not by itself affect the answer"));
+  CHECK(r.output.find(needle) == r.output.rfind(needle));  // once
+  const auto summary = nlohmann::json::parse(roller::test::read_text(dir.path() / "out" / "summary.json"));
+  int recorded = 0;
+  for (const auto& w : summary["warnings"]) recorded += w.get<std::string>().find(needle) != std::string::npos;
+  CHECK(recorded == 1);
+}

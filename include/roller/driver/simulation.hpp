@@ -80,7 +80,8 @@ struct RunSummary {
   double wall_s = 0.0;
   double peak_memory_mb = 0.0;  // the process's peak resident memory so far [MiB]
   std::string message;
-  bool decided = false;  // passes.until_verdict stopped the run after the pass that decided
+  bool decided = false;               // passes.until_verdict stopped the run after the pass that decided
+  std::vector<std::string> warnings;  // the run-time monitor's, each kind once (summary.json's beside the scene's)
   // A multi-pass run that has ended (however): the shakedown verdict of its passes.
   std::optional<ShakedownClassification> verdict;
 };

@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "roller/analysis/monotonicity.hpp"
@@ -29,6 +30,8 @@ struct MonitorReport {
   StripMonotonicity pointwise;      // operator A at the integration points
   SparseDefiniteness assembled;     // the effective tangent K (+ 2M/dt^2 with strip inertia)
   Vec2 worst_place = Vec2::Zero();  // centroid of the element with the worst point [mm]
+  // The warnings this check gave (each kind once a run): summary.json lists them.
+  std::vector<std::string> warnings;
 };
 
 class StepMonitor {
