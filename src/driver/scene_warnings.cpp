@@ -92,6 +92,14 @@ std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
         fmt::format("{}: roller.radius = {:g} mm is smaller than the element under it ({:.3g} mm): a radius "
                     "in metres? roller works in mm",
                     file, radius, h));
+  // A contact as wide as a good part of the strip: its ends carry the load (a force in N, not N/mm?).
+  if (const std::optional<Real> a = expected_half_width(scene); a && 2.0 * *a > scene.mesh.length / 3.0)
+    out.push_back(
+        fmt::format("{}: the contact will be about {:.3g} mm wide (Hertz 2a for the path's largest load or press), "
+                    "more than a third of the strip's mesh.length = {:g} mm: the strip's ends will carry part of "
+                    "the load. A force in N rather than N/mm, or a modulus too small? roller works in mm, N/mm and "
+                    "MPa",
+                    file, 2.0 * *a, scene.mesh.length));
   // Nodes within the contact width 2a: 2a/h + 1 on average.
   if (const std::optional<Real> a = expected_half_width(scene); a && h > 0.0 && 2.0 * *a / h + 1.0 < 4.0)
     out.push_back(

@@ -245,8 +245,7 @@ class ElasticPress {
   std::vector<MelanRow> rows(Real traction) {
     const std::vector<NodeContactRecord>& contact = sim_->state().contact;
     const Real factor = any_traction() ? traction : 1.0;  // Carter's response is solved at its own Q
-    static const std::vector<Real> none;
-    const std::vector<Real>& fx = factor != 0.0 ? traction_forces_(contact) : none;  // free rolling: none
+    if (factor != 0.0) solve_traction(contact);
     std::vector<Vec4> stress = press_;
     if (factor != 0.0 && !traction_.empty())
       for (std::size_t i = 0; i < stress.size(); ++i) stress[i] += factor * traction_[i];
@@ -257,18 +256,17 @@ class ElasticPress {
   }
 
  private:
-  // The tangential nodal forces of the unit (uniform) or the scene's (Carter's) traction, and the
-  // stresses of their elastic response, solved at the first call: none for free rolling.
-  const std::vector<Real>& traction_forces_(const std::vector<NodeContactRecord>& contact) {
-    if (fx_solved_) return fx_;
-    fx_solved_ = true;
+  // The stresses of the elastic response to the unit (uniform) or the scene's (Carter's) traction's
+  // nodal forces, solved at the first call: none for free rolling.
+  void solve_traction(const std::vector<NodeContactRecord>& contact) {
+    if (traction_solved_) return;
+    traction_solved_ = true;
     SteadyLoad unit = steady_;
     if (any_traction()) unit.traction = 1.0;
-    if (steady_.traction == 0.0 && !any_traction()) return fx_;
+    if (steady_.traction == 0.0 && !any_traction()) return;
     const HertzSolution hertz{load_.load, load_.half_width, load_.hertz_peak};
-    fx_ = traction_forces(unit, contact, hertz, sim_->state().pose.centre.x());
-    traction_ = traction_stresses(sim_->model(), contact, fx_);
-    return fx_;
+    traction_ =
+        traction_stresses(sim_->model(), contact, traction_forces(unit, contact, hertz, sim_->state().pose.centre.x()));
   }
 
   SteadyLoad steady_;
@@ -278,8 +276,7 @@ class ElasticPress {
   ElementMaterials plastic_;
   std::vector<Vec4> press_, traction_;
   EllipticLoad pressure_;  // the press's contact pressure
-  std::vector<Real> fx_;
-  bool fx_solved_ = false;
+  bool traction_solved_ = false;
 };
 
 // The element size at the surface under the contact's centre (the top's node spacing there).

@@ -44,14 +44,21 @@ struct Range {
     if (max) return fmt::format("{} {}", max_open ? "<" : "<=", *max);
     return "";
   }
-  std::string rule(const std::string& name) const { return (min && max ? "must satisfy " : "must be ") + text(name); }
+  std::string rule(const std::string& name) const {
+    return (min && max ? "must satisfy " : "must be ") + text(name) + (hint.empty() ? "" : "; " + hint);
+  }
+  std::string hint;  // the likely slip of units beyond the bounds
 };
 
-Range at_least(Real v) { return {v, std::nullopt, false, false}; }
-Range above(Real v) { return {v, std::nullopt, true, false}; }
-Range closed(Real lo, Real hi) { return {lo, hi, false, false}; }
-Range open(Real lo, Real hi) { return {lo, hi, true, true}; }
-Range right_open(Real lo, Real hi) { return {lo, hi, false, true}; }
+Range at_least(Real v) { return {v, std::nullopt, false, false, {}}; }
+Range above(Real v) { return {v, std::nullopt, true, false, {}}; }
+Range closed(Real lo, Real hi) { return {lo, hi, false, false, {}}; }
+Range open(Real lo, Real hi) { return {lo, hi, true, true, {}}; }
+Range right_open(Real lo, Real hi) { return {lo, hi, false, true, {}}; }
+Range with_hint(Range r, std::string hint) {
+  r.hint = std::move(hint);
+  return r;
+}
 
 // Plausibility bounds in scene units (mm, N, MPa, s, t) for quantities that have no natural
 // upper limit: far beyond any strip, roller or material (E 1e9 MPa is 800 times diamond's), yet
@@ -602,7 +609,8 @@ std::vector<SceneKey> make_keys() {
       // [material], read before [mesh]: the Q4 default depends on plasticity.
       key(
           "material.E", [](auto& s) -> auto& { return s.material.youngs_modulus; }, "Young's modulus [MPa]",
-          closed(kMinModulus, kMaxModulus))
+          with_hint(closed(kMinModulus, kMaxModulus),
+                    "E in Pa? roller works in MPa (steel: E = 2.1e5, that is 2.1e11 Pa)"))
           .required("Young's modulus E [MPa] is required"),
       key(
           "material.nu", [](auto& s) -> auto& { return s.material.poisson_ratio; }, "Poisson's ratio",
@@ -1114,7 +1122,7 @@ std::vector<SceneTable> make_tables() {
   material.required = "a [material] table is required (at least E and nu)";
   material.check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
-    if (!scene.material.is_valid(&why))
+    if (!scene.material.is_valid(&why) || !(why = scene.material.unit_slip()).empty())
       s.fail_invalid(why, {{"youngs_modulus", "E"},
                            {"poisson_ratio", "nu"},
                            {"tangent_modulus", s.has("kappa") ? "kappa" : "tangent_modulus"},
