@@ -197,6 +197,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   auto finish_summary = [&] {
     if (scene_.passes.count > 1) summary.verdict = classify_passes(state_.pass_records);
     summary.totals = state_.totals;
+    summary.warnings = state_.warnings;
     summary.wall_s = seconds_since(t_start);
     summary.peak_memory_mb = peak_memory_mb();
   };
@@ -229,7 +230,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, !resumed, std::move(sinks));
     StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                         scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
-                        options.progress);
+                        options.progress, state_.pointwise_loss_reported);
     run_steps(options, first_step, outputs, monitor, writer, summary);
     writer.finish();
     if (files && summary.status == RunStatus::Interrupted) {
@@ -302,12 +303,13 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     state_.totals.cuts += res.cuts;
     state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
     const MonitorReport checked = monitor.check(step, *model_);
+    state_.pointwise_loss_reported = state_.pointwise_loss_reported || checked.pointwise_loss_first;
     for (const std::string& w : checked.warnings) {
       // Each kind once: the text after "step N: " up to its numbers.
       const std::string kind = w.substr(w.find(": ") + 2, 40);
-      if (std::none_of(summary.warnings.begin(), summary.warnings.end(),
+      if (std::none_of(state_.warnings.begin(), state_.warnings.end(),
                        [&](const std::string& seen) { return seen.substr(seen.find(": ") + 2, 40) == kind; }))
-        summary.warnings.push_back(w);
+        state_.warnings.push_back(w);
     }
     outputs.write_solver_row(res, checked, wall);
     if (!res.converged()) {

@@ -77,12 +77,21 @@ std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
   std::vector<std::pair<std::string, MaterialParams>> bands{{"material", scene.material}};
   for (std::size_t i = 0; i < scene.layers.size(); ++i)
     bands.emplace_back(fmt::format("layer[{}]", i), scene.layers[i].material);
-  for (const auto& [table, m] : bands)
-    if (m.youngs_modulus < 1e3 && m.plastic && m.yield_stress > 10.0)
+  // A yield stress above 5 % of E: no metal comes near it (steels 0.1-0.8 %); legal, as an extreme
+  // contrast of layers may mean it.
+  constexpr Real kLargestYieldOverModulus = 0.05;
+  for (const auto& [table, m] : bands) {
+    if (m.plastic && m.yield_stress > kLargestYieldOverModulus * m.youngs_modulus)
+      out.push_back(fmt::format(
+          "{}: {}.yield_stress = {:g} MPa is {:.3g} of {}.E = {:g} MPa, above any metal's (steels 0.001-0.008): a "
+          "yield stress in Pa, or E in GPa? roller works in MPa (steel: E = 2.1e5, yield_stress 250 to 1500)",
+          file, table, m.yield_stress, m.yield_stress / m.youngs_modulus, table, m.youngs_modulus));
+    else if (m.youngs_modulus < 1e3 && m.plastic && m.yield_stress > 10.0)
       out.push_back(
           fmt::format("{}: {}.E = {:g} MPa with {}.yield_stress = {:g} MPa: E looks like GPa; "
                       "roller works in MPa (steel: E = 2.1e5)",
                       file, table, m.youngs_modulus, table, m.yield_stress));
+  }
   if (!scene.roller) return out;
   const Real x = given_start_centre(scene).x();
   const Real h = surface_spacing_at(mesh, x);

@@ -57,6 +57,7 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
         "counts such points every step",
         step, mono.n_not_pd, r.worst_place.x(), r.worst_place.y()));
     pointwise_loss_reported_ = true;
+    r.pointwise_loss_first = true;
   }
   if (!r.assembled.factorized || r.assembled.n_zero > 0)
     r.warnings.push_back(fmt::format(

@@ -154,7 +154,7 @@ void declare_layer_table(SceneTable& table) {
     MaterialLayer& layer = scene.layers[i];
     layer.follows_profile = !s.has("yield_stress");
     std::string why;
-    if (!layer.material.is_valid(&why) || !(why = layer.material.unit_slip()).empty())
+    if (!layer.material.is_valid(&why))
       s.fail_invalid(why, {{"youngs_modulus", "E"},
                            {"poisson_ratio", "nu"},
                            {"tangent_modulus", s.has("kappa") ? "kappa" : "tangent_modulus"},

@@ -1122,7 +1122,7 @@ std::vector<SceneTable> make_tables() {
   material.required = "a [material] table is required (at least E and nu)";
   material.check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
-    if (!scene.material.is_valid(&why) || !(why = scene.material.unit_slip()).empty())
+    if (!scene.material.is_valid(&why))
       s.fail_invalid(why, {{"youngs_modulus", "E"},
                            {"poisson_ratio", "nu"},
                            {"tangent_modulus", s.has("kappa") ? "kappa" : "tangent_modulus"},

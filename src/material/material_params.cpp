@@ -91,17 +91,6 @@ std::string first_violation(const MaterialParams& p) {
 
 }  // namespace
 
-std::string MaterialParams::unit_slip() const {
-  constexpr Real kLargestYieldOverModulus = 0.05;
-  if (!plastic || !(yield_stress > kLargestYieldOverModulus * youngs_modulus)) return {};
-  std::ostringstream rule;
-  rule << std::setprecision(3) << "is " << yield_stress / youngs_modulus << " of E = " << std::setprecision(12)
-       << youngs_modulus
-       << " MPa, above any metal's (steels 0.001-0.008): a yield stress in Pa, or E in GPa? roller works in MPa "
-          "(steel: E = 2.1e5, yield_stress 250 to 1500)";
-  return describe("yield_stress", yield_stress, rule.str());
-}
-
 bool MaterialParams::is_valid(std::string* why) const {
   const std::string violation = first_violation(*this);
   if (why != nullptr) *why = violation;

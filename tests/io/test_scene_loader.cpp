@@ -9,6 +9,7 @@
 
 #include "../support/scene_errors.hpp"
 #include "roller/core/error.hpp"
+#include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/mesh/strip_mesher.hpp"
@@ -319,4 +320,29 @@ TEST_CASE("the smaller input checks: overrides do not hide the file, and the edg
   // A roller entirely below the strip (kGood's strip spans y = 0..5).
   Scene below = parse_scene(kGood + "[roller]\nradius = 2.0\ncentre = [5.0, -3.0]\n", "below.toml");
   CHECK_THROWS_WITH(Simulation(below), Contains("below.toml: roller.centre = [5, -3]: the roller lies entirely below"));
+}
+
+TEST_CASE("a modulus or a yield stress in the wrong unit is named with the likely unit before computing",
+          "[io][scene][errors]") {
+  using Catch::Contains;
+  // E in Pa: beyond the modulus's bound, and the message says why it likely is.
+  CHECK_THAT(error_of(kGood, {{"material.E", "2.1e11"}}),
+             Contains("material.E = 210000000000") && Contains("E in Pa? roller works in MPa"));
+  // A yield stress in Pa beside E in MPa, or E in GPa beside a yield stress in MPa: legal values (a
+  // contrast of layers may mean them), named in a warning.
+  auto warnings = [](const std::vector<SceneOverride>& overrides, const std::string& extra = "") {
+    const Scene s = parse_scene(kGood + extra, "units.toml", overrides);
+    std::string all;
+    for (const std::string& w : scene_warnings(s, make_strip_mesh(s.strip_mesh_spec()))) all += w + "\n";
+    return all;
+  };
+  CHECK(warnings({}).empty());
+  CHECK_THAT(warnings({{"material.yield_stress", "5e8"}}), Contains("units.toml: material.yield_stress = 5e+08 MPa") &&
+                                                               Contains("yield stress in Pa") &&
+                                                               Contains("roller works in MPa"));
+  CHECK_THAT(warnings({{"material.E", "210"}}), Contains("material.yield_stress") && Contains("E in GPa"));
+  CHECK_THAT(warnings({}, "[[layer]]\nthickness = 1.0\nyield_stress = 5e8\n"),
+             Contains("layer[0].yield_stress") && Contains("yield stress in Pa"));
+  // A polymer's ratio is none (nylon: E = 2500, yield 75: 3 %).
+  CHECK(warnings({{"material.E", "2500"}, {"material.yield_stress", "75"}}).empty());
 }

@@ -3,6 +3,7 @@
 // strip_model.hpp, its own transactional commit) nor the dynamics histories (dynamics/
 // dynamics_state.hpp): one value, so that a copy is the undo of a step and the state files
 // serialise it whole (driver/state_file.cpp).
+#include <string>
 #include <vector>
 
 #include "roller/analysis/hertz.hpp"
@@ -73,6 +74,10 @@ struct RunState {
   PassTrack pass_track;
   PassBaseline pass_baseline;
   std::vector<PassRecord> pass_records;
+  // The run-time monitor's warnings so far (each kind once; summary.json lists them), and whether
+  // the once-a-run warning of operator A's pointwise loss is among them.
+  std::vector<std::string> warnings;
+  bool pointwise_loss_reported = false;
 };
 
 }  // namespace roller

@@ -32,15 +32,23 @@ struct MonitorReport {
   Vec2 worst_place = Vec2::Zero();  // centroid of the element with the worst point [mm]
   // The warnings this check gave (each kind once a run): summary.json lists them.
   std::vector<std::string> warnings;
+  bool pointwise_loss_first = false;  // warnings holds the run's one warning of operator A's pointwise loss
 };
 
 class StepMonitor {
  public:
   // `mass_free` is the strip's mass over the free dofs (nullptr: quasistatic strip); `backend`
   // the run's contact backend, asked for the inertia of factors it holds (nullptr: none);
-  // `progress` receives the warnings (nullptr: silent).
-  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, ContactBackend* backend, std::ostream* progress)
-      : enabled_(enabled), dt_(dt), mass_free_(mass_free), backend_(backend), progress_(progress) {}
+  // `progress` receives the warnings (nullptr: silent); `pointwise_loss_reported`: the run (before
+  // its resume) gave the warning of operator A's pointwise loss, which is given once a run.
+  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, ContactBackend* backend, std::ostream* progress,
+              bool pointwise_loss_reported = false)
+      : enabled_(enabled),
+        dt_(dt),
+        mass_free_(mass_free),
+        backend_(backend),
+        progress_(progress),
+        pointwise_loss_reported_(pointwise_loss_reported) {}
 
   MonitorReport check(int step, StripModel& model);
 

@@ -88,10 +88,6 @@ struct MaterialParams {
   // True when every field is admissible; otherwise false and *why names the field, its value
   // and the violated rule.
   bool is_valid(std::string* why) const;
-  // A valid material whose values are almost surely a slip of units, as is_valid's `why` says it
-  // ("material.yield_stress = ...: ..."), or "": a yield stress above 5 % of E (no metal comes
-  // near it: steels 0.1-0.8 %), which is a yield stress in Pa beside E in MPa or E in GPa.
-  std::string unit_slip() const;
   // E* = E / (1 - nu^2): the stiffness of line contact (Hertz) and of the plane-strain strip.
   Real plane_strain_modulus() const { return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio); }
 };
