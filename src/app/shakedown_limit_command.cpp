@@ -215,7 +215,10 @@ Command add_shakedown_limit_command(CLI::App& app) {
         throw InputError(
             "--map sweeps the traction and writes its own files: give it without --traction, --csv "
             "and --json");
-      if (args->map.empty()) throw InputError("--map '': expected a folder name");
+      std::error_code ec;
+      if (args->map.empty() ||
+          (std::filesystem::exists(args->map, ec) && !std::filesystem::is_directory(args->map, ec)))
+        throw InputError(fmt::format("--map '{}': expected a folder (new or existing) for the map's files", args->map));
       return write_map(scene, *args);
     }
     ShakedownLimitSettings settings;

@@ -89,6 +89,7 @@ std::vector<MelanRow> depth_rows(const Mesh& mesh, const std::vector<Vec4>& stre
     for (int q = 0; q < points_per_element; ++q) mean += stress[e * points_per_element + q];
     mean /= points_per_element;
     const MaterialParams& m = plastic.of(e);
+    if (!m.plastic) continue;  // an elastic layer's points never yield: no constraint of the bound
     MelanRow& row = rows[std::llround(depth * 1e6)];
     row.back_stress_bound =
         row.x.empty() ? back_stress_bound(m) : std::min(row.back_stress_bound, back_stress_bound(m));
@@ -135,6 +136,7 @@ MelanRow surface_row(const Mesh& mesh, const ElementMaterials& plastic, Real top
     auto above = std::upper_bound(top_elements.begin(), top_elements.end(), std::make_pair(x, mesh.n_elements()));
     if (above == top_elements.begin()) continue;  // beyond the strip
     const MaterialParams& m = plastic.of(std::prev(above)->second);
+    if (!m.plastic) continue;  // an elastic surface layer never yields
     Vec4 s = half_plane_surface_stress(x, pressure, shears);
     s[2] = m.poisson_ratio * (s[0] + s[1]);  // plane strain, linear elastic
     row.x.push_back(x);
@@ -250,7 +252,9 @@ class ElasticPress {
     if (factor != 0.0 && !traction_.empty())
       for (std::size_t i = 0; i < stress.size(); ++i) stress[i] += factor * traction_[i];
     const int ppe = sim_->model().points_per_element();
-    std::vector<MelanRow> out{surface_row(mesh(), plastic_, top_, pressure_, shears(traction))};
+    std::vector<MelanRow> out;
+    if (MelanRow surface = surface_row(mesh(), plastic_, top_, pressure_, shears(traction)); !surface.x.empty())
+      out.push_back(std::move(surface));
     for (MelanRow& row : depth_rows(mesh(), stress, ppe, plastic_, top_)) out.push_back(std::move(row));
     return out;
   }

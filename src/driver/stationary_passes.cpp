@@ -137,7 +137,8 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model,
   hertz_load_ = std::move(load);
   if (scene.passes.stationary_contact == StationaryContact::Roller) {
     // The roller k/P of an element further along copy k, which moved back as far (phased_.shift).
-    new_roller_correction_ = [this, &scene, make_roller_correction, n_dofs = mesh.n_dofs(),
+    // The scene by value: the Simulation that owns these passes may be moved.
+    new_roller_correction_ = [this, scene, make_roller_correction, n_dofs = mesh.n_dofs(),
                               n_free = model.dof_map().n_free(), base_points]() -> std::unique_ptr<RollerCorrection> {
       std::vector<std::unique_ptr<RollerCorrection>> copies;
       for (int k = 0; k < phased_.phases; ++k)

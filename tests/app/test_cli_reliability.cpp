@@ -165,3 +165,20 @@ TEST_CASE("the monotonicity warning says what it means once, and summary.json re
   for (const auto& w : summary["warnings"]) recorded += w.get<std::string>().find(needle) != std::string::npos;
   CHECK(recorded == 1);
 }
+
+TEST_CASE("roller shakedown-limit --map takes a folder and refuses what is not one, before computing",
+          "[app][errors]") {
+  roller::test::TempDir dir("roller_cli_map");
+  const fs::path file = dir.path() / "a_file";
+  { std::ofstream(file) << "keep me\n"; }
+  for (const std::string& target : {file.string(), std::string("''")}) {
+    const Run r = run_roller("shakedown-limit problems/shakedown_p45.toml --map " + target);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Contains("--map") && Contains("expected a folder") && !Contains("elastic press"));
+  }
+  CHECK(roller::test::read_text(file) == "keep me\n");
+  const Run twice =
+      run_roller("shakedown-limit problems/shakedown_p45.toml --map " + dir.path().string() + " --traction 0.2");
+  CHECK(twice.exit_code == 2);
+  CHECK_THAT(twice.output, Contains("--map sweeps the traction"));
+}
