@@ -230,7 +230,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, !resumed, std::move(sinks));
     StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
                         scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
-                        options.progress, state_.pointwise_loss_reported);
+                        options.progress);
     run_steps(options, first_step, outputs, monitor, writer, summary);
     writer.finish();
     if (files && summary.status == RunStatus::Interrupted) {
@@ -302,7 +302,7 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     state_.totals.iterations += res.counters.iterations;
     state_.totals.cuts += res.cuts;
     state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
-    const MonitorReport checked = monitor.check(step, *model_);
+    const MonitorReport checked = monitor.check(step, *model_, state_.pointwise_loss_reported);
     state_.pointwise_loss_reported = state_.pointwise_loss_reported || checked.pointwise_loss_first;
     for (const std::string& w : checked.warnings) {
       // Each kind once: the text after "step N: " up to its numbers.

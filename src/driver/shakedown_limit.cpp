@@ -16,6 +16,7 @@
 #include "roller/analysis/half_plane_surface.hpp"
 #include "roller/analysis/hertz.hpp"
 #include "roller/assembly/element_materials.hpp"
+#include "roller/assembly/phased_strip.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/steady_load.hpp"
@@ -178,13 +179,19 @@ Real ShakedownLimitResult::scene_p0_over_k(const MelanLimit& bound) const {
 
 namespace {
 
+// The scene, when it has a roller to press: shakedown-limit's first check.
+const Scene& roller_scene(const Scene& scene) {
+  if (!scene.roller) throw InputError(fmt::format("{}: shakedown-limit needs a [roller]", scene.file.string()));
+  return scene;
+}
+
 // The scene's elastic press and the elastic response to its traction, solved once: the stresses at
 // any traction q/p of the scene's shape are the press's plus q/p times the unit traction's (a
 // uniform traction), or plus the traction's (Carter's, whose shape depends on Q).
 class ElasticPress {
  public:
   ElasticPress(const Scene& scene, const ShakedownLimitSettings& settings)
-      : steady_(steady_load(scene, settings.traction)) {
+      : steady_(steady_load(roller_scene(scene), settings.traction)) {
     if (!scene.strip_material().any_plastic())
       throw InputError(fmt::format("{}: [material]: the strip is elastic (no yield_stress): it has no shakedown limit",
                                    scene.file.string()));
@@ -283,18 +290,6 @@ class ElasticPress {
   bool traction_solved_ = false;
 };
 
-// The element size at the surface under the contact's centre (the top's node spacing there).
-Real surface_element_size(const Mesh& mesh, Real centre_x) {
-  const std::vector<Index>& top = mesh.node_set("top");
-  Real size = 0.0, distance = std::numeric_limits<Real>::infinity();
-  for (std::size_t k = 0; k + 1 < top.size(); ++k) {
-    const Real a = mesh.nodes[top[k]].x(), b = mesh.nodes[top[k + 1]].x();
-    if (std::abs(0.5 * (a + b) - centre_x) < distance)
-      distance = std::abs(0.5 * (a + b) - centre_x), size = std::abs(b - a);
-  }
-  return size;
-}
-
 // Fewer than this many elements across the contact's half-width: the peaks of the surface's
 // tractions and of the subsurface shear are sampled too coarsely for a limit within about 1 %.
 constexpr Real kElementsAcrossHalfWidth = 8.0;
@@ -332,20 +327,18 @@ ShakedownLimitResult limit_at(ElasticPress& press, Real traction, MelanSearch se
 }  // namespace
 
 ShakedownLimitResult compute_shakedown_limit(const Scene& scene, const ShakedownLimitSettings& settings) {
-  if (!scene.roller) throw InputError(fmt::format("{}: shakedown-limit needs a [roller]", scene.file.string()));
   ElasticPress press(scene, settings);
   ShakedownLimitResult out = limit_at(press, press.load().traction, settings.search);
-  out.warnings = resolution_warnings(out, surface_element_size(press.mesh(), press.centre_x()));
+  out.warnings = resolution_warnings(out, contact_element_length(press.mesh(), press.centre_x()));
   return out;
 }
 
 std::vector<ShakedownLimitResult> compute_shakedown_map(const Scene& scene, const std::vector<Real>& tractions,
                                                         const ShakedownLimitSettings& settings) {
-  if (!scene.roller) throw InputError(fmt::format("{}: shakedown-limit needs a [roller]", scene.file.string()));
   ShakedownLimitSettings uniform = settings;
   uniform.traction = 0.0;  // a uniform q/p, swept
   ElasticPress press(scene, uniform);
-  const Real element_size = surface_element_size(press.mesh(), press.centre_x());
+  const Real element_size = contact_element_length(press.mesh(), press.centre_x());
   std::vector<ShakedownLimitResult> out;
   for (const Real q : tractions) {
     out.push_back(limit_at(press, q, settings.search));

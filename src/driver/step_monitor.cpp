@@ -7,7 +7,7 @@
 
 namespace roller {
 
-MonitorReport StepMonitor::check(int step, StripModel& model) {
+MonitorReport StepMonitor::check(int step, StripModel& model, bool pointwise_loss_reported) {
   MonitorReport r;
   if (!enabled_) return r;
   const bool constant = model.tangent_is_constant();
@@ -45,7 +45,7 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
     const auto& element = model.mesh().elements[mono.worst.element];
     for (Index a : element) r.worst_place += x[a] / static_cast<Real>(element.size());
   }
-  if (mono.n_not_pd > 0 && !pointwise_loss_reported_) {
+  if (mono.n_not_pd > 0 && !pointwise_loss_reported) {
     // Once a run: in rolling, shear-dominated plastic points lose pointwise monotonicity routinely
     // while the assembled operator stays positive definite.
     r.warnings.push_back(fmt::format(
@@ -56,7 +56,6 @@ MonitorReport StepMonitor::check(int step, StripModel& model) {
         "assembled tangent stiffness loses positive definiteness too, which a separate warning would say. solver.csv "
         "counts such points every step",
         step, mono.n_not_pd, r.worst_place.x(), r.worst_place.y()));
-    pointwise_loss_reported_ = true;
     r.pointwise_loss_first = true;
   }
   if (!r.assembled.factorized || r.assembled.n_zero > 0)
