@@ -19,6 +19,7 @@ packages=(
   zlib1g-dev                             # compressed VTU output
   python3 python3-numpy python3-matplotlib  # figures (PNG)
   python3-dev pybind11-dev               # rollerpy._roller, roller in the Python process
+  python3-venv python3-setuptools        # pip install ./python into a venv (docs/python.md)
   python3-distributed python3-tqdm       # studies: Dask LocalCluster or a cluster, progress bar
   python3-pytest python3-flake8          # the Python tests (CTest) and their lint (check_format.sh)
   paraview python3-paraview xvfb         # the outputs checked in ParaView's pvpython, headless (CTest)

@@ -15,3 +15,8 @@ def __getattr__(name):
         from rollerpy import inprocess
         return getattr(inprocess, name)
     raise AttributeError(f"module 'rollerpy' has no attribute '{name}'")
+
+
+def __dir__():
+    # The in-process names too, for dir() and completion (they are imported when first used).
+    return sorted(set(globals()) | _INPROCESS)

@@ -17,6 +17,8 @@ from typing import Callable, Optional, Union
 
 import numpy as np
 
+from rollerpy.outputs import read_rows
+
 try:
     from rollerpy import _roller
 except ImportError as e:  # the native module is built with roller (scripts/build.sh)
@@ -139,29 +141,37 @@ class RunInterrupted(KeyboardInterrupt):
     """Ctrl-C stopped the run after the step under way; `result` holds the steps done."""
 
     def __init__(self, result: RunResult):
-        super().__init__(f"roller: {result.message}")
+        hint = " (in Python: rollerpy.run(scene, out=..., resume=True))" if "--resume" in result.message else ""
+        super().__init__(f"roller: {result.message}{hint}")
         self.result = result
 
 
 def run(scene: SceneSource, *, set: Optional[dict] = None,
         out: Optional[Union[str, os.PathLike]] = None, overwrite: bool = False,
         progress: Optional[Callable[[dict], None]] = None,
-        verbose: bool = False) -> RunResult:
+        verbose: bool = False, resume: bool = False) -> RunResult:
     """Runs a scene in this process.
 
     out: also write the output folder (as `roller run --out`); None writes no file.
     progress: called after every step with its row of solver.csv (a dict) and "steps", the
     run's step count. An exception it raises stops the run after that step and is raised again.
     verbose: roller's progress lines on standard output.
+    resume: go on from the checkpoint in `out` (as `roller run --resume`) of a run that stopped
+    (Ctrl-C, a killed process); the tables are then the folder's, the whole run's, and `fields`
+    those of the steps this call ran.
     """
     _require(out is None or _is_path(out), "out", out, "None or an output folder's path")
-    for name, flag in (("overwrite", overwrite), ("verbose", verbose)):
+    for name, flag in (("overwrite", overwrite), ("verbose", verbose), ("resume", resume)):
         _require(isinstance(flag, (bool, np.bool_)), name, flag, "True or False")
     _require(progress is None or callable(progress), "progress", progress,
              "None or a function called with each step's row")
-    overwrite, verbose = bool(overwrite), bool(verbose)
+    overwrite, verbose, resume = bool(overwrite), bool(verbose), bool(resume)
+    if resume and out is None:
+        raise InputError("resume=True: give out, the folder of the run to resume (its checkpoint.cbor)")
     loaded = load_scene(scene, set)
-    raw = _roller.run(loaded, None if out is None else os.fspath(out), overwrite, progress, verbose)
+    raw = _roller.run(loaded, None if out is None else os.fspath(out), overwrite, progress, verbose, resume)
+    if resume:
+        raw["tables"] = _folder_tables(os.fspath(out), raw["tables"])
     result = _result(raw)
     error = raw["error"]
     if isinstance(error, KeyboardInterrupt):
@@ -169,6 +179,37 @@ def run(scene: SceneSource, *, set: Optional[dict] = None,
     if error is not None:
         raise error
     return result
+
+
+def _column(texts: list, like: Optional[np.ndarray]) -> np.ndarray:
+    """A CSV column as the run's own tables hold it: of the type of `like` (this call's column),
+    else int64 when every cell is an integer, str when any is text, float64 otherwise."""
+    if like is not None and like.dtype.kind in "iuf":
+        return np.array([float(t) for t in texts], dtype=like.dtype) if like.dtype.kind == "f" else \
+            np.array([int(t) for t in texts], dtype=like.dtype)
+    if like is not None:
+        return np.array(texts, dtype=str)
+    try:
+        return np.array([int(t) for t in texts], dtype=np.int64)
+    except ValueError:
+        pass
+    try:
+        return np.array([float(t) for t in texts], dtype=np.float64)
+    except ValueError:
+        return np.array(texts, dtype=str)
+
+
+def _folder_tables(out: str, tables: dict) -> dict:
+    """The tables of the output folder's CSV files (a resumed run's whole record), the ones this
+    call filled or the folder holds."""
+    names = set(tables) | {n for n in ("solver", "contact", "roller", "passes", "residual_depth")
+                           if os.path.isfile(os.path.join(out, n + ".csv"))}
+    folder = {}
+    for name in sorted(names):
+        rows = read_rows(os.path.join(out, name + ".csv"), missing_ok=True)
+        own = tables.get(name, {})
+        folder[name] = {c: _column([r[c] for r in rows], own.get(c)) for c in (rows[0] if rows else own)}
+    return folder
 
 
 def _result(raw: dict) -> RunResult:

@@ -109,7 +109,16 @@ try:
     rollerpy.run(sys.argv[1], set={"steps.count": 400, "roller.path[0].steps": [1, 400]}, out=sys.argv[2],
                  progress=lambda row: print("step", row["step"], flush=True))
 except rollerpy.RunInterrupted as e:
+    assert "resume=True" in str(e), str(e)
     print("interrupted", e.result.status, e.result.steps_done, len(e.result.roller["fy"]), flush=True)
+"""
+
+RESUME_SCRIPT = """
+import sys
+import rollerpy
+run = rollerpy.run(sys.argv[1], set={"steps.count": 400, "roller.path[0].steps": [1, 400]}, out=sys.argv[2],
+                   resume=True, progress=lambda row: print("step", row["step"], flush=True))
+print("resumed", run.status, run.steps_done, len(run.roller["fy"]), len(run.solver["step"]), run.written_steps[0])
 """
 
 
@@ -128,6 +137,25 @@ def test_ctrl_c_stops_after_the_step_under_way_with_the_results_and_the_checkpoi
     summary = read_summary(str(out))
     assert summary["status"] == "interrupted" and summary["steps_done"] == int(steps_done)
     assert (out / "checkpoint.cbor").exists()
+    # rollerpy.run(..., resume=True) goes on from the checkpoint: the steps left, and the tables of
+    # the whole run (the folder's), equal to its files.
+    done = subprocess.run([sys.executable, "-c", RESUME_SCRIPT, HERTZ, str(out)], env=env, capture_output=True,
+                          text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[0] == "step %d" % (int(steps_done) + 1)
+    word, status, steps, roller_rows, solver_rows, first_written = lines[-1].split()
+    assert (word, status, int(steps)) == ("resumed", "completed", 400)
+    assert int(roller_rows) == 401 and int(solver_rows) == 400 and int(first_written) == int(steps_done) + 1
+    assert read_summary(str(out))["status"] == "completed"
+
+
+def test_resume_needs_the_output_folder_and_the_names_are_in_dir():
+    with pytest.raises(rollerpy.InputError, match="resume=True: give out"):
+        rollerpy.run(HERTZ, resume=True)
+    with pytest.raises(rollerpy.InputError, match="resume"):
+        rollerpy.run(HERTZ, out="x", resume="yes")
+    assert {"run", "load_scene", "RunResult", "RunInterrupted", "InputError"} <= set(dir(rollerpy))
 
 
 def test_a_multi_pass_run_gives_the_verdict_and_the_tables_of_the_files(tmp_path):

@@ -191,7 +191,8 @@ Command add_shakedown_limit_command(CLI::App& app) {
       ->type_name("KEY=VALUE");
   cmd->add_option("--refine", args->refine, "mesh refinement factor (overrides mesh.refine)")->check(CLI::Range(1, 64));
   cmd->add_option("--traction", args->traction,
-                  "a uniform traction q/p (default: Carter's traction of the rolling segment's fx when it has one, the "
+                  "a uniform traction q/p (default: Carter's traction of the rolling segment's fx or q_over_p when it "
+                  "has one, the "
                   "friction coefficient when the roller slides, 0 when it rolls freely)")
       ->check(finite_range(0.0, 10.0));
   cmd->add_option("--csv", args->csv, "write the limit of every depth to this CSV file (a new or a regular file)");

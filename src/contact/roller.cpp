@@ -66,6 +66,24 @@ bool RollerSpec::is_valid(std::string* why) const {
                         "already makes its height an unknown)",
                         at, *s.fx));
     }
+    if (s.q_over_p) {
+      if (!(std::abs(*s.q_over_p) <= 10.0))
+        return bad(
+            fmt::format("{}.q_over_p = {}: expected a traction ratio with |q/p| <= 10 (below the friction "
+                        "coefficient for a roller that rolls)",
+                        at, *s.q_over_p));
+      if (s.fx) return bad(fmt::format("{}.q_over_p = {}: give fx or q_over_p, not both", at, *s.q_over_p));
+      if (!s.fy)
+        return bad(
+            fmt::format("{}.q_over_p = {}: the ratio is taken of the segment's vertical force: give the "
+                        "segment fy, p0 or p0_over_k (or prescribe fx)",
+                        at, *s.q_over_p));
+      if (s.dx == 0.0)
+        return bad(
+            fmt::format("{}.q_over_p = {}: the traction acts along the travel, and the segment has dx = 0: "
+                        "give it its travel, or prescribe fx (the strip's force on the roller in x)",
+                        at, *s.q_over_p));
+    }
     if (s.friction && !(*s.friction >= 0.0 && *s.friction <= 10.0))
       return bad(fmt::format("{}.friction = {}: must satisfy 0 <= friction <= 10", at, *s.friction));
   }
@@ -109,27 +127,53 @@ const PathSegment* segment_of_step(const RollerSpec& spec, int step) {
   return nullptr;
 }
 
-// The force of member `force` at step s: ramped from the last earlier segment that has one.
-std::optional<Real> ramped_force(const RollerSpec& spec, Real s, std::optional<Real> PathSegment::*force) {
+// The force `end_of` gives a segment at step s: ramped from the last earlier segment that has one.
+template <class EndOf>
+std::optional<Real> ramped_force(const RollerSpec& spec, Real s, EndOf end_of) {
   const int step = static_cast<int>(std::ceil(s - 1e-12));
   Real start = 0.0;  // the force reached by the last earlier force segment
   for (const PathSegment& seg : spec.path) {
     if (step < seg.first_step) break;
+    const std::optional<Real> end = end_of(seg);
     if (step <= seg.last_step) {
-      if (!(seg.*force)) return std::nullopt;
+      if (!end) return std::nullopt;
       const Real begin = seg.first_step - 1;
       const Real f = std::clamp((s - begin) / (seg.last_step - begin), 0.0, 1.0);
-      return start + f * (*(seg.*force) - start);
+      return start + f * (*end - start);
     }
-    if (seg.*force) start = *(seg.*force);
+    if (end) start = *end;
   }
   return std::nullopt;
 }
 
+// The strip's horizontal force on the roller at q/p of the vertical `fy`: the roller's traction on
+// the strip points along the travel.
+Real traction_fx(const PathSegment& seg, Real fy) { return -(seg.dx > 0.0 ? 1.0 : -1.0) * *seg.q_over_p * fy; }
+
 }  // namespace
 
+const PathSegment* travel_segment(const RollerSpec& spec) {
+  const auto it = std::max_element(spec.path.begin(), spec.path.end(), [](const PathSegment& a, const PathSegment& b) {
+    return std::abs(a.dx) < std::abs(b.dx);
+  });
+  return it == spec.path.end() || it->dx == 0.0 ? nullptr : &*it;
+}
+
+std::optional<Real> segment_end_fx(const PathSegment& seg) {
+  if (seg.q_over_p && seg.fy) return traction_fx(seg, *seg.fy);
+  return seg.fx;
+}
+
 PrescribedForce prescribed_force(const RollerSpec& spec, Real s) {
-  return {ramped_force(spec, s, &PathSegment::fx), ramped_force(spec, s, &PathSegment::fy)};
+  PrescribedForce out;
+  out.fy = ramped_force(spec, s, [](const PathSegment& seg) { return seg.fy; });
+  // q/p holds at every step, the press's ramp of fy included; fx ramps from the force before.
+  const PathSegment* seg = segment_of_step(spec, static_cast<int>(std::ceil(s - 1e-12)));
+  if (seg && seg->q_over_p && out.fy)
+    out.fx = traction_fx(*seg, *out.fy);
+  else
+    out.fx = ramped_force(spec, s, segment_end_fx);
+  return out;
 }
 
 Real friction_in_step(const RollerSpec& spec, int step, Real fallback) {

@@ -105,6 +105,19 @@ ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSetti
     if (deep && shallow) {
       const Real lo = std::min(deep->s.w, shallow->s.w), hi = std::max(deep->s.w, shallow->s.w);
       if (hi - lo <= 1e-14 * std::max(1.0, std::abs(w))) {
+        const Sample& best = std::abs(deep->s.r) < std::abs(shallow->s.r) ? deep->s : shallow->s;
+        if (std::abs(best.r) <= settings.jump_tolerance) {
+          // The last solve is the solution the increment keeps: solve at the better end again.
+          const std::optional<Real> again = best.w == w ? f : force_at(best.w);
+          if (again && std::abs(*again - target) <= settings.jump_tolerance) {
+            out.iterations = it + (best.w == w ? 0 : 1);
+            out.offset = best.w;
+            out.force = *again;
+            out.status = Termination::Converged;
+            out.stiffness = slope;
+            return out;
+          }
+        }
         out.message = fmt::format(
             "the force on the roller jumps across the prescribed {:.6g} N/mm within {:.3g} mm of the centre's {} "
             "(last {:.6g} N/mm): take smaller steps (a larger steps.count, or steps.max_cuts)",

@@ -40,6 +40,14 @@ void append_contact_fields(const std::vector<NodeContactRecord>& contact, Index 
   point_data.push_back(std::move(status));
 }
 
+// The step within each pass whose fields output.mid_pass writes: the middle of the travel.
+int mid_pass_step(const Scene& scene) {
+  if (!scene.output.mid_pass || scene.passes.count < 2 || scene.passes.method != PassMethod::Transient || !scene.roller)
+    return 0;
+  const PathSegment* travel = travel_segment(*scene.roller);
+  return travel ? (travel->first_step + travel->last_step) / 2 : 0;
+}
+
 }  // namespace
 
 RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const DynamicsState& dynamics,
@@ -48,7 +56,8 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
       model_(model),
       dynamics_(dynamics),
       sinks_(std::move(sinks)),
-      step_start_displacement_(model.total_displacement()) {
+      step_start_displacement_(model.total_displacement()),
+      mid_pass_step_(mid_pass_step(scene)) {
   if (!fresh) return;
   if (scene.roller) {
     Simulation::RollerRecord start;
@@ -92,7 +101,8 @@ void RunOutputs::write_step(const Simulation::StepRecord& step) {
     for (const auto& c : step.contact) add_row(OutputTable::Contact, contact_row(step.step, step.pass, c));
     add_row(OutputTable::Roller, roller_row(step.step, step.pass, step.time, *step.roller));
   }
-  if (step.step % scene_.output.every == 0 || step.step == scene_.total_steps())
+  const bool mid_pass = mid_pass_step_ > 0 && (step.step - 1) % scene_.steps.n_steps + 1 == mid_pass_step_;
+  if (step.step % scene_.output.every == 0 || step.step == scene_.total_steps() || mid_pass)
     write_fields(step.step, step.pass, step.contact,
                  step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt);
   step_start_displacement_ = model_.total_displacement();

@@ -35,6 +35,7 @@ class RunOutputs {
   const DynamicsState& dynamics_;
   std::vector<OutputSink*> sinks_;
   VecX step_start_displacement_;  // total displacement at the start of the step being given
+  int mid_pass_step_ = 0;         // the step within a pass whose fields output.mid_pass adds (0: none)
 };
 
 }  // namespace roller

@@ -14,11 +14,8 @@ namespace roller {
 
 SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
   if (!scene.roller) throw InputError(fmt::format("{}: a steady pass needs a [roller]", scene.file.string()));
-  const auto& path = scene.roller->path;
-  const auto it = std::max_element(path.begin(), path.end(), [](const PathSegment& a, const PathSegment& b) {
-    return std::abs(a.dx) < std::abs(b.dx);
-  });
-  if (it == path.end() || it->dx == 0.0)
+  const PathSegment* it = travel_segment(*scene.roller);
+  if (!it)
     throw InputError(
         fmt::format("{}: roller.path: a steady pass needs a segment that rolls or slides the roller "
                     "along the strip (dx != 0); none has one",
@@ -29,7 +26,7 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
                     "needs the press before it (the steps that bring the roller to its load)",
                     scene.file.string(), it->dx));
   SteadyLoad load;
-  load.travel = &*it;
+  load.travel = it;
   load.press_steps = it->first_step - 1;
   load.force = it->fy;
   load.travel_sign = it->dx > 0.0 ? 1.0 : -1.0;
@@ -38,18 +35,17 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
       fmt::format("{}: roller.path: the segment over steps {}-{}", scene.file.string(), it->first_step, it->last_step);
   if (traction) {
     load.traction = *traction;
-  } else if (it->fx) {
+  } else if (const std::optional<Real> fx = segment_end_fx(*it)) {
     if (!it->fy)
-      throw InputError(
-          fmt::format("{} prescribes fx = {} without fy: a steady pass needs both forces", where, *it->fx));
-    // fx: the strip's force on the roller (no -0 when it is zero)
-    load.traction = *it->fx == 0.0 ? 0.0 : -load.travel_sign * *it->fx / std::abs(*it->fy);
+      throw InputError(fmt::format("{} prescribes fx = {} without fy: a steady pass needs both forces", where, *fx));
+    // fx: the strip's force on the roller (no -0 when it is zero); q/p is the traction itself
+    load.traction = it->q_over_p ? *it->q_over_p : *fx == 0.0 ? 0.0 : -load.travel_sign * *fx / std::abs(*it->fy);
     load.shape = TractionShape::Carter;
     if (std::abs(load.traction) > load.friction)
       throw InputError(
-          fmt::format("{}: |fx| = {} exceeds mu |fy| = {} x {}: the roller would slide, it cannot roll "
-                      "steadily under this force",
-                      where, std::abs(*it->fx), load.friction, std::abs(*it->fy)));
+          fmt::format("{}: the traction |q/p| = |fx|/fy = {:.6g} exceeds mu = {}: the roller would slide, it "
+                      "cannot roll steadily under this force",
+                      where, std::abs(load.traction), load.friction));
   } else if (std::max(it->slip_start, it->slip_end) == 0.0) {
     load.traction = 0.0;  // free rolling: no tangential load
   } else if (std::min(it->slip_start, it->slip_end) >= 1.0) {

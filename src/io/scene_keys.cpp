@@ -817,6 +817,10 @@ std::vector<SceneKey> make_keys() {
                          s.output.every = s.passes.count > 1 && marched ? s.steps.n_steps : 1;
                        }),
       key(
+          "output.mid_pass", [](auto& s) -> auto& { return s.output.mid_pass; },
+          "transient [passes]: also write the fields of each pass's loaded state, the step in the middle of its "
+          "travel (the roller at mid-track), beside output.every's"),
+      key(
           "output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
       key(
           "output.monitor", [](auto& s) -> auto& { return s.output.monitor; },
@@ -999,7 +1003,7 @@ std::vector<SceneKey> make_keys() {
           "roller.path.fx", "number", "absent (dx: motion)", "-1e15 <= fx <= 1e15",
           "horizontal force of the strip on the roller at the segment's end [N per mm], linear from the last "
           "earlier segment's fx (0 if none); the centre's x becomes an unknown while dx still turns the roller "
-          "(dx = 0: rotation blocked)",
+          "(dx = 0: rotation blocked); a steady pass holds the end value (q_over_p holds in both)",
           [](TomlSection& s, Scene& scene, Ref i) {
             if (const auto fx = s.real("fx")) {
               if (!(std::abs(*fx) <= kMaxForce)) s.fail("fx", fmt::format("must satisfy |fx| <= {:g}", kMaxForce));
@@ -1008,6 +1012,20 @@ std::vector<SceneKey> make_keys() {
           },
           [](toml::table& t, const Scene& scene, Ref i) {
             if (const auto& fx = scene.roller->path[i].fx) t.insert("fx", *fx);
+          }),
+      custom(
+          "roller.path.q_over_p", "number", "absent", "|q_over_p| <= 10",
+          "the traction ratio q/p instead of fx: the roller's tangential force on the strip along the travel over "
+          "its normal force, held from the segment's first step (fx = -sign(dx) q/p fy at every step; no ramp), "
+          "as the stationary pass and shakedown-limit take it; needs the segment's fy (or p0, p0_over_k) and dx",
+          [](TomlSection& s, Scene& scene, Ref i) {
+            if (const auto q = s.real("q_over_p")) {
+              if (s.has("fx")) s.fail("q_over_p", "give fx or q_over_p, not both");
+              scene.roller->path[i].q_over_p = *q;
+            }
+          },
+          [](toml::table& t, const Scene& scene, Ref i) {
+            if (const auto& q = scene.roller->path[i].q_over_p) t.insert("q_over_p", *q);
           }),
       custom(
           "roller.path.friction", "number", "contact.friction", "0 <= friction <= 10",

@@ -17,6 +17,10 @@ namespace roller {
 
 namespace {
 
+// The keys of a path segment that give one force each: the vertical (fy, or in the users' terms)
+// and the horizontal (fx, or as the traction ratio).
+const std::vector<std::vector<std::string>> kSegmentForceKeys{{"fy", "p0", "p0_over_k"}, {"fx", "q_over_p"}};
+
 // ---- overrides -------------------------------------------------------------------------------
 
 // A key's component "path[1]": the block of an array of tables (0-based), or a plain name.
@@ -81,11 +85,11 @@ void apply_override(toml::table& root, const SceneOverride& o) {
         fmt::format("--set {}={}: a value is set on a key of a block (e.g. roller.path[1].fy), not "
                     "on the block itself",
                     o.key, o.value));
-  // A segment's vertical force is given once, as fy, p0 or p0_over_k: an override of one of them
-  // replaces the force the block gives in any (--set roller.path[0].p0_over_k=4 on a scene with fy).
-  const std::vector<std::string> force_keys{"fy", "p0", "p0_over_k"};
-  if (std::find(force_keys.begin(), force_keys.end(), parts.back()) != force_keys.end())
-    for (const std::string& k : force_keys) t->erase(k);
+  // A segment's force is given once per direction: an override of one of its keys replaces the
+  // force the block gives in any (--set roller.path[0].p0_over_k=4 on a scene with fy).
+  for (const std::vector<std::string>& keys : kSegmentForceKeys)
+    if (std::find(keys.begin(), keys.end(), parts.back()) != keys.end())
+      for (const std::string& k : keys) t->erase(k);
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + o.value);
@@ -214,13 +218,14 @@ void check_passes_not_shortened(const Scene& written, const Scene& scene) {
 
 // Each key once among the overrides (--set, --steps, --refine, --contact): a later one would
 // replace an earlier one before it is checked, and hide a bad value (--set steps.count=nan
-// --steps 2). A segment's fy, p0 and p0_over_k are one key: each replaces the others.
+// --steps 2). A segment's fy, p0 and p0_over_k are one key, its fx and q_over_p another.
 void check_overrides_distinct(const std::vector<SceneOverride>& overrides) {
   auto canonical = [](const std::string& key) {
     const auto dot = key.rfind('.');
     const std::string last = dot == std::string::npos ? key : key.substr(dot + 1);
-    if (last == "fy" || last == "p0" || last == "p0_over_k")
-      return (dot == std::string::npos ? std::string() : key.substr(0, dot + 1)) + "fy|p0|p0_over_k";
+    for (const std::vector<std::string>& keys : kSegmentForceKeys)
+      if (std::find(keys.begin(), keys.end(), last) != keys.end())
+        return (dot == std::string::npos ? std::string() : key.substr(0, dot + 1)) + keys.front();
     return key;
   };
   for (std::size_t i = 0; i < overrides.size(); ++i)
@@ -228,7 +233,8 @@ void check_overrides_distinct(const std::vector<SceneOverride>& overrides) {
       if (canonical(overrides[i].key) == canonical(overrides[j].key))
         throw InputError(fmt::format(
             "{}={} and {}={} set the same scene value twice (--steps, --refine and --contact set steps.count, "
-            "mesh.refine and contact.backend; a segment's fy, p0 and p0_over_k are one force); expected each once",
+            "mesh.refine and contact.backend; a segment's fy, p0 and p0_over_k are one force, fx and q_over_p "
+            "another); expected each once",
             overrides[j].key, overrides[j].value, overrides[i].key, overrides[i].value));
 }
 

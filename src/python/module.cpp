@@ -57,7 +57,7 @@ std::mutex run_mutex;
 std::atomic<std::thread::id> run_owner{};
 
 py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out, bool overwrite,
-             const py::object& progress, bool verbose) {
+             const py::object& progress, bool verbose, bool resume) {
   if (run_owner.load() == std::this_thread::get_id())
     throw InputError("rollerpy.run was called from within a run (its progress callback): one run at a time");
   std::unique_lock<std::mutex> lock(run_mutex, std::defer_lock);
@@ -81,6 +81,7 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
   options.write_files = out.has_value();
   if (out) options.out_dir = *out;
   options.overwrite = overwrite;
+  options.resume = resume;
   options.progress = verbose ? &std::cout : nullptr;
   options.stop_signal = &sink.stop();
   options.sink = &sink;
@@ -125,8 +126,8 @@ PYBIND11_MODULE(_roller, m) {
   m.def("scene_from_dict", &from_dict, py::arg("scene"), py::arg("set") = py::dict(), py::arg("base_dir") = ".",
         "a scene from a dict of the scene file's tables, with overrides");
   m.def("run", &run, py::arg("scene"), py::arg("out") = py::none(), py::arg("overwrite") = false,
-        py::arg("progress") = py::none(), py::arg("verbose") = false,
-        "runs the scene; its results in memory, and in the folder `out` when given");
+        py::arg("progress") = py::none(), py::arg("verbose") = false, py::arg("resume") = false,
+        "runs the scene (or resumes it from the folder `out`); its results in memory, and in `out` when given");
   m.def("version", [] {
     const BuildInfo b = build_info();
     return py::dict(py::arg("version") = b.version, py::arg("commit") = b.commit, py::arg("ipopt") = b.ipopt_version,

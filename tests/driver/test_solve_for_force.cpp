@@ -112,3 +112,36 @@ TEST_CASE("force control: a horizontal force of either sign is met on a friction
   CHECK_THAT(slide.message, Contains("the roller slides") && Contains("dx"));
   CHECK(std::isfinite(slide.offset));
 }
+
+TEST_CASE(
+    "force control: a force that jumps across the target by less than the jump tolerance is met at the "
+    "bracket's better end, a larger jump stops with a message",
+    "[driver][force]") {
+  // F = k (d - w) + a step of `jump` at w = w_jump: the law a stick-slip flip makes, where no w
+  // meets the target within force_tolerance. The target lies inside the step, nearer its top.
+  const Real k = 2e5, d = 0.3, w_jump = 0.25;
+  Real jump = 0.0;
+  Real last_w = 0.0;
+  auto force = [&](Real w) -> std::optional<Real> {
+    last_w = w;
+    return k * (d - w) + (w < w_jump ? jump : 0.0);
+  };
+  const Real top = k * (d - w_jump) + 0.0;  // F just above w_jump; below it F = top + jump
+  ForceControlSettings s = settings(1e-6, k);
+  s.jump_tolerance = 1e-3;
+  SECTION("within the tolerance") {
+    jump = 1e-3;
+    const Real target = top + 0.3e-3;
+    const ForceControlResult r = solve_for_force(target, 0.0, s, force);
+    REQUIRE(r.converged());
+    CHECK(r.offset == Approx(w_jump).margin(1e-12));
+    CHECK(std::abs(r.force - target) == Approx(0.3e-3).epsilon(1e-3));
+    CHECK(last_w == r.offset);  // the increment keeps the last solve: it is the one returned
+  }
+  SECTION("beyond it") {
+    jump = 1e-2;
+    const ForceControlResult r = solve_for_force(top + 4e-3, 0.0, s, force);
+    REQUIRE_FALSE(r.converged());
+    CHECK_THAT(r.message, Contains("jumps across the prescribed"));
+  }
+}

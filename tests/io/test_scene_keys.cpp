@@ -247,7 +247,7 @@ TEST_CASE("a scene that sets every key round-trips, and the resolved scene holds
       continue;
     if (k.dotted() == "roller.path[].p0" || k.dotted() == "roller.path[].p0_over_k")
       continue;  // written as the fy they give (tests/io/test_scene_user_terms.cpp)
-    if (k.dotted() == "roller.path[].fy" || k.dotted() == "roller.path[].fx")
+    if (k.dotted() == "roller.path[].fy" || k.dotted() == "roller.path[].fx" || k.dotted() == "roller.path[].q_over_p")
       continue;  // not with a suspension: checked below
     // The key in the written table (in the last block of an array of tables).
     const toml::node* node = &written;
@@ -268,6 +268,26 @@ TEST_CASE("a scene that sets every key round-trips, and the resolved scene holds
   const std::string resolved = scene_to_toml(loaded);
   CHECK_THAT(resolved, Catch::Contains("fy = 250") && Catch::Contains("fx = -12.5"));
   CHECK(scene_to_toml(parse_scene(resolved, "resolved.toml")) == resolved);
+  // The traction ratio instead of fx, kept as the ratio.
+  const Scene ratio = parse_scene(
+      "[mesh]\n[material]\nE = 2.1e5\n[steps]\ncount = 2\n[roller]\n[[roller.path]]\nsteps = [1, 2]\nfy = 250.0\ndx = "
+      "1.0\nq_over_p = 0.05\n",
+      "q.toml");
+  const std::string resolved_ratio = scene_to_toml(ratio);
+  CHECK_THAT(resolved_ratio, Catch::Contains("q_over_p = 0.05") && !Catch::Contains("fx ="));
+  CHECK(scene_to_toml(parse_scene(resolved_ratio, "resolved.toml")) == resolved_ratio);
+  // One horizontal force a segment: fx and q_over_p in one block, or as two overrides, are refused;
+  // an override of one replaces the other in the file's block.
+  CHECK_THROWS_WITH(parse_scene("[mesh]\n[material]\nE = 2.1e5\n[steps]\ncount = 2\n[roller]\n[[roller.path]]\n"
+                                "steps = [1, 2]\nfy = 250.0\ndx = 1.0\nfx = -5.0\nq_over_p = 0.05\n",
+                                "both.toml"),
+                    Catch::Contains("q_over_p") && Catch::Contains("not both"));
+  CHECK_THROWS_WITH(
+      parse_scene(resolved_ratio, "resolved.toml", {{"roller.path[0].fx", "-5.0"}, {"roller.path[0].q_over_p", "0.1"}}),
+      Catch::Contains("fx and q_over_p another"));
+  const Scene replaced = parse_scene(resolved_ratio, "resolved.toml", {{"roller.path[0].fx", "-5.0"}});
+  CHECK(replaced.roller->path[0].fx == -5.0);
+  CHECK_FALSE(replaced.roller->path[0].q_over_p);
 }
 
 TEST_CASE("scene keys check their range before narrowing, and suggest declared keys", "[io][scene][keys][errors]") {

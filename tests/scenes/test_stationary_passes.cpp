@@ -299,11 +299,15 @@ TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", 
 TEST_CASE("stationary passes rolling under a horizontal force carry Carter's traction, its stick zone ahead",
           "[scenes][stationary]") {
   // shakedown_p37 (a = 2 mm) with mu = 0.2 under Q = 0.15 P along the travel (fx = -Q: the strip's
-  // force on the roller): c = a sqrt(1 - Q/(mu P)) = a/2, the stick zone [a - 2c, a] = [0, a].
+  // force on the roller): c = a sqrt(1 - Q/(mu P)) = a/2, the stick zone [a - 2c, a] = [0, a]. The
+  // same load as q_over_p = 0.15, the traction ratio along the travel.
   const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p37.toml";
-  const auto [dx, start_x] = GENERATE(table<Real, Real>({{16.0, 92.0}, {-16.0, 108.0}}));
-  INFO("dx = " << dx);
+  const auto [dx, start_x, by_ratio] =
+      GENERATE(table<Real, Real, bool>({{16.0, 92.0, false}, {-16.0, 108.0, false}, {-16.0, 108.0, true}}));
+  INFO("dx = " << dx << (by_ratio ? ", q_over_p" : ", fx"));
   const Real travel = dx > 0.0 ? 1.0 : -1.0;
+  const std::string traction =
+      by_ratio ? std::string("q_over_p = 0.15") : fmt::format("fx = {}", -travel * 0.15 * 7249.8292);
   Simulation sim(load_scene(
       file, {kStationary,
              {"passes.count", "1"},
@@ -311,8 +315,8 @@ TEST_CASE("stationary passes rolling under a horizontal force carry Carter's tra
              {"contact.friction", "0.2"},
              {"roller.centre", fmt::format("[{}, 200.0]", start_x)},
              {"roller.path", fmt::format("[{{ steps = [1, 3], fy = 7249.8292 }}, {{ steps = [4, 19], dx = {}, "
-                                         "fy = 7249.8292, fx = {} }}, {{ steps = [20, 21], dy = 0.3 }}]",
-                                         dx, -travel * 0.15 * 7249.8292)}}));
+                                         "fy = 7249.8292, {} }}, {{ steps = [20, 21], dy = 0.3 }}]",
+                                         dx, traction)}}));
   REQUIRE(sim.advance_step(1).converged());
   const Real centre = start_x + 0.5 * dx;  // the travel segment's middle
   Real p = 0.0, q = 0.0;

@@ -16,8 +16,11 @@
 // same way fx prescribes the horizontal force: the centre's x floats about the path's x while the
 // path's dx still turns the roller (rolling kinematics), so dx = 0 blocks the rotation (the
 // Cattaneo-Mindlin protocol) and dx != 0 rolls it under a traction with the creep an outcome
-// (Carter). A segment may also set the friction coefficient for its steps (mu = 0 while pressing,
-// mu once the tangential load starts).
+// (Carter). fx ramps over its segment like fy; q_over_p instead holds the horizontal force at
+// q/p times the vertical one from the segment's first step, along the travel (the traction ratio
+// of the stationary pass and of Melan's bound: docs/scenes.md, One traction). A segment may also
+// set the friction coefficient for its steps (mu = 0 while pressing, mu once the tangential load
+// starts).
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,8 +53,14 @@ struct PathSegment {
   // Horizontal force of the strip on the roller at the segment's end [N per mm], reached linearly
   // from the fx of the last earlier segment that has one (0 if none); the centre's x carries it.
   std::optional<Real> fx;
+  // The traction ratio q/p: the roller's tangential force on the strip along the travel over its
+  // normal force, held at every step of the segment (fx = -sign(dx) q/p fy); instead of fx.
+  std::optional<Real> q_over_p;
   std::optional<Real> friction;  // Coulomb coefficient over the segment's steps (else contact.friction)
 };
+
+// The horizontal force a segment prescribes at its end (its fx, or q/p of its fy), if any.
+std::optional<Real> segment_end_fx(const PathSegment& seg);
 
 struct RollerSpec {
   Real radius = 300.0;               // R [mm]
@@ -65,6 +74,10 @@ struct RollerSpec {
   std::optional<SuspensionSpec> suspension;  // absent: the centre follows the path exactly
   bool is_valid(std::string* why) const;
 };
+
+// The segment that moves the roller farthest along the strip (the largest |dx|; the first of
+// equals), or null when none moves it along: a pass's travel.
+const PathSegment* travel_segment(const RollerSpec& spec);
 
 // Pose at (fractional) step s: s = 0 is the start, s = 2.5 halfway through step 3. The path is
 // sampled at step ends and interpolated linearly within a step.

@@ -22,7 +22,10 @@ enum class ForceAxis {
 
 struct ForceControlSettings {
   ForceAxis axis = ForceAxis::Vertical;
-  Real force_tolerance = 0.0;    // |F(w) - P| that is converged [N per mm]
+  Real force_tolerance = 0.0;  // |F(w) - P| that is converged [N per mm]
+  // Where F jumps across P within round-off of w (a node's stick-slip state flips between two
+  // solves a round-off apart), the bracket's better end is taken if |F - P| is within this.
+  Real jump_tolerance = 0.0;
   Real stiffness_guess = 0.0;    // dF/d(-w) for the first step [N/mm per mm], > 0
   Real max_offset_change = 0.0;  // |w - w0| beyond this: nothing carries the load [mm]
   int max_iterations = 40;       // contact solves
@@ -41,9 +44,10 @@ struct ForceControlResult {
 // Finds w with F(w) = target, starting at w0. `force_at(w)` solves the increment with the centre
 // at offset w and returns F, or nullopt when that solve fails. While the root is not bracketed
 // the step is the secant (or the guess) slope's Newton step, doubled while F does not change (the
-// roller above the strip, vertical axis only); once bracketed, Illinois regula falsi. Fails with a message when a
-// solve fails, when w would move more than max_offset_change (a load nothing carries: the roller
-// pulled off the strip, or a strip that collapses under it) or after max_iterations.
+// roller above the strip, vertical axis only); once bracketed, Illinois regula falsi. A bracket
+// that closes to round-off ends at its better end when that is within jump_tolerance (solved
+// again there). Fails with a message when a solve fails, when w would move more than max_offset_change (a load nothing
+// carries: the roller pulled off the strip, or a strip that collapses under it) or after max_iterations.
 ForceControlResult solve_for_force(Real target, Real w0, const ForceControlSettings& settings,
                                    const std::function<std::optional<Real>(Real)>& force_at);
 

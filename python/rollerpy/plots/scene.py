@@ -484,9 +484,10 @@ def step_groups(option, text, steps):
 def arguments():
     ap = parser("plot-scene", __doc__)
     ap.add_argument("out")
-    ap.add_argument("--steps", default="", help="steps for the contour maps, e.g. 4,7 (default: the last)")
+    loaded = "(default: the last written step whose roller carries load, else the last)"
+    ap.add_argument("--steps", default="", help="steps for the contour maps, e.g. 4,7 " + loaded)
     ap.add_argument("--profile-steps", default="", help="steps for the surface profile, e.g. 0-12 (default: all)")
-    ap.add_argument("--pressure-steps", default="", help="steps for the pressure plot (default: the last)")
+    ap.add_argument("--pressure-steps", default="", help="steps for the pressure plot " + loaded)
     ap.add_argument("--mesh-steps", default="", help="steps for deformed-mesh plots, e.g. 3,6")
     ap.add_argument("--hertz", action="store_true", help="also plot p_n against Hertz (hertz.png)")
     ap.add_argument("--hertz-step", type=int,
@@ -500,7 +501,7 @@ def arguments():
                          "(solid, dashed, dash-dot, dotted)")
     ap.add_argument("--compare", metavar="OTHER_OUT",
                     help="a reference run whose contour lines (solid) are overlaid with this run's (dashed)")
-    ap.add_argument("--compare-steps", default="", help="steps of the comparison (default: the last)")
+    ap.add_argument("--compare-steps", default="", help="steps of the comparison " + loaded)
     ap.add_argument("--spacing", default="",
                     help="contour spacing of overlays and comparisons per field, e.g. von_mises=10,stress_xy=10 "
                          "(default: about ten round levels)")
@@ -556,16 +557,20 @@ def plot(args):
         raise PlotError("no step_NNNN.vtu in %s (was the run made with output.vtu = true?)" % args.out)
     fields, spacing, levels, xlim, ylim = checked_options(args, steps)
     last, has_contact = steps[-1], os.path.exists(os.path.join(args.out, "contact.csv"))
-    map_steps = parse_steps("--steps", args.steps, steps) or [last]
+    # The default step: the last written one whose roller carries load (a pass run ends lifted).
+    loaded = loaded_rows(args.out)
+    shown = max([s for s in steps if s in loaded], default=last)
+    map_steps = parse_steps("--steps", args.steps, steps) or [shown]
     groups, mesh_groups = step_groups("--pairs", args.pairs, steps), step_groups("--mesh-pairs", args.mesh_pairs, steps)
     profile_steps = parse_steps("--profile-steps", args.profile_steps, steps) or steps
     contact_steps = sorted({int(r["step"]) for r in read_contact(args.out)}) if has_contact else []
-    pressure_steps = parse_steps("--pressure-steps", args.pressure_steps, contact_steps) or contact_steps[-1:]
+    loaded_contact = [s for s in contact_steps if s in loaded] or contact_steps
+    pressure_steps = parse_steps("--pressure-steps", args.pressure_steps, contact_steps) or loaded_contact[-1:]
     mesh_steps = parse_steps("--mesh-steps", args.mesh_steps, steps)
     marks = [int(v) for v in number_list("--mark-nodes", args.mark_nodes) or []]
     compare_steps = []
     if args.compare:
-        compare_steps = parse_steps("--compare-steps", args.compare_steps, steps) or [last]
+        compare_steps = parse_steps("--compare-steps", args.compare_steps, steps) or [shown]
         parse_steps("--compare-steps (of %s)" % args.compare, ",".join(map(str, compare_steps)),
                     available_steps(args.compare))
     hertz = hertz_figure(args.out, args.hertz_step) if args.hertz or args.hertz_step is not None else None

@@ -54,7 +54,7 @@ import tomllib
 import numpy as np
 
 from ..command import parser
-from ..outputs import read_numbers, read_summary
+from ..outputs import read_numbers, read_scene, read_summary
 from ..paths import ROOT
 from ..runner import run, set_options
 from ..vtu import available_steps, read_vtu, vtu_path
@@ -148,8 +148,11 @@ def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
 
 
 def pass_fields(out, passes):
-    """The fields at the start and at the end of every pass of a finished run, each read once."""
-    steps = available_steps(out)
+    """The fields at the start and at the end of every pass of a finished run, each read once (a
+    transient run's mid-pass fields, output.mid_pass, left out)."""
+    scene = read_scene(out)
+    per_pass = scene["steps"]["count"] if scene.get("passes", {}).get("method", "transient") == "transient" else 1
+    steps = [s for s in available_steps(out) if s % per_pass == 0]
     if len(steps) != passes + 1:
         sys.exit("stationary-check: %s holds %d field files, not one a pass and the start" % (out, len(steps)))
     return [read_vtu(vtu_path(out, s)) for s in steps]
