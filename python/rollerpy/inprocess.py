@@ -77,6 +77,7 @@ class StepFields:
     point_data: dict    # name -> (n_nodes,) or (n_nodes, components)
     cell_data: dict     # name -> (n_elements,) or (n_elements, components)
     roller: Optional[dict]  # {"xc", "yc", "phi"} of the roller, None without one
+    loaded: bool = False    # a stationary pass's loaded state beside the step's own fields
 
     def __getitem__(self, name: str) -> np.ndarray:
         if name in self.point_data:
@@ -98,7 +99,8 @@ class RunResult:
     iterations: int
     mesh: Mesh
     tables: dict         # "solver", "roller", ... -> {column: array} (the CSV tables' columns)
-    fields: list         # StepFields of every written step, in order
+    fields: list         # StepFields of every written step, in order (with stationary passes'
+                         # loaded states: loaded=True, before their step's own)
     warnings: list
     verdict: Optional[dict] = None  # multi-pass runs: {"verdict", "criterion"}
     summary: dict = field(default_factory=dict)
@@ -120,21 +122,24 @@ class RunResult:
 
     @property
     def written_steps(self) -> list:
-        return [f.step for f in self.fields]
+        return [f.step for f in self.fields if not f.loaded]
 
-    def at_step(self, step: int = -1) -> StepFields:
-        """The fields of a written step (-1: the last one written)."""
-        if not self.fields:
-            raise KeyError("this run wrote no fields (output.vtu = false, or it failed at once)")
+    def at_step(self, step: int = -1, loaded: bool = False) -> StepFields:
+        """The fields of a written step (-1: the last one written); loaded=True: a stationary pass's
+        loaded state (the strip under the roller) instead of the residual strip after it."""
+        chosen = [f for f in self.fields if f.loaded == loaded]
+        if not chosen:
+            raise KeyError("this run wrote no %sfields (output.vtu = false, or it failed at once)"
+                           % ("loaded " if loaded else ""))
         if step == -1:
-            return self.fields[-1]
-        for f in self.fields:
+            return chosen[-1]
+        for f in chosen:
             if f.step == step:
                 return f
-        raise KeyError(f"step {step} was not written; the written steps are {self.written_steps}")
+        raise KeyError(f"step {step} was not written; the written steps are {[f.step for f in chosen]}")
 
-    def field(self, name: str, step: int = -1) -> np.ndarray:
-        return self.at_step(step)[name]
+    def field(self, name: str, step: int = -1, loaded: bool = False) -> np.ndarray:
+        return self.at_step(step, loaded)[name]
 
 
 class RunInterrupted(KeyboardInterrupt):
@@ -215,7 +220,7 @@ def _folder_tables(out: str, tables: dict) -> dict:
 def _result(raw: dict) -> RunResult:
     s = raw["summary"]
     fields = [StepFields(f["step"], f["pass"], f["time"], f["point_data"], f["cell_data"],
-                         f["roller"]) for f in raw["fields"]]
+                         f["roller"], f["loaded"]) for f in raw["fields"]]
     m = raw["mesh"]
     return RunResult(scene=raw["scene"], status=s["status"], message=s["message"],
                      steps=raw["steps"], steps_done=s["steps_done"], wall_s=s["wall_s"],

@@ -198,8 +198,9 @@ def vtu_path(out, step):
 
 
 def available_steps(out):
-    """The steps that have a step_NNNN.vtu in OUT, sorted."""
-    return sorted(int(f[5:9]) for f in os.listdir(out) if f.startswith("step_") and f.endswith(".vtu"))
+    """The steps that have a step_NNNN.vtu in OUT, sorted (a stationary pass's loaded state,
+    step_NNNN_loaded.vtu, is not a step of its own)."""
+    return sorted(int(f[5:9]) for f in os.listdir(out) if re.fullmatch(r"step_\d{4}\.vtu", f))
 
 
 def step_times(out):
@@ -207,7 +208,8 @@ def step_times(out):
     path = os.path.join(out, "fields.pvd")
     if not os.path.exists(path):
         return {}
-    return {int(d.get("file")[5:9]): float(d.get("timestep")) for d in ET.parse(path).getroot().iter("DataSet")}
+    return {int(d.get("file")[5:9]): float(d.get("timestep")) for d in ET.parse(path).getroot().iter("DataSet")
+            if re.fullmatch(r"step_\d{4}\.vtu", d.get("file"))}
 
 
 def reference_mesh(out):

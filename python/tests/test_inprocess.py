@@ -169,6 +169,35 @@ def test_a_multi_pass_run_gives_the_verdict_and_the_tables_of_the_files(tmp_path
     assert run.written_steps == available_steps(str(out)) and run.written_steps[-1] == 3
 
 
+def test_pass_runs_write_each_pass_loaded_state_for_paraview(tmp_path):
+    # Stationary: the pass's steady state under the roller beside the residual strip after it, at
+    # time step - 1/2 in fields.pvd; the Hertz pressure on the loaded strip, none left after it.
+    out = tmp_path / "stationary"
+    run = rollerpy.run(os.path.join(PROBLEMS, "shakedown_p45.toml"),
+                       set={"passes.method": "stationary", "passes.count": 2, "output.every": 1}, out=out)
+    assert [(f.step, f.loaded) for f in run.fields] == [(0, False), (1, True), (1, False), (2, True), (2, False)]
+    assert run.written_steps == [0, 1, 2] == available_steps(str(out))
+    pvd = (out / "fields.pvd").read_text()
+    order = [pvd.index(name) for name in ("step_0000.vtu", "step_0001_loaded.vtu", "step_0001.vtu",
+                                          "step_0002_loaded.vtu", "step_0002.vtu")]
+    assert order == sorted(order) and 'timestep="0.5"' in pvd and (out / "roller_0001_loaded.vtp").exists()
+    loaded, residual = run.at_step(1, loaded=True), run.at_step(1)
+    assert abs(loaded["contact_pressure"].max() / 2307.7 - 1.0) < 0.05  # Hertz's p0 of the scene
+    # Under the roller (p0/k = 4.5) the perfectly plastic strip flows: von Mises at its yield stress.
+    assert loaded["von_mises_nodal"].max() == pytest.approx(888.2312, rel=1e-9)
+    assert loaded["von_mises_nodal"].max() > 1.2 * residual["von_mises_nodal"].max()
+    assert abs(loaded["displacement"][:, 1]).max() > 2.0 * abs(residual["displacement"][:, 1]).max()
+    on_disk = read_vtu(str(out / "step_0001_loaded.vtu"))
+    assert np.array_equal(on_disk.point_data["contact_pressure"], loaded["contact_pressure"])
+    # Transient: each pass's step in the middle of its travel (steps 4-5 of 7: step 4) beside its end.
+    marched = rollerpy.run(os.path.join(PROBLEMS, "shakedown_p45.toml"),
+                           set={"passes.count": 2, "steps.count": 7, "roller.path[1].steps": [4, 5],
+                                "roller.path[1].dx": 2.0, "roller.path[2].steps": [6, 7], "output.every": 7})
+    assert marched.written_steps == [0, 4, 7, 11, 14] and not any(f.loaded for f in marched.fields)
+    assert marched.at_step(11)["contact_pressure"].max() > 1000.0
+    assert marched.at_step(14)["contact_pressure"].max() == 0.0
+
+
 def test_the_documented_example_draws_its_figure(tmp_path):
     figure = tmp_path / "load_sweep.png"
     env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))

@@ -50,3 +50,18 @@ def test_one_run_and_a_comparison_write_their_figures(tmp_path):
     assert passes.run_label(kin) == "shakedown_kinematic_p45, kinematic E_T=4200, penalty"
     passes.main([epp, "--compare", kin, af, st])
     assert os.path.getsize(os.path.join(epp, "ratchet.png")) > 10000
+
+
+def test_residual_depth_leaves_out_a_vanishing_shear_and_ends_below_what_the_passes_left():
+    def rows(sxy):
+        # sigma_xx and the plastic strain down to 3 mm, nothing below it, on a 16 mm deep strip
+        return [{"pass": 1, "depth": d, "sxx": -100.0 if d <= 3.0 else 0.0, "szz": -50.0 if d <= 3.0 else 0.0,
+                 "sxy": sxy, "eq_plastic_strain": 1e-3 if d <= 3.0 else 0.0} for d in (0.5, 1.0, 2.0, 3.0, 8.0, 16.0)]
+    uniform = passes.depth_panels(rows(0.0), cap=16.0)
+    assert "sxy" not in uniform.keys and "residual σ_xy [MPa]" not in uniform.labels
+    assert len(uniform.keys) == len(uniform.labels) == 3 and "σ_xy = 0" in uniform.note
+    assert uniform.depth == 4.5  # 1.5 x the 3 mm the passes reached, not the strip's 16 mm
+    sheared = passes.depth_panels(rows(5.0), cap=16.0)
+    assert "sxy" in sheared.keys and sheared.note == ""
+    assert sheared.depth == 16.0  # sigma_xy reaches the bottom
+    assert passes.depth_panels(rows(0.0), cap=2.0).depth == 2.0

@@ -31,16 +31,20 @@ FileOutputs::FileOutputs(const Scene& scene, const Mesh& mesh, const std::filesy
   }
   if (scene.roller) roller_series_.emplace(out_dir / "roller.pvd");
   if (!resume) return;
-  for (int step = 0; step <= steps_done; ++step) {
-    if (std::filesystem::exists(vtu_path(step))) series_.add(step * scene.steps.dt, vtu_path(step));
-    if (roller_series_ && std::filesystem::exists(vtp_path(step)))
-      roller_series_->add(step * scene.steps.dt, vtp_path(step));
-  }
+  for (int step = 0; step <= steps_done; ++step)
+    for (const bool loaded : {true, false}) {  // in the order of their times
+      const Real time = (step - (loaded ? 0.5 : 0.0)) * scene.steps.dt;
+      if (std::filesystem::exists(vtu_path(step, loaded))) series_.add(time, vtu_path(step, loaded));
+      if (roller_series_ && std::filesystem::exists(vtp_path(step, loaded)))
+        roller_series_->add(time, vtp_path(step, loaded));
+    }
 }
 
-std::filesystem::path FileOutputs::vtu_path(int step) const { return out_dir_ / fmt::format("step_{:04d}.vtu", step); }
-std::filesystem::path FileOutputs::vtp_path(int step) const {
-  return out_dir_ / fmt::format("roller_{:04d}.vtp", step);
+std::filesystem::path FileOutputs::vtu_path(int step, bool loaded) const {
+  return out_dir_ / fmt::format("step_{:04d}{}.vtu", step, loaded ? "_loaded" : "");
+}
+std::filesystem::path FileOutputs::vtp_path(int step, bool loaded) const {
+  return out_dir_ / fmt::format("roller_{:04d}{}.vtp", step, loaded ? "_loaded" : "");
 }
 
 void FileOutputs::add_row(OutputTable table, const Row& row) { tables_.at(table)->add_row(cells_of(row)); }
@@ -51,11 +55,12 @@ void FileOutputs::add_fields(StepFields f) {
   // and a series lists a file once it is complete.
   writer_.submit([this, f = std::move(f)] {
     const std::vector<VtuField> info = step_field_data(f.step, f.pass, f.time);
-    write_vtu(vtu_path(f.step), mesh_, mesh_.nodes, f.strip.point_data, f.strip.cell_data, VtuCompression::ZLib, info);
-    if (f.roller) write_roller_vtp(vtp_path(f.step), f.roller->centre, scene_.roller->radius, f.roller->angle, info);
+    const std::filesystem::path vtu = vtu_path(f.step, f.loaded), vtp = vtp_path(f.step, f.loaded);
+    write_vtu(vtu, mesh_, mesh_.nodes, f.strip.point_data, f.strip.cell_data, VtuCompression::ZLib, info);
+    if (f.roller) write_roller_vtp(vtp, f.roller->centre, scene_.roller->radius, f.roller->angle, info);
     const std::lock_guard<std::mutex> lock(series_mutex_);
-    series_.add(f.time, vtu_path(f.step));
-    if (f.roller && roller_series_) roller_series_->add(f.time, vtp_path(f.step));
+    series_.add(f.time, vtu);
+    if (f.roller && roller_series_) roller_series_->add(f.time, vtp);
   });
 }
 

@@ -33,8 +33,9 @@ class FileOutputs : public OutputSink {
   void add_fields(StepFields fields) override;
 
  private:
-  std::filesystem::path vtu_path(int step) const;
-  std::filesystem::path vtp_path(int step) const;
+  // A step's files; `loaded`: a stationary pass's loaded state beside them (StepFields::loaded).
+  std::filesystem::path vtu_path(int step, bool loaded = false) const;
+  std::filesystem::path vtp_path(int step, bool loaded = false) const;
 
   const Scene& scene_;
   const Mesh& mesh_;

@@ -50,6 +50,10 @@ int mid_pass_step(const Scene& scene) {
 
 }  // namespace
 
+bool fields_written(const Scene& scene, int step) {
+  return scene.output.vtu && (step % scene.output.every == 0 || step == scene.total_steps());
+}
+
 RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const DynamicsState& dynamics,
                        const RollerPose& start_pose, bool fresh, std::vector<OutputSink*> sinks)
     : scene_(scene),
@@ -86,6 +90,15 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
   sinks_.back()->add_fields(std::move(f));
 }
 
+void RunOutputs::write_loaded_fields(const Simulation::StepRecord& step) {
+  if (!scene_.output.vtu || sinks_.empty()) return;
+  StepFields f{step.step, step.pass, (step.step - 0.5) * scene_.steps.dt, *step.loaded_fields,
+               step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt, true};
+  append_contact_fields(step.contact, model_.mesh().n_nodes(), f.strip.point_data);
+  for (std::size_t i = 0; i + 1 < sinks_.size(); ++i) sinks_[i]->add_fields(f);
+  sinks_.back()->add_fields(std::move(f));
+}
+
 void RunOutputs::write_solver_row(const Simulation::StepRecord& step, const MonitorReport& monitor, double wall_s) {
   add_row(OutputTable::Solver, solver_row(step, monitor, wall_s));
 }
@@ -102,7 +115,8 @@ void RunOutputs::write_step(const Simulation::StepRecord& step) {
     add_row(OutputTable::Roller, roller_row(step.step, step.pass, step.time, *step.roller));
   }
   const bool mid_pass = mid_pass_step_ > 0 && (step.step - 1) % scene_.steps.n_steps + 1 == mid_pass_step_;
-  if (step.step % scene_.output.every == 0 || step.step == scene_.total_steps() || mid_pass)
+  if (step.loaded_fields) write_loaded_fields(step);
+  if (fields_written(scene_, step.step) || mid_pass)
     write_fields(step.step, step.pass, step.contact,
                  step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt);
   step_start_displacement_ = model_.total_displacement();

@@ -12,6 +12,9 @@
 
 namespace roller {
 
+// Whether the fields of `step` are written: every output.every steps and the last one.
+bool fields_written(const Scene& scene, int step);
+
 class RunOutputs {
  public:
   // The fields are read from `model` and `dynamics` (the run's, which outlive this object) when
@@ -29,6 +32,8 @@ class RunOutputs {
   // The strip's fields of a step, and the roller (its pose; none without a roller) beside them.
   void write_fields(int step, int pass, const std::vector<NodeContactRecord>& contact,
                     const std::optional<RollerPose>& roller);
+  // A stationary pass's loaded state beside the step's fields.
+  void write_loaded_fields(const Simulation::StepRecord& step);
 
   const Scene& scene_;
   const StripModel& model_;

@@ -5,7 +5,9 @@
 
 #include "roller/analysis/pass_metrics.hpp"
 #include "roller/driver/simulation.hpp"
+#include "roller/io/field_output.hpp"
 #include "roller_contact_correction.hpp"
+#include "run_outputs.hpp"
 
 namespace roller {
 
@@ -33,8 +35,12 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
     record_state(res);
     return res;
   }
-  model_->restore(model_->reference_coordinates(), model_->total_displacement() + pass.permanent_displacement,
-                  pass.residual);
+  const VecX before = model_->total_displacement();
+  if (scene_.output.mid_pass && fields_written(scene_, step)) {  // the loaded state, for its fields
+    model_->restore(model_->reference_coordinates(), before + pass.solve.displacement, pass.solve.states);
+    res.loaded_fields = strip_fields(*model_, pass.solve.displacement);
+  }
+  model_->restore(model_->reference_coordinates(), before + pass.permanent_displacement, pass.residual);
   ++state_.steps_done;
   state_.last_increment = pass.next_start;  // in the state files, so that a resumed run starts alike
   state_.last_length = 0.0;

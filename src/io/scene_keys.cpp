@@ -818,8 +818,9 @@ std::vector<SceneKey> make_keys() {
                        }),
       key(
           "output.mid_pass", [](auto& s) -> auto& { return s.output.mid_pass; },
-          "transient [passes]: also write the fields of each pass's loaded state, the step in the middle of its "
-          "travel (the roller at mid-track), beside output.every's"),
+          "[passes]: also write the fields of each pass's loaded state beside output.every's: transient, the step "
+          "in the middle of its travel (the roller at mid-track); stationary, the pass's steady state as "
+          "step_NNNN_loaded.vtu"),
       key(
           "output.vtu", [](auto& s) -> auto& { return s.output.vtu; }, "write step_NNNN.vtu and fields.pvd"),
       key(

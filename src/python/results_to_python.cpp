@@ -77,6 +77,7 @@ py::list fields_list(const MemoryOutputs& outputs) {
     d["step"] = f.step;
     d["pass"] = f.pass;
     d["time"] = f.time;
+    d["loaded"] = f.loaded;
     d["point_data"] = fields_dict(f.strip.point_data);
     d["cell_data"] = fields_dict(f.strip.cell_data);
     if (f.roller)

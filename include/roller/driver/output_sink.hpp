@@ -22,6 +22,9 @@ struct StepFields {
   Real time = 0.0;
   StripFields strip;
   std::optional<RollerPose> roller;
+  // A stationary pass's loaded state (the strip under the roller, in its frame) written beside the
+  // pass's own fields, the residual strip: step_NNNN_loaded.vtu at time (step - 1/2) dt.
+  bool loaded = false;
 };
 
 class OutputSink {

@@ -22,6 +22,7 @@
 #include "roller/driver/roller_program.hpp"
 #include "roller/driver/run_state.hpp"
 #include "roller/dynamics/dynamics_state.hpp"
+#include "roller/io/field_output.hpp"
 #include "roller/io/scene.hpp"
 
 namespace roller {
@@ -169,6 +170,8 @@ class Simulation {
     Index n_contact() const { return count_in_contact(contact); }
     std::optional<RollerRecord> roller;
     Real kinetic_energy = 0.0;
+    // A stationary pass's loaded state, when its fields are written (output.mid_pass).
+    std::optional<StripFields> loaded_fields;
   };
   StepRecord advance_step(int step);
 

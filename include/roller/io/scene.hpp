@@ -105,7 +105,7 @@ struct StepControl {
 
 struct OutputOptions {
   int every = 1;         // write fields every N steps (and always the last step)
-  bool mid_pass = true;  // transient multi-pass runs: also each pass's loaded state (the roller at mid-track)
+  bool mid_pass = true;  // pass runs: also each pass's loaded state (transient: the roller at mid-track)
   bool vtu = true;
   bool monitor = true;           // run-time monotonicity monitor (one extra assembly and
                                  // factorisation of the strip tangent per step)

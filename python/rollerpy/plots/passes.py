@@ -20,6 +20,9 @@ Needs numpy and matplotlib from Debian (python3-numpy, python3-matplotlib).
 """
 import os
 import tomllib
+from dataclasses import dataclass
+
+from matplotlib.ticker import MaxNLocator
 
 from ..command import parser
 from ..outputs import read_numbers, read_summary
@@ -56,28 +59,58 @@ def plot_passes(out, rows, title):
     plt.close(fig)
 
 
-def plot_depth(out, rows, title):
-    passes = sorted({int(r["pass"]) for r in rows})
+@dataclass
+class DepthPanels:
+    """What residual_depth.png draws: the columns (keys) with their axis labels, a note for the
+    title, the depth the axis reaches."""
+    keys: list
+    labels: list
+    note: str
+    depth: float
+
+
+def depth_panels(rows, cap):
+    """The panels of residual_depth.csv's rows. σ_xy is left out where it vanishes: a long track's
+    residual state is uniform along x (a stationary run's always), and an empty panel says nothing.
+    The depth axis reaches 1.5 times the depth beyond which every quantity stays below 2 % of its
+    largest (what the passes left lies above it), at most `cap` and the strip's depth."""
     keys = ["sxx", "szz", "sxy", "eq_plastic_strain"]
     labels = ["residual σ_xx [MPa]", "residual σ_zz [MPa]", "residual σ_xy [MPa]", "ε̄ᵖ"]
     if any(r.get("back_xx", 0.0) != 0.0 for r in rows):  # a kinematic law: the yield surface's centre
         keys.append("back_xx")
         labels.append("back-stress Σα_xx [MPa]")
-    fig, axes = plt.subplots(1, len(keys), figsize=(3 * len(keys), 4.5), sharey=True)
+    largest = {k: max(abs(r[k]) for r in rows) for k in keys}
+    note = ""
+    if largest["sxy"] <= 1e-3 * max(largest["sxx"], largest["szz"]):
+        del labels[keys.index("sxy")]
+        keys.remove("sxy")
+        size = "= 0" if largest["sxy"] == 0.0 else "≈ 0 (|σ_xy| ≤ %.2g MPa)" % largest["sxy"]
+        note = "residual σ_xy %s, not drawn: the residual state is uniform along the track" % size
+    deepest = max(r["depth"] for r in rows)
+    reached = [r["depth"] for r in rows for k in keys if largest[k] > 0.0 and abs(r[k]) > 0.02 * largest[k]]
+    depth = min(deepest, cap, 1.5 * max(reached)) if reached else min(deepest, cap)
+    return DepthPanels(keys, labels, note, depth)
+
+
+def plot_depth(out, rows, title):
+    passes = sorted({int(r["pass"]) for r in rows})
+    panels = depth_panels(rows, 8.0 * max(1e-9, _half_width(out)))
+    fig, axes = plt.subplots(1, len(panels.keys), figsize=(3 * len(panels.keys), 4.5), sharey=True)
     colours = plt.cm.viridis([i / max(1, len(passes) - 1) for i in range(len(passes))])
     for colour, p in zip(colours, passes):
         sel = [r for r in rows if int(r["pass"]) == p]
         depth = [r["depth"] for r in sel]
-        for ax, key in zip(axes, keys):
+        for ax, key in zip(axes, panels.keys):
             ax.plot([r[key] for r in sel], depth, color=colour, label="pass %d" % p)
-    for ax, label in zip(axes, labels):
+    for ax, label in zip(axes, panels.labels):
         ax.set_xlabel(label)
         ax.grid(True, alpha=0.3)
-    depth_max = max(r["depth"] for r in rows)
-    axes[0].set_ylim(min(depth_max, 8.0 * max(1e-9, _half_width(out))), 0.0)
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=4))  # labels that do not run together
+        ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4))
+    axes[0].set_ylim(panels.depth, 0.0)
     axes[0].set_ylabel("depth below the surface [mm]")
     axes[-1].legend(fontsize=8)
-    fig.suptitle(title, fontsize=9)
+    fig.suptitle(title + ("\n" + panels.note if panels.note else ""), fontsize=9)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "residual_depth.png"), dpi=150)
     plt.close(fig)

@@ -148,11 +148,13 @@ def stretch_metrics(now, start, x0, x1, a, elastic, period=None):
 
 
 def pass_fields(out, passes):
-    """The fields at the start and at the end of every pass of a finished run, each read once (a
-    transient run's mid-pass fields, output.mid_pass, left out)."""
+    """The fields at the start and at the end of every pass of a finished run, each read once: of a
+    transient run with [passes] the steps that end a pass (its mid-pass fields, output.mid_pass, left
+    out), of a stationary run or one pass (a ring rolled on) every written step."""
     scene = read_scene(out)
-    per_pass = scene["steps"]["count"] if scene.get("passes", {}).get("method", "transient") == "transient" else 1
-    steps = [s for s in available_steps(out) if s % per_pass == 0]
+    by_pass = scene.get("passes", {})
+    marched = by_pass.get("count", 1) > 1 and by_pass.get("method", "transient") == "transient"
+    steps = [s for s in available_steps(out) if not marched or s % scene["steps"]["count"] == 0]
     if len(steps) != passes + 1:
         sys.exit("stationary-check: %s holds %d field files, not one a pass and the start" % (out, len(steps)))
     return [read_vtu(vtu_path(out, s)) for s in steps]
