@@ -92,8 +92,12 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
 
 void RunOutputs::write_loaded_fields(const Simulation::StepRecord& step) {
   if (!scene_.output.vtu || sinks_.empty()) return;
-  StepFields f{step.step, step.pass, (step.step - 0.5) * scene_.steps.dt, *step.loaded_fields,
-               step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt, true};
+  StepFields f{step.step,
+               step.pass,
+               (step.step - 0.5) * scene_.steps.dt,
+               *step.loaded_fields,
+               step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt,
+               true};
   append_contact_fields(step.contact, model_.mesh().n_nodes(), f.strip.point_data);
   for (std::size_t i = 0; i + 1 < sinks_.size(); ++i) sinks_[i]->add_fields(f);
   sinks_.back()->add_fields(std::move(f));
