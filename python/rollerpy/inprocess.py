@@ -99,8 +99,9 @@ class RunResult:
     iterations: int
     mesh: Mesh
     tables: dict         # "solver", "roller", ... -> {column: array} (the CSV tables' columns)
-    fields: list         # StepFields of every written step, in order (with stationary passes'
-                         # loaded states: loaded=True, before their step's own)
+    # StepFields of every written step, in order (a stationary pass's loaded state, loaded=True,
+    # before its step's own)
+    fields: list
     warnings: list
     verdict: Optional[dict] = None  # multi-pass runs: {"verdict", "criterion"}
     summary: dict = field(default_factory=dict)
