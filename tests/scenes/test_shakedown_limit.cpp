@@ -147,6 +147,13 @@ TEST_CASE("shakedown-limit of rolling under a horizontal force: Carter's tractio
                              uniform.p0_over_k(uniform.elastic));
     CHECK(r.p0_over_k(r.elastic) == Approx(half_plane).epsilon(0.01));
   }
+  // The traction ratio q_over_p is the same load as its fx: the same bound to the last bit.
+  const ShakedownLimitResult by_ratio = compute_shakedown_limit(
+      shipped("shakedown_p45", {{"contact.friction", "0.2"}, {"roller.path[1].q_over_p", "0.15"}}), {});
+  const ShakedownLimitResult by_force = compute_shakedown_limit(rolling_under(0.15), {});
+  CHECK(by_ratio.load.traction == 0.15);
+  CHECK(by_ratio.load.shape == TractionShape::Carter);
+  CHECK(by_ratio.p0_over_k(by_ratio.elastic) == Approx(by_force.p0_over_k(by_force.elastic)).epsilon(1e-12));
   // Q = mu P leaves no stick zone: Carter's traction is the sliding one, node for node.
   const ShakedownLimitResult carter_sliding = compute_shakedown_limit(rolling_under(0.2), {});
   const ShakedownLimitResult sliding = limit_of(shipped("shakedown_p45"), 0.2);

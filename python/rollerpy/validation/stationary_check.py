@@ -50,6 +50,7 @@ is in its log beside its folder.
 import os
 import sys
 import tomllib
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -388,44 +389,69 @@ def figure(path, transients, stationaries, passes, track_middle, label_of_finest
     plt.close(fig)
 
 
-def main(argv=None):
+@dataclass
+class TransientRuns:
+    """The transient runs, coarsest step first, and what the later steps take from the finest one: its
+    fields and press (read again on the track's middle), its scene (the stationary runs' on a track
+    with ends) and its strip's elastic constants."""
+    by_step: list = field(default_factory=list)  # (step [a], metrics of every pass)
+    rows: list = field(default_factory=list)     # (label, metrics): the table's rows
+    fields: list = None                          # the finest run's (pass_fields)
+    scene: str = None                            # the finest run's scene file
+    centre: tuple = None                         # its roller's starting centre (x, y) [mm]
+    elastic: tuple = None                        # its strip's (E, nu)
+
+    @property
+    def finest_step(self):
+        return self.by_step[-1][0]
+
+
+def parse_arguments(argv):
+    """The options, with the track's default filled in; exits on options that do not go together."""
     ap = parser("stationary-check", __doc__)
-    ap.add_argument("--load", type=float, default=4.5, help="p0/k")
-    ap.add_argument("--element-size", type=float, default=0.4)
-    ap.add_argument("--steps", default="0.2,0.1,0.05",
-                    help="the transient's steps, in a; none: the stationary runs alone, against the first")
-    ap.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
-    ap.add_argument("--stationary-phases", default="", metavar="P[:N][,P[:N]]",
-                    help="also the stationary pass solved at P places of the roller between two nodes together "
-                         "(passes.stationary_phases = P; docs/model.md, Phases), its yielding steps walked in N parts "
-                         "(passes.stationary_path_parts, default 16; 1: the transient's steps of h/P)")
-    ap.add_argument("--reference", default=None, metavar="RUN",
-                    help="the run the table is made against: a run's folder name in OUT (e.g. "
-                         "stationary_roller_P8_n1); default the transient of the shortest step")
-    ap.add_argument("--shorter-ring", default=None, metavar="DIR",
-                    help="with --periodic: an earlier check's folder with a shorter ring (the same options but "
-                         "--track), whose transient of the shortest step gives, with this one's, the endless ring's "
-                         "residual sigma_xx (a row of the table; --reference endless makes it the reference)")
-    ap.add_argument("--track", type=float, default=None,
-                    help="the track's length in a (default 24; with --periodic, the ring's period, default 48: a "
-                         "shorter ring's own rolled layer biases the reference; docs/validation.md, The ring's length)")
-    ap.add_argument("--passes", type=int, default=2)
-    ap.add_argument("--kinematic", type=float, default=None, metavar="E_T")
-    ap.add_argument("--periodic", action="store_true",
-                    help="the transient runs on a periodic strip of one track's period (no track ends)")
-    ap.add_argument("--continuous", action="store_true",
-                    help="with --periodic: the ring pressed once and rolled on --passes periods")
-    ap.add_argument("--traction", type=float, default=None, metavar="Q/P",
-                    help="roll under the horizontal force Q = Q/P x P (Carter's traction on the stationary pass; "
-                         "needs --friction)")
-    ap.add_argument("--friction", type=float, default=0.0)
-    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                    help="a scene value for every run (roller run --set), e.g. another hardening law")
-    ap.add_argument("--out", default=None)
-    ap.add_argument("--transients-from", default=None, metavar="DIR",
-                    help="an earlier check's folder whose transient runs OUT links, not runs")
-    ap.add_argument("--roller", default="./build/roller")
-    ap.add_argument("--timeout", type=float, default=14400.0)
+    load = ap.add_argument_group("load and mesh")
+    load.add_argument("--load", type=float, default=4.5, help="p0/k")
+    load.add_argument("--element-size", type=float, default=0.4)
+    load.add_argument("--track", type=float, default=None,
+                      help="the track's length in a (default 24; with --periodic, the ring's period, default 48: a "
+                           "shorter ring's own rolled layer biases the reference; docs/validation.md, The ring's "
+                           "length)")
+    load.add_argument("--passes", type=int, default=2)
+    load.add_argument("--kinematic", type=float, default=None, metavar="E_T")
+    load.add_argument("--traction", type=float, default=None, metavar="Q/P",
+                      help="roll under the horizontal force Q = Q/P x P (Carter's traction on the stationary pass; "
+                           "needs --friction)")
+    load.add_argument("--friction", type=float, default=0.0)
+    load.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                      help="a scene value for every run (roller run --set), e.g. another hardening law")
+    transient = ap.add_argument_group("transient runs")
+    transient.add_argument("--steps", default="0.2,0.1,0.05",
+                           help="the transient's steps, in a; none: the stationary runs alone, against the first")
+    transient.add_argument("--transients-from", default=None, metavar="DIR",
+                           help="an earlier check's folder whose transient runs OUT links, not runs")
+    stationary = ap.add_argument_group("stationary runs")
+    stationary.add_argument("--phases", default="0,0.25,0.5", help="the roller's centre past a node, in elements")
+    stationary.add_argument("--stationary-phases", default="", metavar="P[:N][,P[:N]]",
+                            help="also the stationary pass solved at P places of the roller between two nodes "
+                                 "together (passes.stationary_phases = P; docs/model.md, Phases), its yielding steps "
+                                 "walked in N parts (passes.stationary_path_parts, default 16; 1: the transient's "
+                                 "steps of h/P)")
+    ring = ap.add_argument_group("ring (periodic strips)")
+    ring.add_argument("--periodic", action="store_true",
+                      help="the transient runs on a periodic strip of one track's period (no track ends)")
+    ring.add_argument("--continuous", action="store_true",
+                      help="with --periodic: the ring pressed once and rolled on --passes periods")
+    ring.add_argument("--shorter-ring", default=None, metavar="DIR",
+                      help="with --periodic: an earlier check's folder with a shorter ring (the same options but "
+                           "--track), whose transient of the shortest step gives, with this one's, the endless "
+                           "ring's residual sigma_xx (a row of the table; --reference endless makes it the reference)")
+    output = ap.add_argument_group("output and program")
+    output.add_argument("--reference", default=None, metavar="RUN",
+                        help="the run the table is made against: a run's folder name in OUT (e.g. "
+                             "stationary_roller_P8_n1); default the transient of the shortest step")
+    output.add_argument("--out", default=None)
+    output.add_argument("--roller", default="./build/roller")
+    output.add_argument("--timeout", type=float, default=14400.0)
     args = ap.parse_args(argv)
     if args.shorter_ring and (not args.periodic or args.continuous or args.steps == "none"):
         sys.exit("stationary-check: --shorter-ring extrapolates two periodic rings: give --periodic and --steps")
@@ -436,53 +462,77 @@ def main(argv=None):
     if args.track < 2.0 * STRETCH[0]:
         sys.exit("stationary-check: --track %g: the measured stretch starts %ga before the end, give at least %ga" % (
             args.track, STRETCH[0], 2.0 * STRETCH[0]))
-    os.chdir(ROOT)
-    roller = os.path.abspath(args.roller)
-    h = args.element_size
-    out = args.out or os.path.join("out", "stationary_check", "h%g" % h)
-    steps = [] if args.steps == "none" else sorted((float(s) for s in args.steps.split(",")), reverse=True)
-    common = [tuple(item.split("=", 1)) for item in args.set]
-    if any(len(pair) != 2 for pair in common):
+    return args
+
+
+def transient_steps(spec):
+    """--steps as step lengths [a], longest first; none: no transient runs."""
+    return [] if spec == "none" else sorted((float(s) for s in spec.split(",")), reverse=True)
+
+
+def scene_pairs(items):
+    """--set's KEY=VALUE items as (key, value) pairs; exits on one without '='."""
+    pairs = [tuple(item.split("=", 1)) for item in items]
+    if any(len(pair) != 2 for pair in pairs):
         sys.exit("stationary-check: --set takes KEY=VALUE")
-    if args.transients_from:
-        link_transients(args.transients_from, out, steps)
-    transients, stationaries, rows = [], [], []
-    period = A * args.track if args.periodic else None
+    return pairs
+
+
+def run_transients(args, steps, roller, out, common, period):
+    """Runs the transient of every step (unless completed) and measures its passes."""
+    transients = TransientRuns()
+    kind = ", ring rolled on" if args.continuous else ", periodic" if args.periodic else ""
     for s in steps:
-        folder = os.path.join(out, "scenes_s%g" % s)
-        scene, = write_scenes([args.load], args.passes, h, folder, args.kinematic, args.track, s, args.periodic,
-                              args.continuous, args.traction, args.friction)
+        scene, = write_scenes([args.load], args.passes, args.element_size, os.path.join(out, "scenes_s%g" % s),
+                              args.kinematic, args.track, s, args.periodic, args.continuous, args.traction,
+                              args.friction)
         press_x, centre_y = roller_centre(scene)
         elastic = elastic_constants(scene)
         run_out = os.path.join(out, "transient_s%g" % s)
         ensure_run(roller, scene, run_out, common, args.timeout)
-        fields = pass_fields(run_out, args.passes)  # the last, the finest step's, measured again below
+        fields = pass_fields(run_out, args.passes)
         if args.continuous:
             windows = continuous_windows(args.passes, A, args.track, press_x, s)
         else:
             windows = measured_windows(run_out, args.passes, A, args.track, args.periodic, press_x)
         metrics = measure(fields, windows, A, elastic, period)
-        transients.append((s, metrics))
-        kind = ", ring rolled on" if args.continuous else ", periodic" if args.periodic else ""
-        rows.append(("transient%s, step %ga" % (kind, s), metrics))
+        transients.by_step.append((s, metrics))
+        transients.rows.append(("transient%s, step %ga" % (kind, s), metrics))
+        transients.fields, transients.scene, transients.centre, transients.elastic = (
+            fields, scene, (press_x, centre_y), elastic)
         print("stationary-check: transient, step %ga: pass 1 %.4e" % (s, metrics[0]["mean"]))
-    endless = []  # the endless ring's row, extrapolated from a shorter ring's (--shorter-ring)
-    if args.shorter_ring:
-        run_short = os.path.join(args.shorter_ring, "transient_s%g" % steps[-1])
-        with open(os.path.join(run_short, "scene.resolved.toml"), "rb") as f:
-            short_track = tomllib.load(f)["mesh"]["length"] / A
-        shorter = measure(pass_fields(run_short, args.passes),
-                          measured_windows(run_short, args.passes, A, short_track, True, 0.0), A, elastic,
-                          A * short_track)
-        endless = [("transient, periodic, step %ga, endless ring (σ_xx from the %ga and %ga rings; the rest the %ga's)"
-                    % (steps[-1], short_track, args.track, args.track), endless_ring(shorter, transients[-1][1]))]
-        rows += endless
-    if not steps or args.periodic:  # the stationary runs' scene (its step does not enter a stationary pass)
-        scene, = write_scenes([args.load], args.passes, h, os.path.join(out, "scenes"), args.kinematic, args.track,
-                              traction=args.traction, friction=args.friction)
-        press_x, centre_y = roller_centre(scene)
-    stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
-    # The roller's centre moved along x by a fraction of an element.
+    return transients
+
+
+def endless_ring_row(args, transients):
+    """The endless ring's row (label, metrics): the shorter ring's (--shorter-ring) transient of the
+    finest step and this check's, extrapolated (endless_ring)."""
+    step = transients.finest_step
+    run_short = os.path.join(args.shorter_ring, "transient_s%g" % step)
+    with open(os.path.join(run_short, "scene.resolved.toml"), "rb") as f:
+        short_track = tomllib.load(f)["mesh"]["length"] / A
+    shorter = measure(pass_fields(run_short, args.passes),
+                      measured_windows(run_short, args.passes, A, short_track, True, 0.0), A, transients.elastic,
+                      A * short_track)
+    return ("transient, periodic, step %ga, endless ring (σ_xx from the %ga and %ga rings; the rest the %ga's)"
+            % (step, short_track, args.track, args.track), endless_ring(shorter, transients.by_step[-1][1]))
+
+
+def stationary_scene(args, out, transients):
+    """The stationary runs' scene and its roller's centre (x, y): on a track with ends the finest
+    transient's, else one of their own, a strip with ends (the step does not enter a stationary pass)."""
+    if transients.by_step and not args.periodic:
+        return transients.scene, transients.centre
+    scene, = write_scenes([args.load], args.passes, args.element_size, os.path.join(out, "scenes"), args.kinematic,
+                          args.track, traction=args.traction, friction=args.friction)
+    press_x, centre_y = roller_centre(scene)
+    return scene, (press_x, centre_y)
+
+
+def stationary_variants(args, press_x, centre_y, h):
+    """The stationary runs as (label, scene pairs, folder name): the roller's contact with its centre
+    moved along x by a fraction of an element (--phases), at P phases together (--stationary-phases),
+    and the Hertz load."""
     variants = [("stationary, roller, centre +%gh" % p, [("passes.stationary_contact", '"roller"'),
                  ("roller.centre", "[%r, %r]" % (press_x + p * h, centre_y))], "stationary_roller_ph%g" % p)
                 for p in (float(v) for v in args.phases.split(",") if v)]
@@ -494,36 +544,84 @@ def main(argv=None):
                           ("passes.stationary_path_parts", "%d" % n)],
                          "stationary_roller_P%d%s" % (p, "" if n == PATH_PARTS else "_n%d" % n)))
     variants.append(("stationary, Hertz load", [], "stationary_hertz"))
-    names = [name for _, _, name in variants]  # the stationary runs' folders, in stationaries' order
-    if args.reference and args.reference not in names and not (args.reference == "endless" and endless):
+    return variants
+
+
+def check_reference(reference, names, endless):
+    """Exits unless --reference names one of the stationary runs' folders, or endless with its row;
+    checked before the stationary runs, which can take hours."""
+    if reference and reference not in names and not (reference == "endless" and endless):
         sys.exit("stationary-check: --reference %s: not one of this check's stationary runs (%s)%s" % (
-            args.reference, ", ".join(names), ", nor endless (with --shorter-ring)" if endless else ""))
+            reference, ", ".join(names), ", nor endless (with --shorter-ring)" if endless else ""))
+
+
+def run_stationaries(args, roller, scene, out, common, press_x, variants):
+    """Runs every stationary variant (unless completed) and measures its passes on its own window;
+    returns (label, metrics) in the variants' order."""
+    stationary = [("passes.method", '"stationary"'), ("output.every", "1")]  # fields after every pass
+    elastic = elastic_constants(scene)
+    stationaries = []
     for label, pairs, name in variants:
         run_out = os.path.join(out, name)
         ensure_run(roller, scene, run_out, common + stationary + pairs, args.timeout)
         metrics = measure(pass_fields(run_out, args.passes),
-                          measured_windows(run_out, args.passes, A, args.track, True, press_x), A,
-                          elastic_constants(scene))
+                          measured_windows(run_out, args.passes, A, args.track, True, press_x), A, elastic)
         stationaries.append((label, metrics))
-        rows.append((label, metrics))
         print("stationary-check: %s: pass 1 %.4e" % (label, metrics[0]["mean"]))
-    middle = None
-    if transients:  # `fields`: the finest transient's
-        transient_press = roller_centre(os.path.join(out, "scenes_s%g" % steps[-1], os.path.basename(scene)))[0]
-        middle = ("transient, step %ga, the track's middle (%ga either side)" % (steps[-1], MIDDLE),
-                  measure(fields, middle_windows(args.passes, A, args.track, transient_press), A, elastic, period))
-    reference = rows[len(transients) - 1] if transients else rows[0]
-    if args.reference == "endless" and endless:
-        reference = endless[0]
-    elif args.reference:
-        reference = stationaries[names.index(args.reference)]
+    return stationaries
+
+
+def track_middle(args, transients, period):
+    """The finest transient read on the middle of its track (label, metrics), None without transients."""
+    if not transients.by_step:
+        return None
+    windows = middle_windows(args.passes, A, args.track, transients.centre[0])
+    return ("transient, step %ga, the track's middle (%ga either side)" % (transients.finest_step, MIDDLE),
+            measure(transients.fields, windows, A, transients.elastic, period))
+
+
+def pick_reference(reference, transients, endless, stationaries, names):
+    """The row (label, metrics) the table is made against: --reference's, else the transient of the
+    shortest step, else the first stationary run."""
+    if reference == "endless" and endless:
+        return endless[0]
+    if reference:
+        return stationaries[names.index(reference)]
+    return transients.rows[-1] if transients.rows else stationaries[0]
+
+
+def write_report(args, out, transients, endless, stationaries, middle, reference):
+    """OUT/stationary_check.md (the table and the residual sigma_xx by depth) and OUT/stationary_check.png."""
+    rows = transients.rows + endless + stationaries
     as_read = ", as read, roller on" if args.continuous else ", as read"  # its elastic field in it
-    with open(os.path.join(out, "stationary_check.md"), "w") as f:
+    report = os.path.join(out, "stationary_check.md")
+    with open(report, "w") as f:
         f.write("p0/k = %g, h = %g mm, track %ga; the reference: the %s\n\n" % (
-            args.load, h, args.track, reference[0]))
+            args.load, args.element_size, args.track, reference[0]))
         f.write(table(rows, reference[1], args.passes))
-        f.write(sxx_table(sxx_rows(rows[:len(transients)], middle, rows[len(transients):], as_read), args.passes, A))
-    figure(os.path.join(out, "stationary_check.png"), transients, stationaries, args.passes, middle,
-           rows[len(transients) - 1][0] if transients else None, as_read)
-    print("stationary-check: wrote %s" % os.path.join(out, "stationary_check.md"))
+        f.write(sxx_table(sxx_rows(transients.rows, middle, endless + stationaries, as_read), args.passes, A))
+    figure(os.path.join(out, "stationary_check.png"), transients.by_step, stationaries, args.passes, middle,
+           transients.rows[-1][0] if transients.rows else None, as_read)
+    print("stationary-check: wrote %s" % report)
+
+
+def main(argv=None):
+    args = parse_arguments(argv)
+    os.chdir(ROOT)
+    roller = os.path.abspath(args.roller)
+    out = args.out or os.path.join("out", "stationary_check", "h%g" % args.element_size)
+    steps = transient_steps(args.steps)
+    common = scene_pairs(args.set)
+    if args.transients_from:
+        link_transients(args.transients_from, out, steps)
+    period = A * args.track if args.periodic else None
+    transients = run_transients(args, steps, roller, out, common, period)
+    endless = [endless_ring_row(args, transients)] if args.shorter_ring else []
+    scene, (press_x, centre_y) = stationary_scene(args, out, transients)
+    variants = stationary_variants(args, press_x, centre_y, args.element_size)
+    names = [name for _, _, name in variants]  # the stationary runs' folders, in their order
+    check_reference(args.reference, names, endless)
+    stationaries = run_stationaries(args, roller, scene, out, common, press_x, variants)
+    reference = pick_reference(args.reference, transients, endless, stationaries, names)
+    write_report(args, out, transients, endless, stationaries, track_middle(args, transients, period), reference)
     return 0

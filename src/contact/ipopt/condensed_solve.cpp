@@ -175,7 +175,6 @@ CondensedSolve::Step CondensedSolve::whole_step(const ModelStep& model) {
   k_eff_ = SparseMatrix();
   step.dw = model.dw;
   const Real w0 = problem_.roller_offset();
-  auto roller_energy = [this](Real w) { return spring_ ? spring_->energy(w) : 0.0; };
   step.model_change = g_.dot(step.d) + 0.5 * step.d.dot(step.kd) + roller_energy(w0 + step.dw) - roller_energy(w0);
   return step;
 }
@@ -184,7 +183,6 @@ CondensedSolve::Step CondensedSolve::whole_step(const ModelStep& model) {
 CondensedSolve::OrEnd<CondensedSolve::Trial> CondensedSolve::line_search(int outer, const Step& step,
                                                                          const FrictionTerms& friction) {
   const std::vector<RowMap>& rows = cond_.rows;
-  auto roller_energy = [this](Real w) { return spring_ ? spring_->energy(w) : 0.0; };
   Real fn_max = 0.0;
   for (const Real f : normal_) fn_max = std::max(fn_max, f);
   const Real w0 = problem_.roller_offset();

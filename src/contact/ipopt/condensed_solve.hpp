@@ -67,7 +67,9 @@ class CondensedSolve {
   const IpoptOptions& o_;
   SchurCondenser& condenser_;
   const std::optional<RollerPotential> spring_;  // a free roller height (ipopt_condensed.cpp)
-  const bool tangent_changes_;                   // a constant tangent needs no new one at the full step
+  // The free roller's potential at offset w (0 for a placed roller).
+  Real roller_energy(Real w) const { return spring_ ? spring_->energy(w) : 0.0; }
+  const bool tangent_changes_;  // a constant tangent needs no new one at the full step
   BackendResult result_;
   Scales scales_;
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
