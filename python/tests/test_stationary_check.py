@@ -217,3 +217,11 @@ def test_the_endless_ring_is_the_common_limit_of_two_rings_profiles():
     assert endless["sxx"][3, 1] == pytest.approx(0.5 * (longer["sxx"][3, 1] + longer["sxx_long"][3, 1]))
     assert endless["mean"] == longer["mean"]
     assert np.array_equal(endless["sxx"][:, 0], depth)
+
+
+def test_options_it_cannot_take_stop_before_any_run(capsys):
+    from rollerpy.validation.stationary_check import main
+    for argv, words in ((["--passes", "1"], "give at least 2"), (["--continuous"], "give --periodic too")):
+        with pytest.raises(SystemExit) as stop:
+            main(argv)
+        assert words in str(stop.value)

@@ -37,8 +37,13 @@ Simulation::StepRecord Simulation::advance_stationary(int step) {
   }
   const VecX before = model_->total_displacement();
   if (scene_.output.mid_pass && fields_written(scene_, step)) {  // the loaded state, for its fields
-    model_->restore(model_->reference_coordinates(), before + pass.solve.displacement, pass.solve.states);
-    res.loaded_fields = strip_fields(*model_, pass.solve.displacement);
+    // With phases the pass is solved on P copies of the strip, each its own block of nodes and
+    // elements; the first, not shifted, is this strip.
+    const VecX u = pass.solve.displacement.head(model_->n_dofs());
+    std::vector<MaterialState> states(pass.solve.states.begin(),
+                                      pass.solve.states.begin() + static_cast<std::ptrdiff_t>(model_->states().size()));
+    model_->restore(model_->reference_coordinates(), before + u, std::move(states));
+    res.loaded_fields = strip_fields(*model_, u);
   }
   model_->restore(model_->reference_coordinates(), before + pass.permanent_displacement, pass.residual);
   ++state_.steps_done;

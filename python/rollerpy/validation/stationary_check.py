@@ -457,6 +457,8 @@ def parse_arguments(argv):
         sys.exit("stationary-check: --shorter-ring extrapolates two periodic rings: give --periodic and --steps")
     if args.continuous and not args.periodic:
         sys.exit("stationary-check: --continuous rolls a ring: give --periodic too")
+    if args.passes < 2:  # a one-pass run writes no passes.csv, whose windows the check measures
+        sys.exit("stationary-check: --passes %d: the check compares passes: give at least 2" % args.passes)
     if args.track is None:
         args.track = 48.0 if args.periodic else 24.0
     if args.track < 2.0 * STRETCH[0]:
