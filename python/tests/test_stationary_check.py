@@ -225,3 +225,5 @@ def test_options_it_cannot_take_stop_before_any_run(capsys):
         with pytest.raises(SystemExit) as stop:
             main(argv)
         assert words in str(stop.value)
+    with pytest.raises(SystemExit, match="do not fill the 6 mm band"):
+        write_scenes([4.5], 2, 0.8, "/nonexistent", track=6.0, step=1.0)  # 6 mm is not a whole number of 0.8

@@ -71,6 +71,21 @@ void check_load_fits_strip(const Scene& scene) {
   }
 }
 
+void check_traction_below_friction(const Scene& scene) {
+  if (!scene.roller) return;
+  for (std::size_t i = 0; i < scene.roller->path.size(); ++i) {
+    const PathSegment& seg = scene.roller->path[i];
+    const Real mu = seg.friction.value_or(scene.contact.friction);
+    if (seg.q_over_p && std::abs(*seg.q_over_p) > mu)
+      throw InputError(fmt::format(
+          "{}: roller.path[{}].q_over_p = {:g} exceeds the segment's friction coefficient mu = {:g} ({}): friction "
+          "carries at most mu times the normal force, so the roller would slide; expected |q_over_p| <= mu, or "
+          "slip = 1 for a sliding roller (q = mu p)",
+          scene.file.string(), i, *seg.q_over_p, mu,
+          seg.friction ? fmt::format("roller.path[{}].friction", i) : std::string("contact.friction")));
+  }
+}
+
 std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh) {
   std::vector<std::string> out;
   const std::string file = scene.file.string();

@@ -46,6 +46,7 @@ Mesh make_mesh_that_fits(const Scene& scene) {
 // The strip of the scene: each element of the mesh made of its centroid's layer.
 std::unique_ptr<StripModel> make_strip(const Scene& scene) {
   check_load_fits_strip(scene);
+  check_traction_below_friction(scene);
   Mesh mesh = make_mesh_that_fits(scene);
   ElementMaterials materials = assign_materials(mesh, scene.strip_material());
   return std::make_unique<StripModel>(std::move(mesh), std::move(materials), scene.element);

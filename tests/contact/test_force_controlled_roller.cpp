@@ -167,6 +167,18 @@ TEST_CASE("force control: q_over_p holds fx at q/p of fy along the travel from t
   CHECK_THAT(why, Catch::Contains("dx = 0"));
 }
 
+TEST_CASE("force control: a traction ratio beyond the segment's friction is refused before computing",
+          "[contact][force]") {
+  const std::string path = "[{steps=[1,1], fy=6000.0}, {steps=[2,2], dx=0.1, fy=6000.0, q_over_p=0.2}]";
+  const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/cattaneo.toml";
+  CHECK_THROWS_WITH(Simulation(load_scene(file, {{"steps.count", "2"}, {"roller.path", path}})),
+                    Catch::Contains("roller.path[1].q_over_p = 0.2 exceeds") && Catch::Contains("mu = 0.15") &&
+                        Catch::Contains("contact.friction"));
+  // Within it (the segment's own mu) the scene is taken.
+  const std::string within = "[{steps=[1,1], fy=6000.0}, {steps=[2,2], dx=0.1, fy=6000.0, q_over_p=0.2, friction=0.3}]";
+  CHECK_NOTHROW(Simulation(load_scene(file, {{"steps.count", "2"}, {"roller.path", within}})));
+}
+
 namespace {
 
 // Cattaneo's scene (problems/cattaneo.toml): pressed 0.1 mm over steps 1-4, then one step that

@@ -71,6 +71,12 @@ def graded(x0, x1, h_fine, n, fine_at_end):
 def lines(h, track):
     """Uniform h from 2a before the press to 2a past the travel's end, graded 88 mm either side."""
     fine = A * track + 4.0 * A
+    bands = (("the 6 mm band under the surface", 6.0), ("the %g mm of the track and 2a either side" % fine, fine))
+    for what, extent in bands:
+        n = int(round(extent / h))
+        if n < 1 or abs(n * h - extent) > 1e-9 * extent:
+            raise SystemExit("make-shakedown-scenes: elements of %g mm do not fill %s: give an element size that "
+                             "divides it (e.g. 0.5, 0.4, 0.25, 0.2)" % (h, what))
     end = 88.0 + fine
     xs = [0.0] + graded(0.0, 88.0, h, 24, fine_at_end=True)
     xs += [88.0 + h * i for i in range(int(round(fine / h)) + 1)]
