@@ -88,7 +88,11 @@ Scene elastic_frictionless_scene(const Scene& scene) {
   s.dynamics = DynamicsOptions{};
   s.contact.friction = 0.0;
   if (s.roller)
-    for (PathSegment& seg : s.roller->path) seg.friction = 0.0;
+    for (PathSegment& seg : s.roller->path) {  // no friction carries no traction: the x follows the path
+      seg.friction = 0.0;
+      seg.fx.reset();
+      seg.q_over_p.reset();
+    }
   s.passes = PassSpec{};
   s.output.monitor = false;
   s.initial_state.clear();

@@ -45,8 +45,8 @@ std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<Node
                                   const HertzSolution& hertz, Real centre_x);
 
 // The scene with its strip linear elastic (every layer), small-strain, quasi-static and
-// frictionless, one pass, no monitor and no initial state: the elastic solutions of the steady
-// solves. Steps and path are the caller's to set.
+// frictionless (no segment keeps a traction), one pass, no monitor and no initial state: the
+// elastic solutions of the steady solves. Steps and path are the caller's to set.
 Scene elastic_frictionless_scene(const Scene& scene);
 
 }  // namespace roller
