@@ -177,7 +177,7 @@ def run(scene: SceneSource, *, set: Optional[dict] = None,
     loaded = load_scene(scene, set)
     raw = _roller.run(loaded, None if out is None else os.fspath(out), overwrite, progress, verbose, resume)
     if resume:
-        raw["tables"] = _folder_tables(os.fspath(out), raw["tables"])
+        raw["tables"] = _folder_tables(os.fspath(out), raw["tables"], raw["table_files"])
     result = _result(raw)
     error = raw["error"]
     if isinstance(error, KeyboardInterrupt):
@@ -205,14 +205,12 @@ def _column(texts: list, like: Optional[np.ndarray]) -> np.ndarray:
         return np.array(texts, dtype=str)
 
 
-def _folder_tables(out: str, tables: dict) -> dict:
-    """The tables of the output folder's CSV files (a resumed run's whole record), the ones this
-    call filled or the folder holds."""
-    names = set(tables) | {n for n in ("solver", "contact", "roller", "passes", "residual_depth")
-                           if os.path.isfile(os.path.join(out, n + ".csv"))}
+def _folder_tables(out: str, tables: dict, files: dict) -> dict:
+    """The tables of the output folder's CSV files (a resumed run's whole record): every table the
+    scene's run fills (`files`: name -> file), typed as this call's own `tables`."""
     folder = {}
-    for name in sorted(names):
-        rows = read_rows(os.path.join(out, name + ".csv"), missing_ok=True)
+    for name, file in sorted(files.items()):
+        rows = read_rows(os.path.join(out, file), missing_ok=True)
         own = tables.get(name, {})
         folder[name] = {c: _column([r[c] for r in rows], own.get(c)) for c in (rows[0] if rows else own)}
     return folder

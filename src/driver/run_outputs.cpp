@@ -86,12 +86,16 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
     f.strip.point_data.push_back(nodal_vector("velocity", dynamics_.velocity()));
     f.strip.point_data.push_back(nodal_vector("acceleration", dynamics_.acceleration()));
   }
+  add_fields(std::move(f));
+}
+
+void RunOutputs::add_fields(StepFields f) {
   for (std::size_t i = 0; i + 1 < sinks_.size(); ++i) sinks_[i]->add_fields(f);
   sinks_.back()->add_fields(std::move(f));
 }
 
 void RunOutputs::write_loaded_fields(const Simulation::StepRecord& step) {
-  if (!scene_.output.vtu || sinks_.empty()) return;
+  if (sinks_.empty()) return;  // written only where the step's own fields are (fields_written)
   StepFields f{step.step,
                step.pass,
                (step.step - 0.5) * scene_.steps.dt,
@@ -99,8 +103,7 @@ void RunOutputs::write_loaded_fields(const Simulation::StepRecord& step) {
                step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt,
                true};
   append_contact_fields(step.contact, model_.mesh().n_nodes(), f.strip.point_data);
-  for (std::size_t i = 0; i + 1 < sinks_.size(); ++i) sinks_[i]->add_fields(f);
-  sinks_.back()->add_fields(std::move(f));
+  add_fields(std::move(f));
 }
 
 void RunOutputs::write_solver_row(const Simulation::StepRecord& step, const MonitorReport& monitor, double wall_s) {

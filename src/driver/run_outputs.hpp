@@ -34,6 +34,8 @@ class RunOutputs {
                     const std::optional<RollerPose>& roller);
   // A stationary pass's loaded state beside the step's fields.
   void write_loaded_fields(const Simulation::StepRecord& step);
+  // Fields to every sink (copies to all but the last).
+  void add_fields(StepFields f);
 
   const Scene& scene_;
   const StripModel& model_;

@@ -16,6 +16,7 @@
 #include "results_to_python.hpp"
 #include "roller/core/error.hpp"
 #include "roller/core/version.hpp"
+#include "roller/driver/output_columns.hpp"
 #include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
@@ -94,6 +95,9 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
   result["warnings"] = warnings;
   result["summary"] = summary_dict(summary);
   result["tables"] = tables_dict(sink);
+  py::dict table_files;  // every table the scene's run fills, with its file: a resumed run's are read back
+  for (const OutputTable table : tables_of(sim->scene())) table_files[enum_name(table)] = file_name(table);
+  result["table_files"] = table_files;
   result["fields"] = fields_list(sink);
   if (const std::optional<ShakedownClassification>& c = summary.verdict)
     result["verdict"] = py::dict(py::arg("verdict") = enum_name(c->verdict), py::arg("criterion") = c->criterion);
