@@ -166,14 +166,15 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
       r.residual_last = s.last.residual;
       if (!(r.residual_max >= s.last.residual)) r.residual_max = s.last.residual;
       if (step == r.load_step) {
-        r.force = sim.roller_force().norm();
+        r.force = force_on_roller(sim.state().contact).norm();
         r.profile = pressure_profile(sim.state().contact, sim.state().pose);
         std::sort(r.profile.begin(), r.profile.end(), [](auto& a, auto& b) { return a.x < b.x; });
         if (plan.scene == "hertz") {
           const MaterialParams& m = sim.scene().material;
-          r.hertz_l2 = compare_with_hertz(r.profile, sim.roller_force().y(), sim.scene().roller->radius,
-                                          m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio))
-                           .l2_error;
+          r.hertz_l2 =
+              compare_with_hertz(r.profile, force_on_roller(sim.state().contact).y(), sim.scene().roller->radius,
+                                 m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio))
+                  .l2_error;
         }
       }
       const double elapsed = seconds_since(t0);
@@ -187,7 +188,7 @@ Result run_once(const Plan& plan, const Run& run, double budget_s) {
     r.wall = seconds_since(t0);
     timing = false;
     if (r.converged()) {
-      r.final_force = sim.roller_force().norm();
+      r.final_force = force_on_roller(sim.state().contact).norm();
       r.final_contact_nodes = 0;
       for (const NodeContactRecord& c : sim.state().contact)
         if (c.contact.status != ContactStatus::Open) ++r.final_contact_nodes;

@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
         n_contact = 0;
         for (const auto& rec : sim.state().contact) n_contact += rec.contact.status != ContactStatus::Open ? 1 : 0;
         const MaterialParams& m = sim.scene().material;
-        load = sim.roller_force().y();
+        load = force_on_roller(sim.state().contact).y();
         c = compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose), load,
                                sim.scene().roller->radius, m.youngs_modulus / (1 - m.poisson_ratio * m.poisson_ratio));
         dofs = sim.model().n_dofs();

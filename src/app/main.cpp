@@ -16,9 +16,9 @@
 #include "commands.hpp"
 #include "roller/core/error.hpp"
 #include "roller/core/version.hpp"
-#include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/io/scene_warnings.hpp"
 
 namespace {
 

@@ -15,9 +15,9 @@
 #include "cli_checks.hpp"
 #include "commands.hpp"
 #include "roller/core/error.hpp"
-#include "roller/driver/shakedown_limit.hpp"
 #include "roller/io/atomic_file.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/steady/shakedown_limit.hpp"
 #include "rollerpy_plot.hpp"
 
 namespace roller::app {

@@ -16,14 +16,16 @@
 #include "file_outputs.hpp"
 #include "output_folder.hpp"
 #include "roller/core/error.hpp"
-#include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
 #include "roller/io/atomic_file.hpp"
 #include "roller/io/background_writer.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/io/scene_warnings.hpp"
 #include "roller/solver/solver_abort.hpp"
+#include "run_model.hpp"
 #include "run_outputs.hpp"
+#include "step_method.hpp"
 
 namespace roller {
 
@@ -179,25 +181,23 @@ RunStatus status_of(const std::exception& e) {
 
 RunSummary Simulation::run(const RunOptions& options) {
   const auto t_start = Clock::now();
-  progress_ = options.progress;
-  stop_ = options.stop_signal;
   const bool resumed = start_or_resume(options);
-  const int first_step = state_.steps_done + 1;
+  const int first_step = run_->state.steps_done + 1;
   const bool files = options.write_files;
   const std::filesystem::path summary_file = options.out_dir / "summary.json";
   RunSummary summary;
-  summary.steps_done = state_.steps_done;
+  summary.steps_done = run_->state.steps_done;
   // Written now with room to spare, so that the run's end can still say why it stopped when the
   // disk fills up meanwhile.
   if (files) write_with_reserve(summary_file, summary_json(*this, summary, first_step, resumed), kSummaryReserve);
   // VTU and state files are written while the next step is solved (io/background_writer.hpp),
   // except when the factors go to disk to save memory: the jobs' copies would undo that.
-  BackgroundWriter writer(!scene_.newton.linear.out_of_core);
+  BackgroundWriter writer(!run_->scene.newton.linear.out_of_core);
   summary.converged = true;
   auto finish_summary = [&] {
-    if (scene_.passes.count > 1) summary.verdict = classify_passes(state_.pass_records);
-    summary.totals = state_.totals;
-    summary.warnings = state_.warnings;
+    if (run_->scene.passes.count > 1) summary.verdict = classify_passes(run_->state.pass_records);
+    summary.totals = run_->state.totals;
+    summary.warnings = run_->state.warnings;
     summary.wall_s = seconds_since(t_start);
     summary.peak_memory_mb = peak_memory_mb();
   };
@@ -223,25 +223,25 @@ RunSummary Simulation::run(const RunOptions& options) {
     std::optional<FileOutputs> file_outputs;
     std::vector<OutputSink*> sinks;
     if (files) {
-      file_outputs.emplace(scene_, model_->mesh(), options.out_dir, resumed, state_.steps_done, writer);
+      file_outputs.emplace(run_->scene, run_->strip->mesh(), options.out_dir, resumed, run_->state.steps_done, writer);
       sinks.push_back(&*file_outputs);
     }
     if (options.sink) sinks.push_back(options.sink);
-    RunOutputs outputs(scene_, *model_, dynamics_, state_.pose, !resumed, std::move(sinks));
-    StepMonitor monitor(scene_.output.monitor, scene_.steps.dt,
-                        scene_.dynamics.strip_inertia ? &dynamics_.mass_free() : nullptr, backend_.get(),
+    RunOutputs outputs(run_->scene, *run_->strip, run_->dynamics, run_->state.pose, !resumed, std::move(sinks));
+    StepMonitor monitor(run_->scene.output.monitor, run_->scene.steps.dt,
+                        run_->scene.dynamics.strip_inertia ? &run_->dynamics.mass_free() : nullptr, run_->backend.get(),
                         options.progress);
     run_steps(options, first_step, outputs, monitor, writer, summary);
     writer.finish();
     if (files && summary.status == RunStatus::Interrupted) {
       // The checkpoint of the last step done, so that --resume goes on from there.
-      if (scene_.output.checkpoint_every > 0) save_state(options.out_dir / "checkpoint.cbor");
+      if (run_->scene.output.checkpoint_every > 0) save_state(options.out_dir / "checkpoint.cbor");
     } else if (files && summary.converged) {
       // The checkpoint of the last step holds the same state: a copy instead of a second
       // serialisation (at 2.9e5 dofs 37 MB, 0.4 s).
       const std::filesystem::path checkpoint = options.out_dir / "checkpoint.cbor";
-      const int every = scene_.output.checkpoint_every;
-      if (every > 0 && state_.steps_done % every == 0 && std::filesystem::exists(checkpoint))
+      const int every = run_->scene.output.checkpoint_every;
+      if (every > 0 && run_->state.steps_done % every == 0 && std::filesystem::exists(checkpoint))
         copy_file_atomically(checkpoint, options.out_dir / "state_final.cbor", "the state file");
       else
         save_state(options.out_dir / "state_final.cbor");
@@ -263,11 +263,11 @@ RunSummary Simulation::run(const RunOptions& options) {
     summary.message =
         summary.decided
             ? fmt::format("{} steps converged; the verdict was decided after pass {} of {} (passes.until_verdict)",
-                          summary.steps_done, state_.pass_records.size(), scene_.passes.count)
+                          summary.steps_done, run_->state.pass_records.size(), run_->scene.passes.count)
             : fmt::format("{} steps converged", summary.steps_done);
   // The answer of a multi-pass run on its last line: the verdict and the rule that gave it.
   if (summary.status == RunStatus::Completed && summary.verdict)
-    summary.message += fmt::format("; verdict after {} passes: {} ({})", state_.pass_records.size(),
+    summary.message += fmt::format("; verdict after {} passes: {} ({})", run_->state.pass_records.size(),
                                    enum_name(summary.verdict->verdict), summary.verdict->criterion);
   if (files) write_summary(summary_file, *this, summary, first_step, resumed);
   return summary;
@@ -283,33 +283,33 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
         fmt::format("interrupted by signal {} after step {}; continue with --resume", summary.signal, step - 1);
     if (options.progress) *options.progress << "roller: " << summary.message << "\n";
   };
-  const std::size_t passes_at_start = state_.pass_records.size();
+  const std::size_t passes_at_start = run_->state.pass_records.size();
   double elapsed = 0.0;  // the steps' wall time in this run
-  for (int step = first_step; step <= scene_.total_steps(); ++step) {
+  for (int step = first_step; step <= run_->scene.total_steps(); ++step) {
     if (options.stop_signal && *options.stop_signal != 0) {
       interrupt(step);
       break;
     }
     const auto t_step = Clock::now();
-    const std::size_t passes_before = state_.pass_records.size();
-    const StepRecord res = advance_step(step);
+    const std::size_t passes_before = run_->state.pass_records.size();
+    const StepRecord res = method_->advance(step, StepOptions{options.progress, options.stop_signal});
     const double wall = seconds_since(t_step);
     // A stationary pass left for a stop request: nothing of it is kept, the run resumes before it.
     if (res.status == Termination::Interrupted && options.stop_signal && *options.stop_signal != 0) {
       interrupt(step);
       break;
     }
-    state_.totals.iterations += res.counters.iterations;
-    state_.totals.cuts += res.cuts;
-    state_.totals.max_penetration = std::max(state_.totals.max_penetration, res.max_penetration);
-    const MonitorReport checked = monitor.check(step, *model_, state_.pointwise_loss_reported);
-    state_.pointwise_loss_reported = state_.pointwise_loss_reported || checked.pointwise_loss_first;
+    run_->state.totals.iterations += res.counters.iterations;
+    run_->state.totals.cuts += res.cuts;
+    run_->state.totals.max_penetration = std::max(run_->state.totals.max_penetration, res.max_penetration);
+    const MonitorReport checked = monitor.check(step, *run_->strip, run_->state.pointwise_loss_reported);
+    run_->state.pointwise_loss_reported = run_->state.pointwise_loss_reported || checked.pointwise_loss_first;
     for (const std::string& w : checked.warnings) {
       // Each kind once: the text after "step N: " up to its numbers.
       const std::string kind = w.substr(w.find(": ") + 2, 40);
-      if (std::none_of(state_.warnings.begin(), state_.warnings.end(),
+      if (std::none_of(run_->state.warnings.begin(), run_->state.warnings.end(),
                        [&](const std::string& seen) { return seen.substr(seen.find(": ") + 2, 40) == kind; }))
-        state_.warnings.push_back(w);
+        run_->state.warnings.push_back(w);
     }
     outputs.write_solver_row(res, checked, wall);
     if (!res.converged()) {
@@ -323,12 +323,12 @@ void Simulation::run_steps(const RunOptions& options, int first_step, RunOutputs
     if (options.write_files)
       save_states(step, options.out_dir, writer);  // after the step's output, so a resumed run never misses rows
     elapsed += wall;
-    if (options.progress) print_progress(*options.progress, scene_, res, wall);
-    if (options.progress && res.pass_end && scene_.passes.count > 1)
-      print_pass_line(*options.progress, state_.pass_records, scene_.passes.count,
-                      state_.pass_records.size() - passes_at_start, elapsed);
-    if (scene_.passes.until_verdict && state_.pass_records.size() > passes_before &&
-        classify_passes(state_.pass_records).verdict != ShakedownVerdict::Undetermined) {
+    if (options.progress) print_progress(*options.progress, run_->scene, res, wall);
+    if (options.progress && res.pass_end && run_->scene.passes.count > 1)
+      print_pass_line(*options.progress, run_->state.pass_records, run_->scene.passes.count,
+                      run_->state.pass_records.size() - passes_at_start, elapsed);
+    if (run_->scene.passes.until_verdict && run_->state.pass_records.size() > passes_before &&
+        classify_passes(run_->state.pass_records).verdict != ShakedownVerdict::Undetermined) {
       summary.decided = true;
       break;
     }
@@ -344,11 +344,11 @@ bool Simulation::start_or_resume(const RunOptions& options) {
   bool resume = options.resume;
   std::error_code ec;
   if (resume && !std::filesystem::exists(checkpoint, ec)) {
-    if (scene_.output.checkpoint_every < 1)
+    if (run_->scene.output.checkpoint_every < 1)
       throw InputError(
           fmt::format("--resume: {} does not exist: this scene keeps no checkpoint (output.checkpoint_every = {}); "
                       "run it without --resume, with output.checkpoint_every >= 1 to make later runs resumable",
-                      checkpoint.string(), scene_.output.checkpoint_every));
+                      checkpoint.string(), run_->scene.output.checkpoint_every));
     // Stopped before its first checkpoint: nothing done is lost by starting over.
     if (options.progress)
       *options.progress << fmt::format(
@@ -357,21 +357,21 @@ bool Simulation::start_or_resume(const RunOptions& options) {
     resume = false;
   }
   if (!resume) {
-    prepare_output_folder(options.out_dir, scene_.name, options.overwrite);
-    write_file_atomically(options.out_dir / "scene.resolved.toml", scene_to_toml(scene_));
+    prepare_output_folder(options.out_dir, run_->scene.name, options.overwrite);
+    write_file_atomically(options.out_dir / "scene.resolved.toml", scene_to_toml(run_->scene));
     return false;
   }
   load_state(checkpoint, /*strip_only=*/false);
   if (options.progress)
-    *options.progress << fmt::format("resuming after step {} from {}\n", state_.steps_done, checkpoint.string());
+    *options.progress << fmt::format("resuming after step {} from {}\n", run_->state.steps_done, checkpoint.string());
   return true;
 }
 
 void Simulation::save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const {
-  const auto& keep = scene_.output.save_states;
+  const auto& keep = run_->scene.output.save_states;
   if (std::find(keep.begin(), keep.end(), step) != keep.end())
     writer.submit(state_writer(out_dir / fmt::format("state_{:04d}.cbor", step)));
-  if (scene_.output.checkpoint_every > 0 && step % scene_.output.checkpoint_every == 0)
+  if (run_->scene.output.checkpoint_every > 0 && step % run_->scene.output.checkpoint_every == 0)
     writer.submit(state_writer(out_dir / "checkpoint.cbor"));
 }
 

@@ -11,6 +11,7 @@
 #include "roller/io/atomic_file.hpp"
 #include "roller/io/checksum.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "run_model.hpp"
 
 namespace roller {
 
@@ -60,6 +61,7 @@ void save_run_state(const RunState& s, bool multi_pass, nlohmann::json& j) {
   j["step"] = s.steps_done;
   j["last_increment"] = to_list(s.last_increment);
   j["last_length"] = s.last_length;
+  j["next_pass_start"] = to_list(s.next_pass_start);
   j["pose"] = {s.pose.centre.x(), s.pose.centre.y(), s.pose.angle};
   j["load_offset"] = {s.load_offset.x(), s.load_offset.y()};
   j["load_stiffness"] = {s.load_stiffness.x(), s.load_stiffness.y()};
@@ -79,6 +81,10 @@ void load_run_state(const nlohmann::json& j, bool multi_pass, RunState& s) {
   s.steps_done = j.at("step").get<int>();
   s.last_increment = to_vec(j.at("last_increment"));
   s.last_length = j.at("last_length").get<Real>();
+  if (j.contains("next_pass_start"))
+    s.next_pass_start = to_vec(j.at("next_pass_start"));
+  else if (s.last_length == 0.0)  // files of roller before 2026-12-03: a stationary run's, in the increment's place
+    s.next_pass_start = std::exchange(s.last_increment, VecX());
   const auto pose = j.at("pose").get<std::vector<Real>>();
   s.pose.centre = Vec2(pose.at(0), pose.at(1));
   s.pose.angle = pose.at(2);
@@ -135,33 +141,33 @@ std::function<void()> Simulation::state_writer(const std::filesystem::path& file
   nlohmann::json j;
   j["format"] = kFormat;
   j["version"] = kVersion;
-  j["scene"] = scene_.name;
-  j["n_nodes"] = model_->mesh().n_nodes();
-  j["n_elements"] = model_->mesh().n_elements();
+  j["scene"] = run_->scene.name;
+  j["n_nodes"] = run_->strip->mesh().n_nodes();
+  j["n_elements"] = run_->strip->mesh().n_elements();
   std::vector<Real> reference;
-  for (const Vec2& x : model_->reference_coordinates()) reference.insert(reference.end(), {x.x(), x.y()});
+  for (const Vec2& x : run_->strip->reference_coordinates()) reference.insert(reference.end(), {x.x(), x.y()});
   j["reference"] = to_list(reference);
-  j["total_displacement"] = to_list(model_->total_displacement());
+  j["total_displacement"] = to_list(run_->strip->total_displacement());
   std::vector<Real> states;
-  for (const MaterialState& s : model_->states()) {
+  for (const MaterialState& s : run_->strip->states()) {
     states.insert(states.end(), s.stress.data(), s.stress.data() + 4);
     states.insert(states.end(), {s.eq_plastic_strain, s.plastic_work, s.yield_stress});
   }
   j["material_states"] = to_list(states);
   // Back-stresses only for the kinematic laws: the files of the other laws keep their layout.
-  const int n_back = model_->materials().max_back_stresses();
+  const int n_back = run_->strip->materials().max_back_stresses();
   if (n_back > 0) {
     std::vector<Real> back;
-    for (const MaterialState& s : model_->states())
+    for (const MaterialState& s : run_->strip->states())
       for (int i = 0; i < n_back; ++i) {
         const Vec4& alpha = s.back_stress[static_cast<std::size_t>(i)];
         back.insert(back.end(), alpha.data(), alpha.data() + 4);
       }
     j["back_stresses"] = to_list(back);
   }
-  save_run_state(state_, scene_.passes.count > 1, j);
-  dynamics_.save(j);
-  j["scene_fingerprint"] = scene_fingerprint(scene_);
+  save_run_state(run_->state, run_->scene.passes.count > 1, j);
+  run_->dynamics.save(j);
+  j["scene_fingerprint"] = scene_fingerprint(run_->scene);
   return [j = std::move(j), file]() mutable {
     j["checksum"] = checksum(j);  // of everything above
     // Written beside and renamed: a kill while writing leaves the previous file intact.
@@ -220,27 +226,27 @@ void Simulation::load_state(const std::filesystem::path& file, bool strip_only) 
       states[k].plastic_work = p[5];
       states[k].yield_stress = p[6];
     }
-    read_back_stresses(j, model_->materials().max_back_stresses(), strip_only, file, states);
+    read_back_stresses(j, run_->strip->materials().max_back_stresses(), strip_only, file, states);
     try {
-      model_->restore(std::move(reference), to_vec(j.at("total_displacement")), std::move(states));
+      run_->strip->restore(std::move(reference), to_vec(j.at("total_displacement")), std::move(states));
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", file.string(), e.what()));
     }
     if (strip_only) return;
     // Continuing a run: only the run that wrote the checkpoint, and only forward.
-    if (j.at("scene_fingerprint").get<std::string>() != scene_fingerprint(scene_))
+    if (j.at("scene_fingerprint").get<std::string>() != scene_fingerprint(run_->scene))
       throw InputError(
           fmt::format("{}: written by a run of another scene or with other values (the resolved "
                       "scenes differ); resume with the same scene file and --set values, or start "
                       "afresh without --resume",
                       file.string()));
-    if (j.at("step").get<int>() > scene_.total_steps())
+    if (j.at("step").get<int>() > run_->scene.total_steps())
       throw InputError(
           fmt::format("{}: the checkpoint is after step {} but the run has {} steps (steps.count or "
                       "--steps, times passes.count); give at least {} steps",
-                      file.string(), j.at("step").get<int>(), scene_.total_steps(), j.at("step").get<int>()));
-    load_run_state(j, scene_.passes.count > 1, state_);
-    dynamics_.load(j, file.string());
+                      file.string(), j.at("step").get<int>(), run_->scene.total_steps(), j.at("step").get<int>()));
+    load_run_state(j, run_->scene.passes.count > 1, run_->state);
+    run_->dynamics.load(j, file.string());
   } catch (const nlohmann::json::exception& e) {
     if (e.id == 403)  // out_of_range.403: a key not found (an index past an array's end is damage)
       throw InputError(

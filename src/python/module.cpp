@@ -17,9 +17,9 @@
 #include "roller/core/error.hpp"
 #include "roller/core/version.hpp"
 #include "roller/driver/output_columns.hpp"
-#include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/io/scene_warnings.hpp"
 #include "scene_from_python.hpp"
 
 namespace py = pybind11;

@@ -11,7 +11,7 @@
 #include "roller/assembly/phased_strip.hpp"
 #include "roller/assembly/stationary_strip.hpp"
 #include "roller/core/error.hpp"
-#include "roller/driver/stationary_pass.hpp"
+#include "roller/steady/stationary_pass.hpp"
 
 using namespace roller;
 

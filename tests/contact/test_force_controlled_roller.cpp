@@ -22,7 +22,8 @@ Real fitted_half_width(const Simulation& sim) {
   std::vector<PressureSample> samples = pressure_profile(sim.state().contact, sim.state().pose);
   std::sort(samples.begin(), samples.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
   const Real e_star = sim.scene().material.plane_strain_modulus();
-  return compare_with_hertz(samples, sim.roller_force().y(), sim.scene().roller->radius, e_star).half_width;
+  return compare_with_hertz(samples, force_on_roller(sim.state().contact).y(), sim.scene().roller->radius, e_star)
+      .half_width;
 }
 
 }  // namespace
@@ -37,12 +38,12 @@ TEST_CASE("force control: Hertz under a prescribed force matches the depth-contr
     std::vector<SceneOverride> pressed = base;
     pressed.push_back({"roller.path", "[{steps=[1,1], dy=-0.1}]"});
     const Simulation depth = run_scene("hertz", pressed);
-    const Real p = depth.roller_force().y();
+    const Real p = force_on_roller(depth.state().contact).y();
     std::vector<SceneOverride> loaded = base;
     loaded.push_back({"roller.path", fmt::format("[{{steps=[1,1], fy={:.17g}}}]", p)});
     const Simulation force = run_scene("hertz", loaded);
     // The force reached: the tolerance is 1e-6 of the largest prescribed force.
-    CHECK(std::abs(force.roller_force().y() - p) <= 1e-6 * p);
+    CHECK(std::abs(force_on_roller(force.state().contact).y() - p) <= 1e-6 * p);
     CHECK(force.program().force(1).fy.value() == p);
     CHECK_FALSE(force.program().force(1).fx.has_value());
     // The same indentation and contact: centre height within 1e-5 of the 0.1 mm press-in, the
@@ -63,7 +64,7 @@ TEST_CASE("force control: the offset is kept after the loaded segment, a lift st
   const Simulation sim =
       run_scene("hertz", {{"roller.path", "[{steps=[1,2], fy=4000.0}, {steps=[4,4], dy=0.2}]"}, {"steps.count", "4"}});
   // After the lift the roller is 0.2 mm above where the load left it, i.e. above the surface.
-  CHECK(sim.roller_force().y() == Approx(0.0).margin(1e-6 * 4000.0));
+  CHECK(force_on_roller(sim.state().contact).y() == Approx(0.0).margin(1e-6 * 4000.0));
   CHECK(sim.state().pose.centre.y() == Approx(200.0 + sim.state().load_offset.y() + 0.2).margin(1e-12));
   CHECK(sim.state().load_offset.y() < -0.05);
   CHECK_FALSE(sim.program().force(3).any());
@@ -198,19 +199,19 @@ TEST_CASE("force control: Cattaneo's tangential load under a prescribed fx match
     // The slide of 0.012 mm without turning (slip 1), then the force it reached prescribed with
     // the rotation blocked (dx = 0): one increment each, like with like.
     const Simulation slide = cattaneo(backend, "{steps=[5,5], dx=0.012, slip=1.0}");
-    const Vec2 f = slide.roller_force();
+    const Vec2 f = force_on_roller(slide.state().contact);
     const Real mu = slide.scene().contact.friction;
     REQUIRE(f.x() < -0.2 * mu * f.y());  // the strip holds the roller back: partial slip
     const Simulation pushed = cattaneo(backend, fmt::format("{{steps=[5,5], fx={:.17g}}}", f.x()));
     CHECK(pushed.program().force(5).fx.value() == f.x());
-    CHECK(std::abs(pushed.roller_force().x() - f.x()) <= 1e-6 * f.y());
+    CHECK(std::abs(force_on_roller(pushed.state().contact).x() - f.x()) <= 1e-6 * f.y());
     // The same motion: the centre's x within 1e-4 of the 0.012 mm slide, the height and the
     // angle unchanged, the same stick and slip nodes.
     CHECK(pushed.state().load_offset.x() == Approx(0.012).epsilon(1e-4));
     CHECK(pushed.state().pose.centre.x() == Approx(slide.state().pose.centre.x()).margin(1e-6));
     CHECK(pushed.state().pose.centre.y() == slide.state().pose.centre.y());
     CHECK(pushed.state().pose.angle == slide.state().pose.angle);
-    CHECK(pushed.roller_force().y() == Approx(f.y()).epsilon(1e-5));
+    CHECK(force_on_roller(pushed.state().contact).y() == Approx(f.y()).epsilon(1e-5));
     REQUIRE(pushed.state().contact.size() == slide.state().contact.size());
     int stick = 0;
     for (std::size_t i = 0; i < slide.state().contact.size(); ++i) {
@@ -229,8 +230,8 @@ TEST_CASE("force control: the Cattaneo-Mindlin protocol under both forces gives 
     INFO(backend);
     const Simulation sim = run_scene("cattaneo_mindlin", {{"contact.backend", "\"" + backend + "\""}});
     const Real p = 10000.0, q = -750.0, mu = 0.15;
-    CHECK(std::abs(sim.roller_force().y() - p) <= 1e-6 * p);
-    CHECK(std::abs(sim.roller_force().x() - q) <= 1e-6 * p);
+    CHECK(std::abs(force_on_roller(sim.state().contact).y() - p) <= 1e-6 * p);
+    CHECK(std::abs(force_on_roller(sim.state().contact).x() - q) <= 1e-6 * p);
     CHECK(sim.state().load_offset.x() > 0.0);  // pushed on in +x against the strip's -x reaction
     CHECK(sim.state().pose.angle == 0.0);      // dx = 0: the rotation is blocked
     // Half-widths from moments of nodal forces (exact for the ellipses of Hertz and Cattaneo, and
@@ -293,8 +294,8 @@ TEST_CASE("force control: rolling under q_over_p = 0.15 takes no cut at the defa
     if (step >= 4) {
       const Real prescribed = -0.15 * p;  // no ramp: the strip holds back a roller rolling to +x
       CHECK(prescribed_force(*sim.scene().roller, step).fx.value() == Approx(prescribed).epsilon(1e-15));
-      CHECK(std::abs(sim.roller_force().x() - prescribed) <= 1e-4 * p);
-      CHECK(sim.roller_force().y() == Approx(p).epsilon(1e-6));
+      CHECK(std::abs(force_on_roller(sim.state().contact).x() - prescribed) <= 1e-4 * p);
+      CHECK(force_on_roller(sim.state().contact).y() == Approx(p).epsilon(1e-6));
     }
   }
 }

@@ -1,6 +1,6 @@
 // A roller whose height is not prescribed, solved with the strip (contact.roller_coupling =
 // "joint": its height an unknown of the condensed NLP, contact/ipopt/ipopt_condensed.cpp), against the
-// driver's coupling passes (dynamics/suspension.hpp, driver/force_control.hpp): the thesis's Z4
+// driver's coupling passes (dynamics/suspension.hpp, contact/force_control.hpp): the thesis's Z4
 // impact (suspended) and burnishing (force-loaded) at refine 1 give the same answers step by step
 // with one contact solve per step instead of two to four, and fewer linearisations.
 #include <catch2/catch.hpp>
@@ -55,7 +55,7 @@ TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes
   for (int step = 1; step <= joint.scene().steps.n_steps; ++step) {
     INFO("step " << step);
     const auto [a, b] = run.advance(step);
-    const Real fy = passes.roller_force().y();
+    const Real fy = force_on_roller(passes.state().contact).y();
     CHECK(a.last.suspension_passes == 1);
     if (fy > 1.0) {  // before contact the first pass already balances the suspension
       ++touching_steps;
@@ -63,8 +63,9 @@ TEST_CASE("Suspended roller: one joint solve per step equals the coupling passes
     }
     CHECK(std::abs(joint.dynamics().suspension()->deflection() - passes.dynamics().suspension()->deflection()) <=
           w_tol);
-    CHECK(std::abs(joint.roller_force().y() - fy) <= 1e-5 * std::max(std::abs(fy), 1.0));
-    CHECK(std::abs(joint.roller_force().x() - passes.roller_force().x()) <= 1e-5 * std::max(std::abs(fy), 1.0));
+    CHECK(std::abs(force_on_roller(joint.state().contact).y() - fy) <= 1e-5 * std::max(std::abs(fy), 1.0));
+    CHECK(std::abs(force_on_roller(joint.state().contact).x() - force_on_roller(passes.state().contact).x()) <=
+          1e-5 * std::max(std::abs(fy), 1.0));
     // The strip (plastic, with inertia) carries the solves' differences on from step to step:
     // measured 2.4e-6 of the largest displacement at most.
     CHECK((joint.model().total_displacement() - passes.model().total_displacement()).lpNorm<Eigen::Infinity>() <=
@@ -105,11 +106,12 @@ TEST_CASE("Force-loaded roller: one joint solve per increment on the strip equal
       CHECK(b.last.load_passes >= 2);
     }
     const Real p_step = p * std::min(step, 3) / 3.0;  // the press ramps P over steps 1-3
-    if (step >= 2) CHECK(std::abs(joint.roller_force().y() - p_step) <= 1e-7 * p);
-    CHECK(std::abs(passes.roller_force().y() - joint.roller_force().y()) <= 2e-6 * p);
+    if (step >= 2) CHECK(std::abs(force_on_roller(joint.state().contact).y() - p_step) <= 1e-7 * p);
+    CHECK(std::abs(force_on_roller(passes.state().contact).y() - force_on_roller(joint.state().contact).y()) <=
+          2e-6 * p);
     // The friction force follows the path of the load: within 1e-3 of it.
-    CHECK(std::abs(passes.roller_force().x() - joint.roller_force().x()) <=
-          1e-3 * std::max(1.0, std::abs(passes.roller_force().x())));
+    CHECK(std::abs(force_on_roller(passes.state().contact).x() - force_on_roller(joint.state().contact).x()) <=
+          1e-3 * std::max(1.0, std::abs(force_on_roller(passes.state().contact).x())));
     CHECK(std::abs(joint.state().pose.centre.y() - passes.state().pose.centre.y()) <= 1e-5);
   }
   INFO("linearisations: joint " << run.joint_linearisations << ", passes " << run.passes_linearisations);

@@ -9,9 +9,9 @@
 
 #include "../support/scene_errors.hpp"
 #include "roller/core/error.hpp"
-#include "roller/driver/scene_warnings.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/io/scene_warnings.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
 using namespace roller;

@@ -8,8 +8,8 @@
 
 #include "../support/scene_errors.hpp"
 #include "roller/analysis/hertz.hpp"
-#include "roller/driver/scene_warnings.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/io/scene_warnings.hpp"
 #include "roller/mesh/strip_mesher.hpp"
 
 using namespace roller;

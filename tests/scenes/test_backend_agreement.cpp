@@ -34,7 +34,7 @@ Real pressure_difference(const Simulation& a, const Simulation& b) {
 TEST_CASE("Hertz: ipopt and penalty (factor 1e5) agree on force and pressure", "[contact][ipopt][agreement]") {
   const Simulation ip = run("hertz", "ipopt", "1e5");
   const Simulation pe = run("hertz", "penalty", "1e5");
-  CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
+  CHECK(force_on_roller(ip.state().contact).y() == Approx(force_on_roller(pe.state().contact).y()).epsilon(0.005));
   CHECK(pressure_difference(ip, pe) < 0.02);
   for (const auto& c : ip.state().contact)
     CHECK(c.contact.gap >= -1e-8 * ip.scene().roller->radius);  // constraint violation
@@ -44,8 +44,8 @@ TEST_CASE("Cattaneo: ipopt and penalty agree on force, pressure and stick/slip z
           "[contact][ipopt][agreement][slow]") {
   const Simulation ip = run("cattaneo", "ipopt", "1e3");
   const Simulation pe = run("cattaneo", "penalty", "1e3");
-  CHECK(ip.roller_force().y() == Approx(pe.roller_force().y()).epsilon(0.005));
-  CHECK(ip.roller_force().x() == Approx(pe.roller_force().x()).epsilon(0.02));
+  CHECK(force_on_roller(ip.state().contact).y() == Approx(force_on_roller(pe.state().contact).y()).epsilon(0.005));
+  CHECK(force_on_roller(ip.state().contact).x() == Approx(force_on_roller(pe.state().contact).x()).epsilon(0.02));
   CHECK(pressure_difference(ip, pe) < 0.02);
   // Stick/slip agree except at nodes next to a change of status (zone boundaries).
   const auto& a = ip.state().contact;
@@ -89,9 +89,9 @@ void check_lockstep_agreement(const std::string& name, const std::vector<SceneOv
     REQUIRE(b.converged());
     CHECK(a.cuts == 0);
     CHECK(b.cuts == 0);
-    const Real scale = pe.roller_force().norm();
-    CHECK(std::abs(ip.roller_force().y() - pe.roller_force().y()) <= 0.005 * scale);
-    CHECK(std::abs(ip.roller_force().x() - pe.roller_force().x()) <= 0.005 * scale);
+    const Real scale = force_on_roller(pe.state().contact).norm();
+    CHECK(std::abs(force_on_roller(ip.state().contact).y() - force_on_roller(pe.state().contact).y()) <= 0.005 * scale);
+    CHECK(std::abs(force_on_roller(ip.state().contact).x() - force_on_roller(pe.state().contact).x()) <= 0.005 * scale);
     CHECK(a.last.details.get<IpoptDetails>().constraint_violation <= 1e-8 * radius);
     CHECK(a.last.details.get<IpoptDetails>().complementarity <= tol);
     for (const auto& c : ip.state().contact) CHECK(c.contact.gap >= -1e-8 * radius);

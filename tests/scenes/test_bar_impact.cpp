@@ -37,7 +37,7 @@ ImpactRecord run_impact(const std::string& backend, int steps, std::vector<Scene
   rec.section_x = probe_x;
   for (int n = 1; n <= steps; ++n) {
     REQUIRE(sim.advance_step(n).converged());
-    rec.contact_stress.push_back(std::abs(sim.roller_force().x()) / sim.scene().mesh.height);
+    rec.contact_stress.push_back(std::abs(force_on_roller(sim.state().contact).x()) / sim.scene().mesh.height);
     Real s = 0.0;
     for (int q = 0; q < sim.model().points_per_element(); ++q) s -= sim.model().state(probe, q).stress(0);
     rec.section_stress.push_back(s / sim.model().points_per_element());

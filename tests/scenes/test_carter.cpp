@@ -100,7 +100,7 @@ TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of 
           "[contact][friction][scenes][slow]") {
   const Simulation sim = test::run_scene("carter");
   const Real mu = sim.scene().contact.friction;
-  const Vec2 f = sim.roller_force();
+  const Vec2 f = force_on_roller(sim.state().contact);
   const Real q_ratio = std::abs(f.x()) / (mu * f.y());
 
   const StickZone z = measure_stick_zone(sim, mu);
@@ -148,7 +148,7 @@ TEST_CASE("Carter under a prescribed traction: the creep is an outcome and meets
     offset[step] = sim.state().load_offset.x();
   }
   const Real mu = sim.scene().contact.friction;
-  const Vec2 f = sim.roller_force();
+  const Vec2 f = force_on_roller(sim.state().contact);
   CHECK(std::abs(f.x() - q) <= 1e-6 * f.y());
   CHECK(sim.state().pose.angle ==
         Approx(-34.0 / sim.scene().roller->radius).epsilon(1e-12));  // turned at the rolling rate

@@ -24,7 +24,7 @@ TEST_CASE("Cattaneo (penalty): stick zone c/a = sqrt(1 - Q/(mu P))", "[contact][
   }
   CHECK(n_stick > 0);
   CHECK(n_slip > 0);
-  const Vec2 f = sim.roller_force();
+  const Vec2 f = force_on_roller(sim.state().contact);
   const Real q_ratio = std::abs(f.x()) / (mu * f.y());
   const ZoneExtent a = zone_extent(x, in_contact);
   const ZoneExtent c = zone_extent(x, stick);
@@ -72,9 +72,9 @@ friction = 0.0
 )";
   Simulation sim(parse_scene(text, "translation.toml"));
   for (int step = 1; step <= 2; ++step) REQUIRE(sim.advance_step(step).converged());
-  const Vec2 before = sim.roller_force();
+  const Vec2 before = force_on_roller(sim.state().contact);
   for (int step = 3; step <= 4; ++step) REQUIRE(sim.advance_step(step).converged());
-  const Vec2 after = sim.roller_force();
+  const Vec2 after = force_on_roller(sim.state().contact);
   REQUIRE(before.y() > 0.0);
   CHECK(std::abs(after.x()) < 1e-6 * after.y());
   CHECK((after - before).norm() < 1e-6 * before.norm());

@@ -57,10 +57,10 @@ std::vector<RollerRow> run(const std::string& scene, const std::string& backend,
                            std::vector<SceneOverride> overrides = {}) {
   overrides.push_back({"contact.backend", "\"" + backend + "\""});
   Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml", overrides));
-  std::vector<RollerRow> rows{{0, sim.state().pose.centre, sim.roller_force()}};
+  std::vector<RollerRow> rows{{0, sim.state().pose.centre, force_on_roller(sim.state().contact)}};
   for (int step = 1; step <= sim.scene().steps.n_steps; ++step) {
     REQUIRE(sim.advance_step(step).converged());
-    rows.push_back({step, sim.state().pose.centre, sim.roller_force()});
+    rows.push_back({step, sim.state().pose.centre, force_on_roller(sim.state().contact)});
   }
   return rows;
 }

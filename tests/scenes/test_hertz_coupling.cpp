@@ -17,8 +17,8 @@ HertzComparison hertz_errors(const std::string& scene, int refine) {
   const Simulation sim = test::run_scene(scene, {{"mesh.refine", std::to_string(refine)}});
   const MaterialParams& m = sim.scene().material;
   const Real e_star = m.plane_strain_modulus();
-  return compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose), sim.roller_force().y(),
-                            sim.scene().roller->radius, e_star);
+  return compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose),
+                            force_on_roller(sim.state().contact).y(), sim.scene().roller->radius, e_star);
 }
 
 }  // namespace

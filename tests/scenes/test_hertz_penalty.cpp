@@ -18,7 +18,7 @@ Simulation run_hertz(int refine) {
 TEST_CASE("Hertz line contact (penalty): a and p0 within 2 % of the analytic solution", "[contact][hertz]") {
   const Simulation sim = run_hertz(2);
   const Real e_star = sim.scene().material.youngs_modulus / (1 - std::pow(sim.scene().material.poisson_ratio, 2));
-  const Real load = sim.roller_force().y();
+  const Real load = force_on_roller(sim.state().contact).y();
   const HertzComparison c = compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose), load,
                                                sim.scene().roller->radius, e_star);
   INFO("P = " << load << " a = " << c.half_width << " (analytic " << c.analytic.half_width << "), p0 = " << c.peak
@@ -36,7 +36,7 @@ TEST_CASE("Hertz (penalty): contact force equals the support reaction, penetrati
   sim.model().evaluate(VecX::Zero(sim.model().n_dofs()), &g, nullptr);
   Real reaction_y = 0.0;
   for (Index a : sim.model().mesh().node_set("bottom")) reaction_y += g(2 * a + 1);
-  const Vec2 f = sim.roller_force();
+  const Vec2 f = force_on_roller(sim.state().contact);
   CHECK(reaction_y == Approx(f.y()).epsilon(1e-6));  // the support carries what the roller pushes
   CHECK(std::abs(f.x()) < 1e-6 * f.y());
   // Penetration of each node = F_N / kN = p h / (factor E*) (penalty_backend.hpp).

@@ -40,7 +40,7 @@ Run run_z1(const std::vector<SceneOverride>& overrides) {
   for (int step = 1; step <= sim.scene().total_steps(); ++step) {
     run.last = sim.advance_step(step);
     if (!run.last.converged()) break;
-    run.forces.push_back(sim.roller_force());
+    run.forces.push_back(force_on_roller(sim.state().contact));
     run.max_penetration = std::max(run.max_penetration, run.last.max_penetration);
   }
   return run;

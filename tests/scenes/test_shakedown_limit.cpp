@@ -12,8 +12,8 @@
 
 #include "../support/mcewen.hpp"
 #include "roller/core/error.hpp"
-#include "roller/driver/shakedown_limit.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/steady/shakedown_limit.hpp"
 
 using namespace roller;
 using Catch::Contains;

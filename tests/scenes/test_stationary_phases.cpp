@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "driver/roller_contact_correction.hpp"
-#include "driver/roller_start.hpp"
-#include "driver/stationary_passes.hpp"
 #include "roller/assembly/phased_strip.hpp"
 #include "roller/driver/simulation.hpp"
+#include "roller/io/roller_start.hpp"
 #include "roller/io/scene_loader.hpp"
+#include "roller/steady/stationary_passes.hpp"
+#include "steady/roller_contact_correction.hpp"
 
 using namespace roller;
 
@@ -27,7 +27,7 @@ VecX first_pass(int phases, Real shift, Real* element = nullptr) {
   scene.material.plastic = false;
   scene.roller->start_centre = given_start_centre(scene) + Vec2(shift, 0.0);
   const Simulation sim(scene);
-  StationaryPasses passes(sim.scene(), sim.model(), make_roller_contact_correction);
+  StationaryPasses passes(sim.scene(), sim.model());
   if (element) *element = contact_element_length(sim.model().mesh(), passes.centre_x());
   const StationaryPasses::Pass pass = passes.run(sim.model(), VecX(), nullptr, nullptr);
   REQUIRE(pass.solve.converged());

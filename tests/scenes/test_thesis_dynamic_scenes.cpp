@@ -22,7 +22,7 @@ Real suspension_imbalance(const Simulation& sim) {
   const SuspensionSpec& s = *sim.scene().roller->suspension;
   const Real w = sim.dynamics().suspension()->deflection();
   return s.mass * sim.dynamics().suspension_acceleration() + s.damping * sim.dynamics().suspension_velocity() +
-         s.stiffness * w - sim.roller_force().y();
+         s.stiffness * w - force_on_roller(sim.state().contact).y();
 }
 
 }  // namespace
@@ -41,7 +41,7 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
       INFO("step " << step);
       REQUIRE(sim.advance_step(step).converged());
       REQUIRE(penalty.advance_step(step).converged());
-      const Real fy = sim.roller_force().y();
+      const Real fy = force_on_roller(sim.state().contact).y();
       // Before contact the coupling's own tolerance (k x 1e-10 R) is the scale, not the force.
       const Real coupling_tol = 2.0 * sim.scene().roller->suspension->stiffness * 1e-10 * sim.scene().roller->radius;
       CHECK(std::abs(suspension_imbalance(sim)) <= std::max(1e-5 * std::abs(fy), coupling_tol));
@@ -49,7 +49,7 @@ TEST_CASE("Z4 impact scenes run end to end, the suspension in balance at every s
         // Contact begins in step 4 (the scene starts the roller 3.5 steps before the corner).
         CHECK(fy > 0.0);
         CHECK(sim.dynamics().suspension()->deflection() > 0.0);
-        CHECK(penalty.roller_force().y() == Approx(fy).epsilon(0.01));
+        CHECK(force_on_roller(penalty.state().contact).y() == Approx(fy).epsilon(0.01));
       } else {
         CHECK(std::abs(fy) <= 1e-4);  // the interior point's barrier force on a node not yet touched
       }
@@ -76,8 +76,8 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
     INFO("DATA01 step " << step);
     REQUIRE(first.advance_step(step).converged());
     CHECK(std::abs(suspension_imbalance(first)) <= 1e-5 * force_scale);
-    if (step == 1) touched_at_step_1 = first.roller_force().y() > 0.0;
-    if (step == 47) first_force_47 = first.roller_force().y();
+    if (step == 1) touched_at_step_1 = force_on_roller(first.state().contact).y() > 0.0;
+    if (step == 47) first_force_47 = force_on_roller(first.state().contact).y();
   }
   CHECK(touched_at_step_1);
   const std::filesystem::path state =
@@ -95,11 +95,11 @@ TEST_CASE("Z3 DATA01 then DATA02 from its final state, suspension in balance", "
   for (int step = 1; step <= second.scene().steps.n_steps; ++step) {
     INFO("DATA02 step " << step);
     REQUIRE(second.advance_step(step).converged());
-    if (step == 1) CHECK(second.roller_force().y() > 0.0);  // pressing into the groove at once
+    if (step == 1) CHECK(force_on_roller(second.state().contact).y() > 0.0);  // pressing into the groove at once
     CHECK(std::abs(suspension_imbalance(second)) <= 1e-5 * 2.0 * force_scale);
     // The thesis (its figures 5.18, 5.19): the second pass leaves larger stresses; it needs a
     // larger force at the same step.
-    if (step == 47) CHECK(second.roller_force().y() > 1.2 * first_force_47);
+    if (step == 47) CHECK(force_on_roller(second.state().contact).y() > 1.2 * first_force_47);
   }
   std::filesystem::remove(state);
 }

@@ -5,7 +5,7 @@
 // surface sigma_yy = -p and sigma_xy = tau; sigma_xx = -p - (2/pi) PV int tau(s)/(x - s) ds
 // (Johnson, Contact Mechanics, (2.25)), which for an ellipse of peak T is -2 T xi under it and
 // -2 T (xi - sign(xi) sqrt(xi^2 - 1)) beside it, xi = (x - m)/b: McEwen's surface values, whose
-// square-root edges the elements below a surface smooth (driver/shakedown_limit.hpp).
+// square-root edges the elements below a surface smooth (steady/shakedown_limit.hpp).
 #include <vector>
 
 #include "roller/core/types.hpp"

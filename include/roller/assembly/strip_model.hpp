@@ -70,7 +70,7 @@ class StripModel {
 
   // Nodal forces (all dofs; empty: none) that do not follow the increment: the energy of an
   // increment u gains -load.u and its gradient -load. The stationary pass's contact correction
-  // carries its residual with them (driver/roller_contact_correction.cpp).
+  // carries its residual with them (steady/roller_contact_correction.cpp).
   void set_dead_load(VecX load) { dead_load_ = std::move(load); }
 
   // Armstrong-Frederick's recovery for the minimisers (docs/model.md, Hardening laws): whether the

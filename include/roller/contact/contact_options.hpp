@@ -33,7 +33,7 @@ enum class IncrementPredictor { Extrapolate, Arc, Rolling };
 // The height of a roller that is not prescribed (hanging on its suspension, or carrying a
 // prescribed vertical force) in each increment: Joint: an unknown of the contact solve itself
 // (backends that support it: ipopt, condensed), Passes: found by the driver's coupling loop, one
-// contact solve per pass with the roller placed (dynamics/suspension.hpp, driver/force_control.hpp;
+// contact solve per pass with the roller placed (dynamics/suspension.hpp, contact/force_control.hpp;
 // every backend).
 enum class RollerCoupling { Joint, Passes };
 

@@ -98,12 +98,21 @@ class IncrementProblem {
   Real plane_strain_modulus() const;  // E* = E / (1 - nu^2)
 
   // Kinematics of candidate c for a node increment u (see the header comment): the one place
-  // where gap, normal and slip are computed; the NLP formulations map their variables to u.
+  // where gap, normal, slip and the gap's curvature are computed, and so the one place that knows
+  // the roller is a rigid circle (docs/architecture.md); the NLP formulations map their variables to u.
   Vec2 from_centre(const ContactCandidate& c, const Vec2& u) const { return (c.position + u) - roller_.end.centre; }
   Real gap_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).norm() - roller_.radius; }
   Vec2 normal_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).normalized(); }
   Real slip_for(const ContactCandidate& c, const Vec2& u) const {
     return c.tangent.dot(u - roller_.dc()) - roller_.radius * roller_.dphi();
+  }
+  // `weight` times the gap's curvature d2g/du2, (I - n n^T) / |x - c| for the circle: the Hessian
+  // a contact force of that size adds (penalty, the NLP's contact rows).
+  Mat2 gap_curvature(const ContactCandidate& c, const Vec2& u, Real weight) const {
+    const Vec2 d = from_centre(c, u);
+    const Real rho = d.norm();
+    const Vec2 n = d / rho;
+    return weight * (Mat2::Identity() - n * n.transpose()) / rho;
   }
 
   // The same at free values x.

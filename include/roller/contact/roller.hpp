@@ -12,7 +12,7 @@
 //
 // A segment may prescribe the vertical force on the roller instead of its vertical motion (fy):
 // over the segment's steps the centre's height is an unknown that carries the force
-// (driver/force_control.hpp), and the offset it reaches from the path is kept afterwards. In the
+// (contact/force_control.hpp), and the offset it reaches from the path is kept afterwards. In the
 // same way fx prescribes the horizontal force: the centre's x floats about the path's x while the
 // path's dx still turns the roller (rolling kinematics), so dx = 0 blocks the rotation (the
 // Cattaneo-Mindlin protocol) and dx != 0 rolls it under a traction with the creep an outcome

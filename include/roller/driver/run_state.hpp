@@ -8,7 +8,9 @@
 
 #include "roller/analysis/hertz.hpp"
 #include "roller/analysis/pass_metrics.hpp"
+#include "roller/analysis/pressure_profile.hpp"
 #include "roller/contact/backend.hpp"
+#include "roller/contact/contact_records.hpp"
 #include "roller/contact/friction_history.hpp"
 #include "roller/contact/roller.hpp"
 #include "roller/core/types.hpp"
@@ -23,34 +25,6 @@ struct RunTotals {
   Real max_penetration = 0.0;
 };
 
-// Contact result of one node at the end of a step (for output).
-struct NodeContactRecord {
-  Index node = 0;
-  Vec2 position = Vec2::Zero();
-  NodeContact contact;
-  Real tributary_length = 0.0;
-  Real element_size = 0.0;    // depth of the surface element under the node (penalty scale)
-  Vec2 force = Vec2::Zero();  // force of the roller on the node [N per mm width]
-};
-
-// The nodes of `contact` that touch the roller (status not open).
-inline Index count_in_contact(const std::vector<NodeContactRecord>& contact) {
-  Index n = 0;
-  for (const auto& c : contact) n += c.contact.status != ContactStatus::Open ? 1 : 0;
-  return n;
-}
-
-// The force of the strip on the roller: the nodes' contact forces on the strip, reversed [N per mm].
-inline Vec2 force_on_roller(const std::vector<NodeContactRecord>& contact) {
-  Vec2 f = Vec2::Zero();
-  for (const auto& c : contact) f -= c.force;
-  return f;
-}
-
-// Nodal contact pressures against x measured from the roller centre; open nodes count as unloaded
-// (an interior-point solution leaves barrier-size forces there).
-std::vector<PressureSample> pressure_profile(const std::vector<NodeContactRecord>& contact, const RollerPose& pose);
-
 struct RunState {
   int steps_done = 0;
   RunTotals totals;
@@ -62,10 +36,12 @@ struct RunState {
   // and -dF/dw per axis at the last force-controlled increment (0: none yet).
   Vec2 load_offset = Vec2::Zero();
   Vec2 load_stiffness = Vec2::Zero();
-  // The last converged increment (all dofs) and its length in steps: the next one's predictor.
-  // The stationary method: the next pass's first iterate (driver/stationary_passes.hpp), length 0.
+  // What a step hands the next, by the run's method. The transient: the last converged increment
+  // (all dofs) and its length in steps, the next one's predictor. The stationary: the next pass's
+  // first iterate (all dofs, or empty: zero; steady/stationary_passes.hpp).
   VecX last_increment;
   Real last_length = 0.0;
+  VecX next_pass_start;
   // The contact of the last increment, and the friction history it leaves.
   std::vector<NodeContactRecord> contact;
   FrictionHistory friction;

@@ -17,21 +17,22 @@
 #include "roller/contact/backend.hpp"
 #include "roller/contact/friction_history.hpp"
 #include "roller/core/enum_names.hpp"
-#include "roller/driver/increment_solver.hpp"
-#include "roller/driver/load_program.hpp"
-#include "roller/driver/roller_program.hpp"
 #include "roller/driver/run_state.hpp"
+#include "roller/driver/step_record.hpp"
 #include "roller/dynamics/dynamics_state.hpp"
 #include "roller/io/field_output.hpp"
+#include "roller/io/roller_program.hpp"
 #include "roller/io/scene.hpp"
 
 namespace roller {
 
-class RunOutputs;        // driver/run_outputs.hpp
-class OutputSink;        // driver/output_sink.hpp
-class StepMonitor;       // driver/step_monitor.hpp
-class BackgroundWriter;  // io/background_writer.hpp
-class StationaryPasses;  // driver/stationary_passes.hpp
+class RunOutputs;           // driver/run_outputs.hpp
+class OutputSink;           // driver/output_sink.hpp
+class StepMonitor;          // driver/step_monitor.hpp
+class BackgroundWriter;     // io/background_writer.hpp
+struct RunModel;            // driver/run_model.hpp
+class TransientIncrements;  // driver/transient_increments.hpp
+class StepMethod;           // driver/step_method.hpp
 
 struct RunOptions {
   std::filesystem::path out_dir = "out";
@@ -94,105 +95,46 @@ void write_stopped_summary(const Scene& scene, const RunOptions& options, RunSta
 
 class Simulation {
  public:
-  // Builds the mesh and the load program, validating the scene against the mesh (InputError).
+  // Builds the strip, the scene's conditions on it, the roller's program and the run's step
+  // method (driver/step_method.hpp), validating the scene against the mesh (InputError).
   explicit Simulation(Scene scene);
   ~Simulation();
   Simulation(Simulation&&) noexcept;
 
   RunSummary run(const RunOptions& options);
 
-  const Scene& scene() const { return scene_; }
-  StripModel& model() { return *model_; }
-  const StripModel& model() const { return *model_; }
-  // The contact backend of the run (nullptr without a roller); the run-time monitor asks it for
-  // the inertia of factors it holds.
-  ContactBackend* contact_backend() { return backend_.get(); }
+  const Scene& scene() const;
+  StripModel& model();
+  const StripModel& model() const;
   // Everything a later step reads besides the strip and the dynamics (run_state.hpp): the roller's
   // pose, the contact of the last increment, the pass records, ...
-  const RunState& state() const { return state_; }
+  const RunState& state() const;
   // Strip inertia and suspension at the end of the last step (dynamics_state.hpp).
-  const DynamicsState& dynamics() const { return dynamics_; }
+  const DynamicsState& dynamics() const;
   // What the scene prescribes at each step: the roller's pose and forces, the passes.
-  const RollerProgram& program() const { return program_; }
-  Vec2 roller_force() const { return force_on_roller(state_.contact); }  // of the strip [N per mm width]
+  const RollerProgram& program() const;
+  // The contact backend of the run (nullptr without a roller); the run-time monitor asks it for
+  // the inertia of factors it holds.
+  ContactBackend* contact_backend();
 
   // State files (CBOR): everything the next step needs, so that a run continued from a saved
   // state gives the same results as an uninterrupted one. load_state() restores the strip and,
   // unless strip_only, the run state and the dynamics.
   void save_state(const std::filesystem::path& file) const;
-  // The same in two halves: the state is read now, the returned job writes it (to run on a
-  // background thread while the next step changes the model).
-  std::function<void()> state_writer(const std::filesystem::path& file) const;
   void load_state(const std::filesystem::path& file, bool strip_only);
 
-  // Advances the state from s_from to s_to (scene steps, fractional) with one increment;
-  // commits on success (converged = true) and leaves the state untouched on failure.
+  // Advances the state from s_from to s_to (scene steps, fractional) with one increment of the
+  // transient method; commits on success (converged = true) and leaves the state untouched on failure.
   IncrementReport advance(Real s_from, Real s_to);
 
-  // The roller at the end of a converged step, as the outputs write it (roller.csv).
-  struct RollerRecord {
-    RollerPose pose;
-    Vec2 force = Vec2::Zero();     // of the strip on the roller [N per mm width]
-    Vec2 velocity = Vec2::Zero();  // of the centre over the step (backward difference) [mm/s]
-    Real anchor_y = 0.0;           // the prescribed pose's height: a suspension's anchor
-    Real deflection = 0.0, deflection_velocity = 0.0, deflection_acceleration = 0.0;  // suspension
-    PrescribedForce prescribed;  // the forces the step prescribed (none: its motion)
-    Vec2 load_offset = Vec2::Zero();
-  };
-
-  // Advances through scene step `step` (1-based), cutting it into 2, 4, ... sub-increments when
-  // an increment fails, up to steps.max_cuts times. The record holds every value the outputs
-  // write about the step (driver/run_outputs.hpp), the prescribed pose and forces included.
-  struct StepRecord {
-    int step = 0;
-    int pass = 1;
-    Real time = 0.0;
-    Termination status = Termination::Failed;
-    int cuts = 0;
-    SolveCounters counters;  // of the step's sub-increments
-    BackendDetails details;  // of the step's sub-increments: their work summed, the rest of the last one
-    Real max_penetration = 0.0;
-    Index n_yielded = 0;   // integration points that yielded in the step's last converged increment
-    IncrementReport last;  // the last increment tried
-    std::string message;   // why the step failed
-    bool converged() const { return status == Termination::Converged; }
-    // The step ended a pass of a multi-pass run: what the pass left (analysis/pass_metrics.hpp),
-    // with the residual state by depth under the middle of its track (at x = profile_x).
-    struct PassEnd {
-      PassRecord record;
-      Real profile_x = 0.0;
-      std::vector<DepthSample> profile;
-    };
-    std::optional<PassEnd> pass_end;
-    // The state at the end of the step (as it stands after a failed one): the contact of its
-    // last increment, the roller, the strip's kinetic energy.
-    std::vector<NodeContactRecord> contact;
-    Index n_contact() const { return count_in_contact(contact); }
-    std::optional<RollerRecord> roller;
-    Real kinetic_energy = 0.0;
-    // A stationary pass's loaded state, when its fields are written (output.mid_pass).
-    std::optional<StripFields> loaded_fields;
-  };
+  // Advances through scene step `step` (1-based) by the run's step method: the transient's
+  // increments, cut into 2, 4, ... sub-increments when one fails, up to steps.max_cuts times, or
+  // the stationary pass. The record holds every value the outputs write about the step.
+  using RollerRecord = roller::RollerRecord;
+  using StepRecord = roller::StepRecord;
   StepRecord advance_step(int step);
 
  private:
-  // advance_step of the stationary method: step = pass (stationary_step.cpp).
-  StepRecord advance_stationary(int step);
-  // Before the first step of pass `pass` > 1: the roller, clear of the strip, returns to the
-  // pass's start; a message (and nothing changed) when it is not clear.
-  std::string return_for_pass(int pass);
-  // Where an increment starts: the previous converged increment scaled to this one's length
-  // (and, as an option, the thesis's arc predictor for nodes that would enter the roller).
-  VecX predictor(Real s_from, Real s_to, const RollerMotion* motion) const;
-  // What the increment to s_to starts from besides the strip (the roller's motion, forces, ...).
-  IncrementStart increment_start(Real s_to) const;
-  // Accepts a converged increment (transactional: a throw of the strip's commit changes nothing).
-  void commit(const IncrementSolution& solution, const RollerMotion& motion, Real s_from, Real s_to,
-              IncrementReport& inc);
-  // After a converged step: observes the contact; at a pass's last step, measures the pass.
-  std::optional<StepRecord::PassEnd> observe_pass(int step);
-  // The state at the end of the step (converged or not) into its record.
-  void record_state(StepRecord& res) const;
   // The step loop's pieces (run.cpp).
   // Whether the run resumes: false when it starts (over), a --resume before the first checkpoint
   // included.
@@ -200,19 +142,14 @@ class Simulation {
   void run_steps(const RunOptions& options, int first_step, RunOutputs& outputs, StepMonitor& monitor,
                  BackgroundWriter& writer, RunSummary& summary);
   void save_states(int step, const std::filesystem::path& out_dir, BackgroundWriter& writer) const;
+  // save_state in two halves: the state is read now, the returned job writes it (to run on a
+  // background thread while the next step changes the model).
+  std::function<void()> state_writer(const std::filesystem::path& file) const;
 
-  Scene scene_;
-  std::unique_ptr<StripModel> model_;
-  LoadProgram loads_;
-  std::unique_ptr<ContactBackend> backend_;
-  std::vector<Index> candidate_nodes_;
-  RollerProgram program_;
-  IncrementSolver solver_;
-  RunState state_;  // everything a later step reads but the strip and the dynamics (run_state.hpp)
-  DynamicsState dynamics_;
-  std::unique_ptr<StationaryPasses> stationary_;  // the stationary method's set-up, built at its first pass
-  std::ostream* progress_ = nullptr;              // run()'s progress stream, for the stationary iterations
-  const std::atomic<int>* stop_ = nullptr;        // run()'s stop request, which the stationary iterations hear
+  // On the heap, so that the methods' references to them outlive a move of the Simulation.
+  std::unique_ptr<RunModel> run_;                    // the scene, the strip, the run state, ...
+  std::unique_ptr<TransientIncrements> increments_;  // one increment of the transient method
+  std::unique_ptr<StepMethod> method_;               // chosen once, by passes.method
 };
 
 }  // namespace roller

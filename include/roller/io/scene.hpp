@@ -20,7 +20,7 @@ namespace roller {
 
 // Repeated passes of the roller ([passes]; docs/scenes.md, Repeated passes): the scene's steps
 // 1..steps.count and its [[roller.path]] describe one pass, repeated `count` times, each from the
-// same start or, alternating, back from where the previous one ended (driver/roller_program.hpp).
+// same start or, alternating, back from where the previous one ended (io/roller_program.hpp).
 enum class PassDirection { Same, Alternate };
 template <>
 struct EnumNames<PassDirection> {

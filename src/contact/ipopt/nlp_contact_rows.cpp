@@ -207,10 +207,7 @@ void ContactRows::add_hessian(const Real* z, Real obj_factor, const Real* lambda
   for (std::size_t k = 0; k < rows_.size(); ++k) {
     if (e == hessian_entries_.size() || hessian_entries_[e].row_map != static_cast<int>(k)) continue;
     const ContactCandidate& c = cands[rows_[k].candidate];
-    const Vec2 d = problem_.from_centre(c, increment(static_cast<int>(k), z));
-    const Real rho = d.norm();
-    const Vec2 n = d / rho;
-    Mat2 block = lambda[k] * (Mat2::Identity() - n * n.transpose()) / rho;
+    Mat2 block = problem_.gap_curvature(c, increment(static_cast<int>(k), z), lambda[k]);
     const int j = friction_of_[k];
     if (!friction_.split() && j >= 0 && obj_factor != 0.0) {
       const Real s = slip(static_cast<int>(k), z);

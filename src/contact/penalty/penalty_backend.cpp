@@ -26,17 +26,15 @@ NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, 
                           Mat2* block, const NodeContact* frozen = nullptr) {
   NodeContact s;
   const Vec2 u = p.increment(c, x);
-  const Vec2 d = p.from_centre(c, u);
-  const Real rho = d.norm();
-  const Vec2 n = d / rho;
-  s.gap = rho - p.roller().radius;
+  const Vec2 n = p.normal_for(c, u);
+  s.gap = p.gap_for(c, u);
   s.slip = p.slip_for(c, u);
   if (block) block->setZero();
   if (frozen ? frozen->status == ContactStatus::Open : s.gap >= 0.0) return s;  // open: no force
   s.normal_force = -k.normal * s.gap;
   const Real mu = p.roller().friction;
   const Vec2& t = c.tangent;
-  if (block) *block += k.normal * n * n.transpose() - s.normal_force * (Mat2::Identity() - n * n.transpose()) / rho;
+  if (block) *block += k.normal * n * n.transpose() - p.gap_curvature(c, u, s.normal_force);
   if (mu == 0.0) {
     s.status = ContactStatus::Slip;
     return s;
