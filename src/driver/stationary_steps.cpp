@@ -19,11 +19,11 @@ class StationarySteps final : public StepMethod {
   // A stationary pass (one step) carries its travel segment's load whole, not the ramp the step's
   // number would read in a transient pass's program.
   explicit StationarySteps(RunModel& run)
-      : run_(run), program_step_(steady_load(run.scene, std::nullopt).travel->last_step) {}
+      : run_(run), steady_(steady_load(run.scene, std::nullopt)), program_step_(steady_.travel->last_step) {}
 
   StepRecord advance(int step, const StepOptions& control) override {
     const bool built = !passes_;  // K_e is factorised once, when the set-up is built
-    if (built) passes_ = std::make_unique<StationaryPasses>(run_.scene, *run_.strip);
+    if (built) passes_ = std::make_unique<StationaryPasses>(run_.scene, *run_.strip, steady_);
     StationaryPasses& passes = *passes_;
     StepRecord res;
     res.step = step;
@@ -88,6 +88,7 @@ class StationarySteps final : public StepMethod {
 
  private:
   RunModel& run_;
+  SteadyLoad steady_;  // the scene's travel and its load, computed once
   int program_step_;
   std::unique_ptr<StationaryPasses> passes_;  // the method's set-up, built at its first pass
 };

@@ -13,7 +13,8 @@ namespace roller {
 TransientIncrements::TransientIncrements(RunModel& run)
     : run_(run),
       loads_(run.scene, run.strip->mesh()),
-      session_(contact_session_settings(run.scene), *run.backend, contact_candidate_nodes(run.scene, run.strip->mesh())) {
+      session_(contact_session_settings(run.scene), *run.backend,
+               contact_candidate_nodes(run.scene, run.strip->mesh())) {
   run.strip->set_dof_map(loads_.dof_map());
 }
 
@@ -43,11 +44,11 @@ IncrementReport TransientIncrements::advance(Real s_from, Real s_to) {
   IncrementEnergy energy(*run_.strip, prescribed, loads_.external_force(s_to),
                          run_.dynamics.begin_increment((s_to - s_from) * run_.scene.steps.dt));
   IncrementStart start = increment_start(s_to);
-  const IncrementSolution solution =
-      session_.solve(energy, prescribed,
-                     increment_predictor(*run_.strip, session_.candidate_nodes(), run_.state.last_increment, run_.state.last_length,
-                                         s_to - s_from, run_.scene.roller ? &start.motion : nullptr, run_.scene.contact.predictor),
-                     start, inc);
+  const IncrementSolution solution = session_.solve(
+      energy, prescribed,
+      increment_predictor(*run_.strip, session_.candidate_nodes(), run_.state.last_increment, run_.state.last_length,
+                          s_to - s_from, run_.scene.roller ? &start.motion : nullptr, run_.scene.contact.predictor),
+      start, inc);
   if (inc.converged()) commit(solution, start.motion, s_from, s_to, inc);
   return inc;
 }

@@ -26,7 +26,6 @@ std::string incompressibility_hint(const LayeredMaterial& strip) {
       m.poisson_ratio, m.bulk_modulus() / m.shear_modulus());
 }
 
-
 class TransientSteps final : public StepMethod {
  public:
   TransientSteps(RunModel& run, TransientIncrements& increments) : run_(run), increments_(increments) {}
@@ -64,8 +63,8 @@ class TransientSteps final : public StepMethod {
       }
       if (res.cuts >= run_.scene.steps.max_cuts) {
         res.status = inc.status;  // how the last sub-increment ended: a budget ran out, or it failed
-        res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}{}", step, res.cuts,
-                                  ds, inc.message, incompressibility_hint(run_.scene.strip_material()));
+        res.message = fmt::format("step {} failed after {} cuts (sub-increment {:.4g} of the step): {}{}", step,
+                                  res.cuts, ds, inc.message, incompressibility_hint(run_.scene.strip_material()));
         if (before_return && s == step - 1) {  // nothing of the step committed: undo the return too
           run_.state = std::move(*before_return);
         }
@@ -124,12 +123,13 @@ class TransientSteps final : public StepMethod {
       force += c.contact.normal_force;
     }
     const Real e_star = run_.scene.contact_modulus();
-    const Real load_half_width = force > 0.0 ? hertz_line_contact(force, run_.scene.roller->radius, e_star).half_width : 0.0;
+    const Real load_half_width =
+        force > 0.0 ? hertz_line_contact(force, run_.scene.roller->radius, e_star).half_width : 0.0;
     run_.state.pass_track.observe(run_.state.pose.centre.x(), x, p, load_half_width);
     if (!run_.program.ends_pass(step)) return std::nullopt;
     StepRecord::PassEnd end;
-    end.record =
-        measure_pass(run_.program.pass_of_step(step), *run_.strip, run_.scene.mesh.height, run_.state.pass_track, run_.state.pass_baseline);
+    end.record = measure_pass(run_.program.pass_of_step(step), *run_.strip, run_.scene.mesh.height,
+                              run_.state.pass_track, run_.state.pass_baseline);
     end.profile_x = 0.5 * (end.record.track_start + end.record.track_end);
     end.profile = depth_profile(*run_.strip, run_.scene.mesh.height, end.profile_x);
     run_.state.pass_records.push_back(end.record);

@@ -37,7 +37,6 @@ std::unique_ptr<StripModel> make_scene_strip(const Scene& scene) {
   return std::make_unique<StripModel>(std::move(mesh), std::move(materials), scene.element);
 }
 
-
 std::vector<Index> contact_candidate_nodes(const Scene& scene, const Mesh& mesh) {
   if (!scene.roller) return {};
   NodeSelector sel;

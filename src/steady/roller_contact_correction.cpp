@@ -18,8 +18,8 @@ namespace {
 // traction is the converged contact's.
 class RollerContactCorrection final : public RollerCorrection {
  public:
-  RollerContactCorrection(const Scene& scene, const Mesh& mesh, Real centre_x, Real force)
-      : steady_(steady_load(scene, std::nullopt)),
+  RollerContactCorrection(const Scene& scene, const Mesh& mesh, const SteadyLoad& steady, Real centre_x, Real force)
+      : steady_(steady),
         hertz_(hertz_line_contact(force, scene.roller->radius, scene.contact_modulus())),
         centre_x_(centre_x) {
     Scene twin = elastic_frictionless_scene(scene);
@@ -73,9 +73,9 @@ class RollerContactCorrection final : public RollerCorrection {
 
 }  // namespace
 
-std::unique_ptr<RollerCorrection> make_roller_contact_correction(const Scene& scene, const Mesh& mesh, Real centre_x,
-                                                                 Real force) {
-  return std::make_unique<RollerContactCorrection>(scene, mesh, centre_x, force);
+std::unique_ptr<RollerCorrection> make_roller_contact_correction(const Scene& scene, const Mesh& mesh,
+                                                                 const SteadyLoad& steady, Real centre_x, Real force) {
+  return std::make_unique<RollerContactCorrection>(scene, mesh, steady, centre_x, force);
 }
 
 }  // namespace roller

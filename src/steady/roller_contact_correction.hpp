@@ -8,7 +8,7 @@
 namespace roller {
 
 // The correction of the scene's strip (its mesh `mesh`) with the roller over x = centre_x under `force`.
-std::unique_ptr<RollerCorrection> make_roller_contact_correction(const Scene& scene, const Mesh& mesh, Real centre_x,
-                                                                 Real force);
+std::unique_ptr<RollerCorrection> make_roller_contact_correction(const Scene& scene, const Mesh& mesh,
+                                                                 const SteadyLoad& steady, Real centre_x, Real force);
 
 }  // namespace roller

@@ -54,9 +54,9 @@ void require_held_base(const Scene& scene, const StripModel& model) {
 
 // The strip's copies for passes.stationary_phases, copy k moved against the travel by k/P of the
 // element under the contact's centre.
-PhasedStrip phased_of(const Scene& scene, const StripModel& model, Real travel) {
+PhasedStrip phased_of(const Scene& scene, const StripModel& model, const SteadyLoad& steady, Real travel) {
   const int phases = scene.passes.stationary_phases;
-  const Real h = contact_element_length(model.mesh(), contact_centre(scene, steady_load(scene, std::nullopt)));
+  const Real h = contact_element_length(model.mesh(), contact_centre(scene, steady));
   return phased_strip(model.mesh(), model.materials(), model.dof_map(), phases, -travel * h / phases);
 }
 
@@ -130,16 +130,15 @@ TravelLoad travel_load(const PhasedStrip& phased, const Mesh& mesh, const HertzS
 
 StationaryPasses::~StationaryPasses() = default;
 
-StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
+StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model, const SteadyLoad& steady)
     : roller_y_(given_start_centre(scene).y()),
-      travel_(steady_load(scene, std::nullopt).travel_sign),
-      phased_(phased_of(scene, model, travel_)),
+      travel_(steady.travel_sign),
+      phased_(phased_of(scene, model, steady, travel_)),
       strip_(phased_.mesh, phased_.materials, model.options(), travel_, phased_.phases,
              scene.passes.stationary_path_parts),
       elastic_materials_(linear_elastic(phased_.materials)),
       linear_solver_(scene.newton.linear) {
   require_held_base(scene, model);
-  const SteadyLoad steady = steady_load(scene, std::nullopt);
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
   // Half-way between the contact's trailing edge and the strip's downstream end.
@@ -154,19 +153,21 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model)
   if (!solver_.factorize(elastic_free_)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
   hertz_load_ = std::move(load.forces);
   if (scene.passes.stationary_contact == StationaryContact::Roller)
-    new_roller_correction_ = roller_corrections(scene, model, base_points);
+    new_roller_correction_ = roller_corrections(scene, model, steady, base_points);
 }
 
 std::function<std::unique_ptr<RollerCorrection>()> StationaryPasses::roller_corrections(const Scene& scene,
                                                                                         const StripModel& model,
+                                                                                        const SteadyLoad& steady,
                                                                                         Index base_points) const {
   // The roller k/P of an element further along copy k, which moved back as far (phased_.shift).
   // The scene by value: the Simulation that owns these passes may be moved.
-  return [this, scene, base_mesh = model.mesh(), n_dofs = model.mesh().n_dofs(), n_free = model.dof_map().n_free(),
-          base_points]() -> std::unique_ptr<RollerCorrection> {
+  return [this, scene, steady, base_mesh = model.mesh(), n_dofs = model.mesh().n_dofs(),
+          n_free = model.dof_map().n_free(), base_points]() -> std::unique_ptr<RollerCorrection> {
     std::vector<std::unique_ptr<RollerCorrection>> copies;
     for (int k = 0; k < phased_.phases; ++k)
-      copies.push_back(make_roller_contact_correction(scene, base_mesh, centre_x_ - k * phased_.shift, hertz_.load));
+      copies.push_back(
+          make_roller_contact_correction(scene, base_mesh, steady, centre_x_ - k * phased_.shift, hertz_.load));
     if (copies.size() == 1) return std::move(copies.front());  // the strip itself: no blocks to split
     return std::make_unique<PhasedRollerCorrection>(std::move(copies), n_dofs, n_free, base_points);
   };

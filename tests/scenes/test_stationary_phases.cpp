@@ -11,7 +11,6 @@
 #include "roller/io/roller_start.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/steady/stationary_passes.hpp"
-#include "steady/roller_contact_correction.hpp"
 
 using namespace roller;
 
@@ -27,7 +26,7 @@ VecX first_pass(int phases, Real shift, Real* element = nullptr) {
   scene.material.plastic = false;
   scene.roller->start_centre = given_start_centre(scene) + Vec2(shift, 0.0);
   const Simulation sim(scene);
-  StationaryPasses passes(sim.scene(), sim.model());
+  StationaryPasses passes(sim.scene(), sim.model(), steady_load(sim.scene(), std::nullopt));
   if (element) *element = contact_element_length(sim.model().mesh(), passes.centre_x());
   const StationaryPasses::Pass pass = passes.run(sim.model(), VecX(), nullptr, nullptr);
   REQUIRE(pass.solve.converged());

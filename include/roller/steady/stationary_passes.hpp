@@ -30,6 +30,7 @@
 #include "roller/io/scene.hpp"
 #include "roller/material/long_track_state.hpp"
 #include "roller/steady/stationary_pass.hpp"
+#include "roller/steady/steady_load.hpp"
 
 namespace roller {
 
@@ -43,8 +44,8 @@ class RollerCorrection : public StationaryCorrection {
 class StationaryPasses {
  public:
   // Throws InputError when the scene's travel segment prescribes no force (fy) or its mesh has no
-  // straight rows of points.
-  StationaryPasses(const Scene& scene, const StripModel& model);
+  // straight rows of points. `steady`: the scene's travel and its load (steady_load.hpp).
+  StationaryPasses(const Scene& scene, const StripModel& model, const SteadyLoad& steady);
   ~StationaryPasses();
 
   struct Pass {
@@ -71,6 +72,7 @@ class StationaryPasses {
   // Makes a pass's correction on the roller's contact (passes.stationary_contact = "roller"): one
   // per phase's copy, each on its block of the iterate.
   std::function<std::unique_ptr<RollerCorrection>()> roller_corrections(const Scene& scene, const StripModel& model,
+                                                                        const SteadyLoad& steady,
                                                                         Index base_points) const;
   std::vector<MaterialState> upstream_of(const StripModel& strip) const;
   // The elastic displacement of a load (all dofs), which the lift takes off; kept for the load
