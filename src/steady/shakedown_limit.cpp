@@ -29,17 +29,28 @@ namespace roller {
 namespace {
 
 // The scene's press with a linear elastic, small-strain strip and no friction: an ElasticPress
-// through its press steps (a NumericalError naming the step that fails).
+// through its press steps, each cut into 2, 4, ... increments when one fails, up to steps.max_cuts
+// times as a run's (a NumericalError naming the step that fails then).
 std::unique_ptr<ElasticPress> elastic_press(const Scene& scene, int press_steps) {
   Scene s = elastic_frictionless_scene(scene);
   s.steps.n_steps = press_steps;
+  const int max_cuts = s.steps.max_cuts;
   const std::unique_ptr<StripModel> strip = make_scene_strip(s);  // the scene's checks first
   auto press = std::make_unique<ElasticPress>(std::move(s), strip->mesh());
   for (int step = 1; step <= press_steps; ++step) {
-    const IncrementReport r = press->press(step - 1, step);
-    if (!r.converged())
-      throw NumericalError(
-          fmt::format("shakedown-limit: the elastic press did not converge at step {}: {}", step, r.message));
+    Real at = step - 1, length = 1.0;
+    for (int cuts = 0; at < step - 1e-12;) {
+      const IncrementReport r = press->press(at, at + length);
+      if (r.converged()) {
+        at += length;
+      } else if (cuts++ < max_cuts) {
+        length *= 0.5;
+      } else {
+        throw NumericalError(
+            fmt::format("shakedown-limit: the elastic press did not converge at step {} after {} cuts: {}", step,
+                        max_cuts, r.message));
+      }
+    }
   }
   return press;
 }

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -19,6 +22,7 @@
 #include "../support/temp_files.hpp"
 #include "roller/analysis/shakedown.hpp"
 #include "roller/core/error.hpp"
+#include "roller/io/checksum.hpp"
 
 using namespace roller;
 namespace fs = std::filesystem;
@@ -406,4 +410,38 @@ TEST_CASE("stationary passes: a pass whose iteration stagnates stops with a mess
   CHECK(r.counters.iterations < 3000);
   CHECK_THAT(r.message, Catch::Contains("stagnates") && Catch::Contains("passes.method = \"transient\""));
   CHECK(sim.state().steps_done == 0);  // nothing committed
+}
+
+TEST_CASE(
+    "stationary passes: a state file of an older roller (the next pass's start in the increment's place) "
+    "resumes to the same pass",
+    "[scenes][stationary][restart]") {
+  const std::vector<SceneOverride> two{kStationary, {"passes.count", "2"}};
+  Simulation whole(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p30.toml", two));
+  REQUIRE(whole.advance_step(1).converged());
+  const test::TempDir dir("roller_older_state");
+  const std::filesystem::path file = dir.path() / "state.cbor";
+  whole.save_state(file);
+  {  // as roller wrote it before next_pass_start: in last_increment, with last_length 0
+    const std::string text = test::read_text(file);
+    nlohmann::json doc = nlohmann::json::from_cbor(std::vector<std::uint8_t>(text.begin(), text.end()));
+    REQUIRE(!doc.at("next_pass_start").empty());
+    doc.erase("checksum");
+    doc["last_increment"] = doc.at("next_pass_start");
+    doc["last_length"] = 0.0;
+    doc.erase("next_pass_start");
+    const std::vector<std::uint8_t> signed_bytes = nlohmann::json::to_cbor(doc);
+    doc["checksum"] =
+        fnv1a_hex(std::string_view(reinterpret_cast<const char*>(signed_bytes.data()), signed_bytes.size()));
+    const std::vector<std::uint8_t> older = nlohmann::json::to_cbor(doc);
+    std::ofstream(file, std::ios::binary)
+        .write(reinterpret_cast<const char*>(older.data()), static_cast<std::streamsize>(older.size()));
+  }
+  Simulation resumed(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p30.toml", two));
+  resumed.load_state(file, /*strip_only=*/false);
+  const Simulation::StepRecord a = whole.advance_step(2), b = resumed.advance_step(2);
+  REQUIRE(a.converged());
+  REQUIRE(b.converged());
+  CHECK(b.counters.iterations == a.counters.iterations);  // the same first iterate
+  CHECK(resumed.model().total_displacement() == whole.model().total_displacement());
 }
