@@ -1,57 +1,48 @@
 #include "roller_contact_correction.hpp"
 
-#include "roller/steady/elastic_press.hpp"
+#include <utility>
+
+#include "condensed_roller_press.hpp"
+#include "roller/assembly/element_materials.hpp"
+#include "roller/io/load_program.hpp"
+#include "roller/io/scene_strip.hpp"
 #include "roller/steady/steady_load.hpp"
 
 namespace roller {
 
 namespace {
 
-// The roller's contact solved with the elastic stiffness: an elastic twin of the strip (an
-// ElasticPress: the scene made linear elastic and frictionless, the roller over the contact's centre
-// under the travel force), restored at every iteration to the iterate u without stress and with
-// the residual r as a dead load, so that its incremental energy is 1/2 du K_e du - r.du; one
-// force-controlled increment gives du and the contact forces. The twin's tangent is constant, so
-// the condensed interior-point backend keeps its factors from one iteration to the next. A traction
-// (q = mu p when the travel slides, Carter's under fx) rides on the contact's normal forces of the
-// iteration before as a dead load beside r: the twin stays frictionless, and at the fixed point the
-// traction is the converged contact's.
+// The roller's contact solved with the elastic stiffness: K_e du = r + f_c with the gaps to the
+// roller closed at u + du and the roller carrying the travel force, its height an unknown, by the
+// contact condensed onto the top nodes under the roller (condensed_roller_press.hpp). K_e is
+// factorised once a pass. A traction (q = mu p when the travel slides, Carter's under fx) rides on
+// the contact's normal forces of the iteration before as a load beside r: the contact stays
+// frictionless, and at the fixed point the traction is the converged contact's.
 class RollerContactCorrection final : public RollerCorrection {
  public:
   RollerContactCorrection(const Scene& scene, const Mesh& mesh, const SteadyLoad& steady, Real centre_x, Real force)
       : steady_(steady),
         hertz_(hertz_line_contact(force, scene.roller->radius, scene.contact_modulus())),
-        centre_x_(centre_x) {
-    Scene twin = elastic_frictionless_scene(scene);
-    twin.steps.n_steps = 1;
-    twin.roller->start_centre = Vec2(centre_x, scene.mesh.height + scene.roller->radius);
-    PathSegment press;
-    press.first_step = press.last_step = 1;
-    press.fy = force;
-    press.friction = 0.0;
-    twin.roller->path = {press};
-    twin_ = std::make_unique<ElasticPress>(std::move(twin), mesh);
-  }
-  Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override {
-    StripModel& strip = twin_->strip();
-    strip.restore(strip.mesh().nodes, u, std::vector<MaterialState>(states.size()));
+        centre_x_(centre_x),
+        dofs_(LoadProgram(scene, mesh).dof_map()),
+        press_(mesh, linear_elastic(assign_materials(mesh, scene.strip_material())), scene.element, dofs_,
+               contact_candidate_nodes(scene, mesh), centre_x, scene.roller->radius, kWindow * hertz_.half_width,
+               scene.newton.linear) {}
+  Result correct(const VecX& u, const std::vector<MaterialState>& /*states*/, const VecX& r) override {
     if (traction_.size() != u.size()) traction_ = VecX::Zero(u.size());
-    VecX load = VecX::Zero(u.size());
-    strip.dof_map().scatter_free(r + strip.dof_map().gather_free(traction_), load);
-    strip.set_dead_load(std::move(load));
-    const IncrementReport inc = twin_->press(0.0, 1.0);
-    if (!inc.converged()) return {VecX(), VecX(), inc.message};
+    CondensedRollerPress::Press pressed = press_.press(u, r + dofs_.gather_free(traction_), hertz_.load);
+    if (pressed.du.size() == 0) return {VecX(), VecX(), pressed.message};
     Result out;
-    out.du = strip.dof_map().restrict_to_free(strip.total_displacement() - u);
+    out.du = std::move(pressed.du);
     out.load = traction_;
-    const std::vector<NodeContactRecord>& contact = twin_->contact();
-    for (const NodeContactRecord& c : contact) out.load.segment<2>(2 * c.node) += c.force;
-    contact_ = contact;
+    for (const NodeContactRecord& c : pressed.contact) out.load.segment<2>(2 * c.node) += c.force;
+    contact_ = std::move(pressed.contact);
+    pose_ = pressed.pose;
     if (steady_.traction != 0.0) {  // the next iteration's traction, from this contact
       traction_.setZero();
-      const std::vector<Real> fx = traction_forces(steady_, contact, hertz_, centre_x_);
-      for (std::size_t i = 0; i < contact.size(); ++i) {
-        traction_[2 * contact[i].node] += fx[i];
+      const std::vector<Real> fx = traction_forces(steady_, contact_, hertz_, centre_x_);
+      for (std::size_t i = 0; i < contact_.size(); ++i) {
+        traction_[2 * contact_[i].node] += fx[i];
         contact_[i].force.x() += fx[i];
         contact_[i].contact.tangential_force = steady_.travel_sign * fx[i];
       }
@@ -60,15 +51,21 @@ class RollerContactCorrection final : public RollerCorrection {
   }
   // With the traction on its normal forces.
   const std::vector<NodeContactRecord>& contact() const override { return contact_; }
-  RollerPose pose() const override { return twin_->pose(); }
+  RollerPose pose() const override { return pose_; }
 
  private:
+  // The nodes condensed reach this many Hertz half-widths either side of the contact's centre:
+  // the contact's own half-width stays near a (0.996 a at p0/k = 4.5, docs/benchmarks-log.md), and
+  // one that reaches the last node stops the pass with a message.
+  static constexpr Real kWindow = 4.0;
   SteadyLoad steady_;
   HertzSolution hertz_;
   Real centre_x_ = 0.0;
+  DofMap dofs_;
+  CondensedRollerPress press_;
   VecX traction_;                           // all dofs: the traction of the last contact
   std::vector<NodeContactRecord> contact_;  // the last contact, its traction added
-  std::unique_ptr<ElasticPress> twin_;
+  RollerPose pose_;
 };
 
 }  // namespace

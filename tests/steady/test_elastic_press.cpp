@@ -30,7 +30,8 @@ TEST_CASE("elastic press: the press of the steady solves is a run's increments o
     REQUIRE(press.press(step - 1, step).converged());
     CHECK(press.pose().centre == run.state().pose.centre);
     REQUIRE(press.contact().size() == run.state().contact.size());
-    for (std::size_t i = 0; i < press.contact().size(); ++i) CHECK(press.contact()[i].force == run.state().contact[i].force);
+    for (std::size_t i = 0; i < press.contact().size(); ++i)
+      CHECK(press.contact()[i].force == run.state().contact[i].force);
   }
   CHECK(press.strip().total_displacement() == run.model().total_displacement());
   // It carries the travel's force, within force control's tolerance (1e-6 of it).
