@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
-#include <fmt/format.h>
 
 #include "roller/assembly/strip_model.hpp"
 #include "roller/core/error.hpp"
@@ -147,7 +147,8 @@ CondensedRollerPress::Small CondensedRollerPress::solve_small(const std::vector<
       }
     }
     if (!settled) {
-      out.message = fmt::format("the roller's contact: its nodes in contact do not settle in {} passes", kActiveSetPasses);
+      out.message =
+          fmt::format("the roller's contact: its nodes in contact do not settle in {} passes", kActiveSetPasses);
       return out;
     }
     out.v = v0 + cn * lambda;
@@ -161,8 +162,7 @@ CondensedRollerPress::Small CondensedRollerPress::solve_small(const std::vector<
 
 CondensedRollerPress::Press CondensedRollerPress::press(const VecX& u, const VecX& b, Real force) {
   std::vector<Vec2> base;
-  for (std::size_t i = 0; i < nodes_.size(); ++i)
-    base.push_back(reference_[i] + u.segment<2>(2 * nodes_[i]));
+  for (std::size_t i = 0; i < nodes_.size(); ++i) base.push_back(reference_[i] + u.segment<2>(2 * nodes_[i]));
   Small small;
   Press out;
   out.du = solver_.solve_with_schur(b, [&](const VecX& reduced) {
@@ -172,7 +172,9 @@ CondensedRollerPress::Press CondensedRollerPress::press(const VecX& u, const Vec
   if (!small.message.empty()) return {VecX(), {}, {}, small.message};
   const auto n = static_cast<Index>(nodes_.size());
   if (small.lambda(0) > 0.0 || small.lambda(n - 1) > 0.0)
-    return {VecX(), {}, {},
+    return {VecX(),
+            {},
+            {},
             fmt::format("the roller's contact reaches the end of the nodes condensed under it ({:.6g} to {:.6g} mm)",
                         reference_.front().x(), reference_.back().x())};
   active_ = small.active;

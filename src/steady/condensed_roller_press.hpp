@@ -33,10 +33,10 @@ class CondensedRollerPress {
   ~CondensedRollerPress();
 
   struct Press {
-    VecX du;                                  // free dofs; empty when the press failed
-    std::vector<NodeContactRecord> contact;   // every condensed node, by x (open ones at zero force)
-    RollerPose pose;                          // the roller's centre at (centre_x, c_y)
-    std::string message;                      // why it failed
+    VecX du;                                 // free dofs; empty when the press failed
+    std::vector<NodeContactRecord> contact;  // every condensed node, by x (open ones at zero force)
+    RollerPose pose;                         // the roller's centre at (centre_x, c_y)
+    std::string message;                     // why it failed
   };
   // From the strip at `u` (all dofs) under the free-dof load `b`, the roller carrying `force`.
   Press press(const VecX& u, const VecX& b, Real force);
@@ -54,12 +54,12 @@ class CondensedRollerPress {
   Small solve_small(const std::vector<Vec2>& base, const VecX& reduced, Real force) const;
 
   Real centre_x_, radius_;
-  std::vector<Index> nodes_;          // the condensed nodes, by x
-  std::vector<Vec2> reference_;       // their positions in the mesh
-  std::vector<Real> tributary_;       // their surface length (half the distance to each neighbour)
-  std::vector<Index> schur_;          // their dofs' free indices: x, y of each node in turn
+  std::vector<Index> nodes_;     // the condensed nodes, by x
+  std::vector<Vec2> reference_;  // their positions in the mesh
+  std::vector<Real> tributary_;  // their surface length (half the distance to each neighbour)
+  std::vector<Index> schur_;     // their dofs' free indices: x, y of each node in turn
   MumpsSolver solver_;
-  MatX compliance_;                 // S^-1 on the condensed dofs (x, y of each node in turn)
+  MatX compliance_;  // S^-1 on the condensed dofs (x, y of each node in turn)
   // The last press's nodes in contact and roller height: the next one's start.
   std::vector<bool> active_;
   Real height_ = 0.0;
