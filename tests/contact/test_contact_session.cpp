@@ -1,5 +1,6 @@
 // The contact session from typed values alone (no scene, no run): Hertz's press under a
-// prescribed force, the force reached and Hertz's contact; the run's increment is the same solve.
+// prescribed force, the force reached and Hertz's contact; the run's increment is the same solve;
+// the condensed contact of the stationary pass solves the same press alike.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "roller/analysis/pressure_profile.hpp"
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/backend_factory.hpp"
+#include "roller/contact/condensed_contact.hpp"
 #include "roller/contact/contact_records.hpp"
 #include "roller/contact/contact_session.hpp"
 #include "roller/io/load_program.hpp"
@@ -72,4 +74,41 @@ TEST_CASE("contact session: Hertz's press under a prescribed force from typed va
   for (std::size_t i = 0; i < contact.size(); ++i) CHECK(run.state().contact[i].force == contact[i].force);
   CHECK(run.state().pose.centre == pose.centre);
   CHECK(run.state().load_offset == solution.load_offset);
+}
+
+TEST_CASE("condensed contact: Hertz's press solved on the strip's condensed stiffness is the contact session's",
+          "[contact][session]") {
+  // The same problem two ways: the session's force-controlled increment (interior point) and the
+  // dense active set on K's Schur complement under the roller (the stationary pass's).
+  const Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml");
+  const Real load = 7250.0;
+  const Simulation run =
+      test::run_scene("hertz", {{"steps.count", "1"}, {"roller.path", fmt::format("[{{steps=[1,1], fy={}}}]", load)}});
+  const StripModel& strip = run.model();
+  std::vector<Index> nodes;
+  std::vector<Vec2> positions;
+  for (const Index a : contact_candidate_nodes(scene, strip.mesh()))
+    if (std::abs(strip.mesh().nodes[a].x() - 100.0) <= 8.0) nodes.push_back(a);  // 4a
+  std::sort(nodes.begin(), nodes.end(),
+            [&](Index a, Index b) { return strip.mesh().nodes[a].x() < strip.mesh().nodes[b].x(); });
+  for (const Index a : nodes) positions.push_back(strip.mesh().nodes[a]);
+  StripModel elastic(strip.mesh(), strip.materials(), strip.options());
+  elastic.set_dof_map(strip.dof_map());
+  SparseMatrix k;
+  elastic.evaluate(VecX::Zero(strip.n_dofs()), nullptr, &k);
+  CondensedContact condensed(k, strip.dof_map(), nodes, positions, 100.0, 100.0, scene.newton.linear);
+  const CondensedContact::Press pressed =
+      condensed.solve(VecX::Zero(strip.n_dofs()), VecX::Zero(strip.dof_map().n_free()), load);
+  REQUIRE(pressed.message.empty());
+  // The roller's height and every node's force agree within force control's tolerance (1e-6 of
+  // the load; the session's interior point solves to it).
+  CHECK(pressed.pose.centre.y() == Approx(run.state().pose.centre.y()).margin(1e-6));
+  CHECK(std::abs(force_on_roller(pressed.contact).y() - load) <= 1e-9 * load);
+  for (const NodeContactRecord& c : pressed.contact) {
+    const auto same = std::find_if(run.state().contact.begin(), run.state().contact.end(),
+                                   [&](const NodeContactRecord& r) { return r.node == c.node; });
+    const Vec2 f = same == run.state().contact.end() ? Vec2::Zero() : same->force;
+    INFO("node " << c.node << " at x = " << c.position.x());
+    CHECK((c.force - f).norm() <= 1e-6 * load);
+  }
 }

@@ -1,14 +1,14 @@
-#include "condensed_roller_press.hpp"
+#include "roller/contact/condensed_contact.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
-#include "roller/assembly/strip_model.hpp"
 #include "roller/core/error.hpp"
 
 namespace roller {
@@ -23,24 +23,22 @@ constexpr int kActiveSetPasses = 50;
 
 }  // namespace
 
-CondensedRollerPress::CondensedRollerPress(const Mesh& mesh, const ElementMaterials& materials,
-                                           const ElementOptions& options, const DofMap& dofs,
-                                           const std::vector<Index>& surface, Real centre_x, Real radius, Real window,
-                                           const LinearSolverOptions& linear_solver)
-    : centre_x_(centre_x), radius_(radius), solver_(MumpsSolver::Symmetry::Symmetric, linear_solver) {
-  for (const Index a : surface)
-    if (std::abs(mesh.nodes[a].x() - centre_x) <= window && !dofs.is_constrained(2 * a) &&
-        !dofs.is_constrained(2 * a + 1))
-      nodes_.push_back(a);
-  std::sort(nodes_.begin(), nodes_.end(), [&](Index a, Index b) { return mesh.nodes[a].x() < mesh.nodes[b].x(); });
-  if (nodes_.size() < 3)
-    throw NumericalError(fmt::format(
-        "the roller's contact: {} free surface nodes within {:.4g} mm of x = {:.6g}: the mesh is too coarse there",
-        nodes_.size(), window, centre_x));
+CondensedContact::CondensedContact(const SparseMatrix& tangent, const DofMap& dofs, std::vector<Index> nodes,
+                                   std::vector<Vec2> positions, Real centre_x, Real radius,
+                                   const LinearSolverOptions& linear_solver)
+    : centre_x_(centre_x),
+      radius_(radius),
+      nodes_(std::move(nodes)),
+      reference_(std::move(positions)),
+      solver_(MumpsSolver::Symmetry::Symmetric, linear_solver) {
+  ROLLER_ASSERT(nodes_.size() == reference_.size() && nodes_.size() >= 3, "three condensed nodes or more, placed");
   const auto n = static_cast<Index>(nodes_.size());
   for (Index i = 0; i < n; ++i) {
     const Index a = nodes_[static_cast<std::size_t>(i)];
-    reference_.push_back(mesh.nodes[a]);
+    ROLLER_ASSERT(!dofs.is_constrained(2 * a) && !dofs.is_constrained(2 * a + 1), "condensed nodes are free");
+    ROLLER_ASSERT(
+        i == 0 || reference_[static_cast<std::size_t>(i)].x() >= reference_[static_cast<std::size_t>(i - 1)].x(),
+        "condensed nodes by x");
     schur_.push_back(dofs.free_index(2 * a));
     schur_.push_back(dofs.free_index(2 * a + 1));
   }
@@ -49,21 +47,17 @@ CondensedRollerPress::CondensedRollerPress(const Mesh& mesh, const ElementMateri
     const Real right = reference_[static_cast<std::size_t>(std::min<Index>(i + 1, n - 1))].x();
     tributary_.push_back(0.5 * (right - left));
   }
-  StripModel elastic(mesh, materials, options);
-  elastic.set_dof_map(dofs);
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(mesh.n_dofs()), nullptr, &k);
   MatX s;
-  if (!solver_.factorize_with_schur(k, schur_, &s))
-    throw NumericalError(fmt::format("the roller's contact: the elastic stiffness is singular: {}", solver_.message()));
+  if (!solver_.factorize_with_schur(tangent, schur_, &s))
+    throw NumericalError(fmt::format("the roller's contact: the strip's tangent is singular: {}", solver_.message()));
   compliance_ = Eigen::LLT<MatX>(s).solve(MatX::Identity(s.rows(), s.cols()));
   active_.assign(nodes_.size(), false);
 }
 
-CondensedRollerPress::~CondensedRollerPress() = default;
+CondensedContact::~CondensedContact() = default;
 
-CondensedRollerPress::Small CondensedRollerPress::solve_small(const std::vector<Vec2>& base, const VecX& reduced,
-                                                              Real force) const {
+CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& base, const VecX& reduced,
+                                                      Real force) const {
   const auto n = static_cast<Index>(nodes_.size());
   const Real tolerance = 1e-12 * radius_;
   Small out;
@@ -160,7 +154,7 @@ CondensedRollerPress::Small CondensedRollerPress::solve_small(const std::vector<
   return out;
 }
 
-CondensedRollerPress::Press CondensedRollerPress::press(const VecX& u, const VecX& b, Real force) {
+CondensedContact::Press CondensedContact::solve(const VecX& u, const VecX& b, Real force) {
   std::vector<Vec2> base;
   for (std::size_t i = 0; i < nodes_.size(); ++i) base.push_back(reference_[i] + u.segment<2>(2 * nodes_[i]));
   Small small;

@@ -1,36 +1,33 @@
 #pragma once
-// The rigid roller's frictionless contact with the elastic strip, condensed onto the top nodes
-// under it (docs/model.md, Stationary pass): the stationary pass's correction on the roller's
-// contact, K_e du = b + f_c with the gaps closed at u + du. K_e is factorised once with its Schur
-// complement S on those nodes' dofs (MUMPS); each press reduces b onto them, solves the small dense
+// The rigid roller's frictionless contact with a strip of constant tangent K, condensed onto the
+// surface nodes under the roller (docs/model.md, Stationary pass; the stationary pass's correction
+// on the roller's contact): K du = b + f_c with the gaps closed at u + du. K is factorised once with
+// its Schur complement S on those nodes' dofs (MUMPS); each solve reduces b onto them, solves the small dense
 // problem there, S v = b_s + sum_i lambda_i n_i with the exact gaps g_i = |x_i + u_i + v_i - c| - R
 // >= 0 complementary to lambda_i >= 0 and sum_i lambda_i (-n_i,y) = P (the roller's height c_y an
 // unknown), and expands v to every dof. The small problem is solved by Newton's method on the gaps
 // (normals of the last iterate) whose steps are linear complementarity problems, each by a
-// primal-dual active set (Hintermüller, Ito & Kunisch 2002), warm-started from the last press.
+// primal-dual active set (Hintermüller, Ito & Kunisch 2002), warm-started from the last solve.
 #include <string>
 #include <vector>
 
 #include "roller/assembly/dof_map.hpp"
-#include "roller/assembly/element_materials.hpp"
 #include "roller/contact/contact_records.hpp"
 #include "roller/contact/roller.hpp"
-#include "roller/fem/element_kernel.hpp"
-#include "roller/mesh/mesh.hpp"
+#include "roller/core/types.hpp"
 #include "roller/solver/linear_solver_options.hpp"
 #include "roller/solver/mumps_factorization.hpp"
 
 namespace roller {
 
-class CondensedRollerPress {
+class CondensedContact {
  public:
-  // The strip (`mesh`, its linear elastic `materials`, `options`, `dofs`) and the roller of
-  // `radius` over x = centre_x; `surface`: the nodes the roller may touch, of which those within
-  // `window` of centre_x are condensed (all their dofs free). NumericalError when K_e is singular.
-  CondensedRollerPress(const Mesh& mesh, const ElementMaterials& materials, const ElementOptions& options,
-                       const DofMap& dofs, const std::vector<Index>& surface, Real centre_x, Real radius, Real window,
-                       const LinearSolverOptions& linear_solver);
-  ~CondensedRollerPress();
+  // `tangent`: K over the free dofs of `dofs` (symmetric); `nodes` (by x, their dofs free) at
+  // `positions` in the mesh: the nodes condensed; the roller of `radius` over x = centre_x.
+  // NumericalError when K is singular.
+  CondensedContact(const SparseMatrix& tangent, const DofMap& dofs, std::vector<Index> nodes,
+                   std::vector<Vec2> positions, Real centre_x, Real radius, const LinearSolverOptions& linear_solver);
+  ~CondensedContact();
 
   struct Press {
     VecX du;                                 // free dofs; empty when the press failed
@@ -39,7 +36,7 @@ class CondensedRollerPress {
     std::string message;                     // why it failed
   };
   // From the strip at `u` (all dofs) under the free-dof load `b`, the roller carrying `force`.
-  Press press(const VecX& u, const VecX& b, Real force);
+  Press solve(const VecX& u, const VecX& b, Real force);
 
  private:
   // The condensed problem's solution: the nodes' displacement v, their normal forces, the
@@ -60,7 +57,7 @@ class CondensedRollerPress {
   std::vector<Index> schur_;     // their dofs' free indices: x, y of each node in turn
   MumpsSolver solver_;
   MatX compliance_;  // S^-1 on the condensed dofs (x, y of each node in turn)
-  // The last press's nodes in contact and roller height: the next one's start.
+  // The last solve's nodes in contact and roller height: the next one's start.
   std::vector<bool> active_;
   Real height_ = 0.0;
 };
