@@ -83,7 +83,7 @@ void load_run_state(const nlohmann::json& j, bool multi_pass, RunState& s) {
   s.last_length = j.at("last_length").get<Real>();
   if (j.contains("next_pass_start"))
     s.next_pass_start = to_vec(j.at("next_pass_start"));
-  else if (s.last_length == 0.0)  // files of roller before 2026-12-03: a stationary run's, in the increment's place
+  else if (s.last_length == 0.0)  // files of roller before 2026-12-02: a stationary run's, in the increment's place
     s.next_pass_start = std::exchange(s.last_increment, VecX());
   const auto pose = j.at("pose").get<std::vector<Real>>();
   s.pose.centre = Vec2(pose.at(0), pose.at(1));

@@ -70,8 +70,8 @@ class StationarySteps final : public StepMethod {
     track.half_width = a;
     track.load_half_width = a;
     track.peak_pressure = passes.hertz().peak;
-    if (run_.scene.passes.stationary_contact ==
-        StationaryContact::Roller) {  // the pressure the roller's contact carried
+    // With the roller's contact: the pressure it carried.
+    if (run_.scene.passes.stationary_contact == StationaryContact::Roller) {
       track.peak_pressure = 0.0;
       for (const PressureSample& s : pressure_profile(passes.contact(), passes.roller_pose()))
         track.peak_pressure = std::max(track.peak_pressure, s.p);

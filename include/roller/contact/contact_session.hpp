@@ -5,8 +5,9 @@
 // forces (the centre's offset that carries them). It takes typed values only (the strip's
 // increment energy, the roller's motion and forces, the friction history, the backend) and knows
 // no scene and no run; it is pure in the caller's state: the caller commits what it returns. The
-// transient step, the stationary pass's roller contact and shakedown-limit's elastic press solve
-// their contact through it.
+// transient step and shakedown-limit's elastic press solve their contact through it; a strip of
+// constant tangent condensed under the roller has the contact floor's other door
+// (condensed_contact.hpp).
 #include <vector>
 
 #include "roller/assembly/increment_energy.hpp"
@@ -44,9 +45,7 @@ class ContactSession {
   IncrementSolution solve(IncrementEnergy& energy, const VecX& prescribed, const VecX& predictor, IncrementStart& start,
                           IncrementReport& report);
 
-  const ContactSessionSettings& settings() const { return settings_; }
   const std::vector<Index>& candidate_nodes() const { return candidate_nodes_; }
-  ContactBackend& backend() { return backend_; }
 
  private:
   // The strip without a roller: one solve of a problem without contact candidates.

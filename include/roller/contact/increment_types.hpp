@@ -1,6 +1,6 @@
 #pragma once
 // What one increment starts from, what its solves did and what it commits: the words of the
-// increment solver (increment_solver.hpp) and of the solves inside it.
+// contact session (contact_session.hpp) and of the solves inside it.
 #include <string>
 #include <vector>
 

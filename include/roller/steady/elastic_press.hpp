@@ -1,7 +1,6 @@
 #pragma once
-// The roller pressed on an elastic strip: the elastic contact the steady solves take (the
-// stationary pass's correction on the roller's contact, shakedown-limit's press), solved through
-// the contact session (contact/contact_session.hpp), one increment a press. The strip is the
+// The roller pressed on an elastic strip: shakedown-limit's elastic press, solved through the
+// contact session (contact/contact_session.hpp), one increment a press. The strip is the
 // scene's made linear elastic, small-strain and frictionless (elastic_frictionless_scene). A press
 // starts where the last one ended (the roller's pose and load offset, the friction history, the
 // last increment as its predictor), so that a sequence of presses warm-starts.
