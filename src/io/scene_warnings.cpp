@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "roller/analysis/hertz.hpp"
+#include "roller/contact/roller.hpp"
 #include "roller/core/error.hpp"
 #include "roller/io/roller_start.hpp"
 
@@ -73,16 +74,29 @@ void check_load_fits_strip(const Scene& scene) {
 
 void check_traction_below_friction(const Scene& scene) {
   if (!scene.roller) return;
-  for (std::size_t i = 0; i < scene.roller->path.size(); ++i) {
-    const PathSegment& seg = scene.roller->path[i];
+  const RollerSpec& roller = *scene.roller;
+  const auto mu_source = [](const PathSegment& seg, std::size_t i) {
+    return seg.friction ? fmt::format("roller.path[{}].friction", i) : std::string("contact.friction");
+  };
+  for (std::size_t i = 0; i < roller.path.size(); ++i) {
+    const PathSegment& seg = roller.path[i];
     const Real mu = seg.friction.value_or(scene.contact.friction);
     if (seg.q_over_p && std::abs(*seg.q_over_p) > mu)
       throw InputError(fmt::format(
           "{}: roller.path[{}].q_over_p = {:g} exceeds the segment's friction coefficient mu = {:g} ({}): friction "
           "carries at most mu times the normal force, so the roller would slide; expected |q_over_p| <= mu, or "
           "slip = 1 for a sliding roller (q = mu p)",
-          scene.file.string(), i, *seg.q_over_p, mu,
-          seg.friction ? fmt::format("roller.path[{}].friction", i) : std::string("contact.friction")));
+          scene.file.string(), i, *seg.q_over_p, mu, mu_source(seg, i)));
+    if (!seg.fx) continue;
+    // Both forces are linear over a segment, so its ends decide; the vertical force may come from
+    // an earlier segment (held) or be unknown (dy: motion), and then friction is the run's to find.
+    const PrescribedForce end = prescribed_force(roller, seg.last_step);
+    if (!end.fy || !end.fx || std::abs(*end.fx) <= mu * *end.fy) continue;
+    throw InputError(fmt::format(
+        "{}: roller.path[{}].fx = {:g} N/mm exceeds mu = {:g} ({}) times the vertical force fy = {:g} N/mm at step "
+        "{}: friction carries at most {:g} N/mm, so the roller would slide without a steady state; expected "
+        "|fx| <= mu fy, or slip = 1 for a sliding roller (q = mu p)",
+        scene.file.string(), i, *seg.fx, mu, mu_source(seg, i), *end.fy, seg.last_step, mu * *end.fy));
   }
 }
 

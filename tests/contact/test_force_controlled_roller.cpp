@@ -180,6 +180,25 @@ TEST_CASE("force control: a traction ratio beyond the segment's friction is refu
   CHECK_NOTHROW(Simulation(load_scene(file, {{"steps.count", "2"}, {"roller.path", within}})));
 }
 
+TEST_CASE("force control: a horizontal force beyond mu times the vertical one is refused before computing",
+          "[contact][force]") {
+  const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/cattaneo.toml";
+  const auto scene = [&](const std::string& travel) {
+    return load_scene(file, {{"steps.count", "2"}, {"roller.path", "[{steps=[1,1], fy=6000.0}, " + travel + "]"}});
+  };
+  // mu fy = 900 N/mm.
+  CHECK_THROWS_WITH(Simulation(scene("{steps=[2,2], dx=0.1, fy=6000.0, fx=-901.0}")),
+                    Catch::Contains("roller.path[1].fx = -901 N/mm exceeds mu = 0.15 (contact.friction)") &&
+                        Catch::Contains("fy = 6000 N/mm at step 2") && Catch::Contains("at most 900 N/mm"));
+  CHECK_THROWS_WITH(Simulation(scene("{steps=[2,2], dx=0.1, fy=3000.0, fx=600.0, friction=0.19}")),
+                    Catch::Contains("mu = 0.19 (roller.path[1].friction)") && Catch::Contains("fy = 3000"));
+  // At mu fy (full slip) and within it the scene is taken; without a vertical force (dy: motion) friction is the
+  // run's to find.
+  CHECK_NOTHROW(Simulation(scene("{steps=[2,2], dx=0.1, fy=6000.0, fx=900.0}")));
+  CHECK_NOTHROW(Simulation(scene("{steps=[2,2], dx=0.1, fy=6000.0, fx=-450.0}")));
+  CHECK_NOTHROW(Simulation(scene("{steps=[2,2], dx=0.1, dy=0.0, fx=1000.0}")));
+}
+
 namespace {
 
 // Cattaneo's scene (problems/cattaneo.toml): pressed 0.1 mm over steps 1-4, then one step that

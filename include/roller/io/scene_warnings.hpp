@@ -18,8 +18,9 @@ std::vector<std::string> scene_warnings(const Scene& scene, const Mesh& mesh);
 // InputError naming the key, the value and the likely unit.
 void check_load_fits_strip(const Scene& scene);
 
-// A traction ratio (roller.path q_over_p) beyond its segment's friction coefficient cannot be
-// carried by a rolling roller: InputError before computing, naming both.
+// A traction ratio (roller.path q_over_p), or a horizontal force fx beyond mu times the vertical
+// force at a segment's end, cannot be carried by a rolling roller: InputError before computing,
+// naming both.
 void check_traction_below_friction(const Scene& scene);
 
 }  // namespace roller
