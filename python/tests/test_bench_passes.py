@@ -7,6 +7,8 @@ from rollerpy.benchmarks.passes import main, run_options
 
 def test_stationary_is_a_run_of_its_own_and_a_backend_name_stays_a_backend():
     assert run_options("stationary") == ["--set", 'passes.method="stationary"']
+    assert run_options("stationary_hertz") == ["--set", 'passes.method="stationary"',
+                                               "--set", 'passes.stationary_contact="hertz"']
     assert run_options("penalty") == ["--contact", "penalty"]
 
 

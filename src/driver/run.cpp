@@ -22,6 +22,7 @@
 #include "roller/io/background_writer.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/io/scene_warnings.hpp"
+#include "roller/io/track_ends.hpp"
 #include "roller/solver/solver_abort.hpp"
 #include "run_model.hpp"
 #include "run_outputs.hpp"
@@ -94,6 +95,12 @@ std::optional<Real> p0_over_k(const Scene& scene) {
 // when the disk has filled up (io/atomic_file.hpp).
 constexpr std::size_t kSummaryReserve = 16384;
 
+// The track of the run's last pass (io/track_ends.hpp), if it saw one.
+std::optional<TrackEnds> last_track(const Simulation& sim) {
+  const std::vector<PassRecord>& passes = sim.state().pass_records;
+  return passes.empty() ? std::nullopt : track_ends(sim.scene(), passes.back());
+}
+
 // The keys every summary.json has, a run stopped before its first step's included.
 nlohmann::json summary_head(const Scene& scene, const RunSummary& summary, bool resumed) {
   nlohmann::json j;
@@ -129,6 +136,7 @@ std::string summary_json(const Simulation& sim, const RunSummary& summary, int f
     j["passes"] = {
         {"count", sim.state().pass_records.size()}, {"verdict", enum_name(c->verdict)}, {"criterion", c->criterion}};
     if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
+    if (const std::optional<TrackEnds> track = last_track(sim)) j["passes"]["track"] = track->to_json();
   }
   return j.dump(2) + "\n";
 }
@@ -266,9 +274,12 @@ RunSummary Simulation::run(const RunOptions& options) {
                           summary.steps_done, run_->state.pass_records.size(), run_->scene.passes.count)
             : fmt::format("{} steps converged", summary.steps_done);
   // The answer of a multi-pass run on its last line: the verdict and the rule that gave it.
-  if (summary.status == RunStatus::Completed && summary.verdict)
+  if (summary.status == RunStatus::Completed && summary.verdict) {
     summary.message += fmt::format("; verdict after {} passes: {} ({})", run_->state.pass_records.size(),
                                    enum_name(summary.verdict->verdict), summary.verdict->criterion);
+    if (const std::optional<TrackEnds> track = last_track(*this); track && track->kind == TrackKind::Finite)
+      summary.message += "; " + track->note();
+  }
   if (files) write_summary(summary_file, *this, summary, first_step, resumed);
   return summary;
 }

@@ -768,8 +768,10 @@ std::vector<SceneKey> make_keys() {
           "roller's frame, one step a pass (small strain, quasi-static; docs/model.md)"),
       key(
           "passes.stationary_contact", [](auto& s) -> auto& { return s.passes.stationary_contact; },
-          "the stationary pass's load: hertz, the Hertz pressure of the travel force (q = mu p when it slides); "
-          "roller, the rigid roller's frictionless contact solved in every iteration"),
+          "the stationary pass's load: roller, the rigid roller's contact with its exact gap solved in every "
+          "iteration (the problem a transient pass marches); hertz, a Hertz pressure of the travel force moving "
+          "over the strip (Johnson's shakedown-map load, a different problem: the flow does not reshape it); "
+          "q = mu p when it slides, Carter's traction under fx, laid on either"),
       key(
           "passes.stationary_phases", [](auto& s) -> auto& { return s.passes.stationary_phases; },
           "the stationary pass solved at this many places of the roller between two nodes at once, k/P of an "

@@ -73,6 +73,11 @@ class RollerContactCorrection final : public RollerCorrection {
         traction_[2 * records_[i].node] += fx[i];
         records_[i].force.x() += fx[i];
         records_[i].contact.tangential_force = steady_.travel_sign * fx[i];
+        if (records_[i].contact.status != ContactStatus::Open)
+          records_[i].contact.status =
+              traction_slips(steady_, hertz_, steady_.travel_sign * (records_[i].position.x() - centre_x_))
+                  ? ContactStatus::Slip
+                  : ContactStatus::Stick;
       }
     }
     return out;

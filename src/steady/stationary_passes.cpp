@@ -113,7 +113,7 @@ TravelLoad travel_load(const PhasedStrip& phased, const Mesh& mesh, const HertzS
       c.position = mesh.nodes[top[i]];
       c.contact.normal_force = f[i];
       c.contact.tangential_force = q[i];
-      const bool slips = carter ? !carter->sticks(along[i]) : steady.traction != 0.0;
+      const bool slips = traction_slips(steady, hertz, along[i]);
       c.contact.status = slips ? ContactStatus::Slip : ContactStatus::Stick;
       c.tributary_length =
           0.5 * std::abs((i + 1 < top.size() ? along[i + 1] : along[i]) - (i > 0 ? along[i - 1] : along[i]));

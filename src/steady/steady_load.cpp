@@ -80,6 +80,12 @@ std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<Node
   return out;
 }
 
+bool traction_slips(const SteadyLoad& load, const HertzSolution& hertz, Real along) {
+  if (load.traction == 0.0) return false;
+  if (load.shape == TractionShape::Uniform) return true;
+  return !carter_traction(hertz, load.traction, load.friction).sticks(along);
+}
+
 Scene elastic_frictionless_scene(const Scene& scene) {
   Scene s = scene;
   s.element.kinematics = Kinematics::Small;

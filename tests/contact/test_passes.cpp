@@ -116,6 +116,12 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   CHECK_THAT(criterion, Catch::Contains("of pass 1's in pass 3"));
   CHECK_THAT(criterion, !Catch::Contains("at least 3"));
   CHECK(summary["passes"].contains("p0_over_k") == false);  // depth-controlled: no load to measure
+  // A finite strip's track: its ends and how far they lie from the window, in summary.json and on the
+  // answer's line.
+  CHECK(summary["passes"]["track"]["kind"] == "finite");
+  CHECK(summary["passes"]["track"]["window_to_end_over_a"].get<double>() == 0.0);  // a track under 4a: its window
+  CHECK_THAT(r.output, Catch::Contains("the residual stress is a finite track's") &&
+                           Catch::Contains("x = 98 and 100 mm) bound passes.csv's window (x = 98 to 100 mm)"));
 
   // The run as if killed after step 12 (mid-pass 2).
   const test::Run resumed = test::resume_copy(run, whole, split, 12);

@@ -50,7 +50,7 @@ struct PassSpec {
   int count = 1;  // passes in the run
   PassDirection direction = PassDirection::Same;
   PassMethod method = PassMethod::Transient;
-  StationaryContact stationary_contact = StationaryContact::Hertz;
+  StationaryContact stationary_contact = StationaryContact::Roller;
   int stationary_phases = 1;       // places of the roller between two nodes solved together (docs/model.md, Phases)
   int stationary_path_parts = 16;  // a lane's yielding step walked in this many parts (docs/model.md, The sweep)
   bool until_verdict = false;      // stop after the first pass that decides the shakedown verdict

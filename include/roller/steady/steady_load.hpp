@@ -44,6 +44,10 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
 std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<NodeContactRecord>& contact,
                                   const HertzSolution& hertz, Real centre_x);
 
+// Whether the load's traction slips at `along` [mm] from the contact's centre along the travel:
+// everywhere under a uniform q/p, behind Carter's stick zone under fx, nowhere without a traction.
+bool traction_slips(const SteadyLoad& load, const HertzSolution& hertz, Real along);
+
 // The scene with its strip linear elastic (every layer), small-strain, quasi-static and
 // frictionless (no segment keeps a traction), one pass, no monitor and no initial state: the
 // elastic solutions of the steady solves. Steps and path are the caller's to set.

@@ -148,7 +148,7 @@ def run_label(out):
         law += " E_T=%g" % material.get("tangent_modulus", 0.0)
     passes = scene.get("passes", {})
     if passes.get("method") == "stationary":
-        contact = passes.get("stationary_contact", "hertz")
+        contact = passes.get("stationary_contact", "roller")
         method = "stationary, " + ("Hertz load" if contact == "hertz" else "roller's contact")
     else:
         method = scene.get("contact", {}).get("backend", "")

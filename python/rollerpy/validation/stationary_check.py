@@ -545,7 +545,7 @@ def stationary_variants(args, press_x, centre_y, h):
                          [("passes.stationary_contact", '"roller"'), ("passes.stationary_phases", "%d" % p),
                           ("passes.stationary_path_parts", "%d" % n)],
                          "stationary_roller_P%d%s" % (p, "" if n == PATH_PARTS else "_n%d" % n)))
-    variants.append(("stationary, Hertz load", [], "stationary_hertz"))
+    variants.append(("stationary, Hertz load", [("passes.stationary_contact", '"hertz"')], "stationary_hertz"))
     return variants
 
 
