@@ -17,12 +17,10 @@ Real TrackEnds::window_to_end() const {
 
 std::string TrackEnds::note() const {
   switch (kind) {
-    case TrackKind::Long:
-      return "the residual stress is a long track's (stationary passes)";
+    case TrackKind::Long: return "the residual stress is a long track's (stationary passes)";
     case TrackKind::Endless:
       return "the residual stress is an endless track's (a periodic strip rolled over its whole period)";
-    case TrackKind::Finite:
-      break;
+    case TrackKind::Finite: break;
   }
   // A track shorter than 4a is its own window.
   const Real distance = window_to_end();

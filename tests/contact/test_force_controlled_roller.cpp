@@ -282,8 +282,9 @@ TEST_CASE("force control: the Cattaneo-Mindlin protocol under both forces gives 
 TEST_CASE("force control: a horizontal force beyond friction stops with a message naming sliding", "[contact][force]") {
   // The roller pressed to a depth, so that its vertical force is the run's (a prescribed one is
   // checked before computing, above): the press of 0.1 mm carries 9111 N/mm, mu P = 1367 N/mm.
-  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/cattaneo.toml",
-                            {{"steps.count", "2"}, {"roller.path", "[{steps=[1,1], dy=-0.1}, {steps=[2,2], fx=-2000.0}]"}}));
+  Simulation sim(
+      load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/cattaneo.toml",
+                 {{"steps.count", "2"}, {"roller.path", "[{steps=[1,1], dy=-0.1}, {steps=[2,2], fx=-2000.0}]"}}));
   REQUIRE(sim.advance_step(1).converged());
   INFO("vertical force " << force_on_roller(sim.state().contact).y());
   const Simulation::StepRecord r = sim.advance_step(2);

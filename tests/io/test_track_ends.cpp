@@ -50,8 +50,7 @@ TEST_CASE("track ends: a transient pass on a finite strip names its ends and the
   CHECK_FALSE(track_ends(load_scene(kShakedown), PassRecord{}));
 }
 
-TEST_CASE("track ends: a stationary pass and a periodic strip rolled over its whole period have none",
-          "[io][passes]") {
+TEST_CASE("track ends: a stationary pass and a periodic strip rolled over its whole period have none", "[io][passes]") {
   const std::optional<TrackEnds> stationary =
       track_ends(load_scene(kShakedown, {{"passes.method", "\"stationary\""}}), window(96.0, 104.0, 2.0));
   REQUIRE(stationary);
@@ -61,10 +60,10 @@ TEST_CASE("track ends: a stationary pass and a periodic strip rolled over its wh
   // periodic_rolling rolls 24 mm of its 40 mm period: a finite track on a periodic strip.
   const PassRecord ring = window(36.0, 48.0, 1.0);
   CHECK(track_ends(load_scene(kPeriodic), ring)->kind == TrackKind::Finite);
-  const std::optional<TrackEnds> endless =
-      track_ends(load_scene(kPeriodic, {{"steps.count", "42"}, {"roller.path[1].steps", "[3, 42]"},
-                                        {"roller.path[1].dx", "40.0"}}),
-                 ring);
+  const std::optional<TrackEnds> endless = track_ends(
+      load_scene(kPeriodic,
+                 {{"steps.count", "42"}, {"roller.path[1].steps", "[3, 42]"}, {"roller.path[1].dx", "40.0"}}),
+      ring);
   CHECK(endless->kind == TrackKind::Endless);
   CHECK_THAT(endless->note(), Catch::Contains("whole period"));
 }

@@ -234,9 +234,9 @@ TEST_CASE("passes.until_verdict: the run stops after the pass that decides the v
   const auto [scene, verdict] = GENERATE(table<std::string, ShakedownVerdict>(
       {{"shakedown_p45", ShakedownVerdict::Ratchetting}, {"shakedown_p37", ShakedownVerdict::ElasticShakedown}}));
   auto run = [&](bool until) {
-    Simulation sim(
-        load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml",
-                   {kStationary, kHertzLoad, {"passes.count", "4"}, {"passes.until_verdict", until ? "true" : "false"}}));
+    Simulation sim(load_scene(
+        std::string(ROLLER_SOURCE_DIR) + "/problems/" + scene + ".toml",
+        {kStationary, kHertzLoad, {"passes.count", "4"}, {"passes.until_verdict", until ? "true" : "false"}}));
     RunOptions options;
     options.write_files = false;
     const RunSummary summary = sim.run(options);
@@ -308,9 +308,9 @@ TEST_CASE("stationary passes: a run resumed after a pass gives the same bytes", 
 
 TEST_CASE("stationary passes rolling under a horizontal force carry Carter's traction, its stick zone ahead",
           "[scenes][stationary]") {
-  // Under the Hertz load, whose nodes are Hertz's: shakedown_p37 (a = 2 mm) with mu = 0.2 under Q = 0.15 P along the travel (fx = -Q: the strip's
-  // force on the roller): c = a sqrt(1 - Q/(mu P)) = a/2, the stick zone [a - 2c, a] = [0, a]. The
-  // same load as q_over_p = 0.15, the traction ratio along the travel.
+  // Under the Hertz load, whose nodes are Hertz's: shakedown_p37 (a = 2 mm) with mu = 0.2 under Q = 0.15 P along the
+  // travel (fx = -Q: the strip's force on the roller): c = a sqrt(1 - Q/(mu P)) = a/2, the stick zone [a - 2c, a] = [0,
+  // a]. The same load as q_over_p = 0.15, the traction ratio along the travel.
   const std::string file = std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p37.toml";
   const auto [dx, start_x, by_ratio] =
       GENERATE(table<Real, Real, bool>({{16.0, 92.0, false}, {-16.0, 108.0, false}, {-16.0, 108.0, true}}));
