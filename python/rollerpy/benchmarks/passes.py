@@ -7,14 +7,15 @@ usage: ./rollerpy bench-passes [--roller build/roller] [--out out/bench_passes]
                               [--passes ipopt=5,penalty=1] [--timeout 7200]
 
 The strip is the shakedown scene of docs/validation.md (`rollerpy make-shakedown-scenes`) with
-uniform elements of --element-size under the track (0.1 mm: 40 across 2a, 4.8e4 dofs), at p0/k
-= --load. --passes names the runs: a contact backend (ipopt, penalty) marches its passes,
+uniform elements of --element-size under the track (0.1 mm: 40 across 2a, 4.8e4 dofs), at p0/k =
+--load. --passes names the runs: a contact backend (ipopt, penalty) marches its passes,
 `stationary` solves them with passes.method = "stationary" on the roller's contact (its default),
 `stationary_hertz` under the Hertz load (ipopt=5,stationary=5 is the plan's comparison). Each runs
-the number of passes given, once, alone: one run of several minutes is its own average over ~20 increments a pass, so the table gives per-pass
-times from solver.csv (wall_s summed over the pass's steps) beside the whole process's wall
-time, peak memory (/usr/bin/time -v) and output folder size. Writes OUT/passes.csv and prints a
-Markdown table; each run's log (roller's output and /usr/bin/time's report) is OUT/<run>.log.
+the number of passes given, once, alone: one run of several minutes is its own average over ~20
+increments a pass, so the table gives per-pass times from solver.csv (wall_s summed over the pass's
+steps) beside the whole process's wall time, peak memory (/usr/bin/time -v) and output folder size.
+Writes OUT/passes.csv and prints a Markdown table; each run's log (roller's output and
+/usr/bin/time's report) is OUT/<run>.log.
 """
 import csv
 import os
