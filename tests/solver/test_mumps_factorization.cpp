@@ -166,3 +166,35 @@ TEST_CASE("MumpsSolver retries a factorisation whose delayed pivots overrun the 
   const VecX b = a * VecX::LinSpaced(n, -1.0, 1.0);
   CHECK((a * ldlt.solve(b) - b).norm() < 1e-12 * b.norm());
 }
+
+TEST_CASE("MumpsSolver's Schur complement of an unsymmetric matrix, and its reduced solve, are A's own",
+          "[solver]") {
+  // The steady Jacobian is not symmetric: S = A_ss - A_si A_ii^-1 A_is with A_si != A_is^T, and
+  // the reduction and expansion around a Schur solve of the caller's give A x = b.
+  const int g = 8, n = g * g;
+  SparseMatrix a = grid_matrix(
+      g, [](int k) { return 4.2 + 0.01 * k; }, -1.0);
+  for (int k = 0; k + 1 < n; ++k) a.coeffRef(k + 1, k) += 0.3 + 0.001 * k;  // an upwind term below the diagonal
+  a.makeCompressed();
+  const std::vector<Index> schur = {3, 17, 18, 40, 5};
+  std::vector<Index> interior;
+  for (Index k = 0; k < n; ++k)
+    if (std::find(schur.begin(), schur.end(), k) == schur.end()) interior.push_back(k);
+  const MatX dense = MatX(a);
+  auto block = [&](const std::vector<Index>& r, const std::vector<Index>& c) {
+    MatX b(r.size(), c.size());
+    for (std::size_t i = 0; i < r.size(); ++i)
+      for (std::size_t j = 0; j < c.size(); ++j) b(i, j) = dense(r[i], c[j]);
+    return b;
+  };
+  const MatX s_dense =
+      block(schur, schur) - block(schur, interior) * block(interior, interior).lu().solve(block(interior, schur));
+  REQUIRE((s_dense - s_dense.transpose()).norm() > 1e-3 * s_dense.norm());  // the test can tell S from S^T
+  MumpsSolver solver(MumpsSolver::Symmetry::General);
+  MatX s;
+  REQUIRE(solver.factorize_with_schur(a, schur, &s));
+  CHECK((s - s_dense).norm() < 1e-12 * s_dense.norm());
+  const VecX b = VecX::LinSpaced(n, -1.0, 2.0);
+  const VecX x = solver.solve_with_schur(b, [&](const VecX& reduced) { return VecX(s.lu().solve(reduced)); });
+  CHECK((a * x - b).norm() < 1e-12 * b.norm());
+}
