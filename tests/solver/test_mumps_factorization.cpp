@@ -167,8 +167,7 @@ TEST_CASE("MumpsSolver retries a factorisation whose delayed pivots overrun the 
   CHECK((a * ldlt.solve(b) - b).norm() < 1e-12 * b.norm());
 }
 
-TEST_CASE("MumpsSolver's Schur complement of an unsymmetric matrix, and its reduced solve, are A's own",
-          "[solver]") {
+TEST_CASE("MumpsSolver's Schur complement of an unsymmetric matrix, and its reduced solve, are A's own", "[solver]") {
   // The steady Jacobian is not symmetric: S = A_ss - A_si A_ii^-1 A_is with A_si != A_is^T, and
   // the reduction and expansion around a Schur solve of the caller's give A x = b.
   const int g = 8, n = g * g;
