@@ -94,24 +94,37 @@ TEST_CASE("SparseSolver solves below and above the MUMPS threshold alike", "[sol
   }
 }
 
+namespace {
+
+// The Schur variables used below, scattered through an n-variable grid, and the others.
+const std::vector<Index> kSchur = {3, 17, 18, 40, 5};
+std::vector<Index> interior_of(Index n) {
+  std::vector<Index> interior;
+  for (Index k = 0; k < n; ++k)
+    if (std::find(kSchur.begin(), kSchur.end(), k) == kSchur.end()) interior.push_back(k);
+  return interior;
+}
+
+// The block of `dense` at rows r and columns c.
+MatX block(const MatX& dense, const std::vector<Index>& r, const std::vector<Index>& c) {
+  MatX b(r.size(), c.size());
+  for (std::size_t i = 0; i < r.size(); ++i)
+    for (std::size_t j = 0; j < c.size(); ++j) b(i, j) = dense(r[i], c[j]);
+  return b;
+}
+
+}  // namespace
+
 TEST_CASE("MumpsSolver Schur complement and interior solve equal the dense block formulas", "[solver]") {
   // A 2D 5-point Laplacian plus a diagonal shift (SPD), Schur variables scattered through it.
   const int g = 7, n = g * g;
   const SparseMatrix a = grid_matrix(
       g, [](int k) { return 4.2 + 0.01 * k; }, -1.0);
-  const std::vector<Index> schur = {3, 17, 18, 40, 5};
-  std::vector<Index> interior;
-  for (Index k = 0; k < n; ++k)
-    if (std::find(schur.begin(), schur.end(), k) == schur.end()) interior.push_back(k);
+  const std::vector<Index>& schur = kSchur;
+  const std::vector<Index> interior = interior_of(n);
   const MatX dense = MatX(a);
-  auto block = [&](const std::vector<Index>& r, const std::vector<Index>& c) {
-    MatX b(r.size(), c.size());
-    for (std::size_t i = 0; i < r.size(); ++i)
-      for (std::size_t j = 0; j < c.size(); ++j) b(i, j) = dense(r[i], c[j]);
-    return b;
-  };
-  const MatX a_ii = block(interior, interior), a_is = block(interior, schur);
-  const MatX s_dense = block(schur, schur) - a_is.transpose() * a_ii.ldlt().solve(a_is);
+  const MatX a_ii = block(dense, interior, interior), a_is = block(dense, interior, schur);
+  const MatX s_dense = block(dense, schur, schur) - a_is.transpose() * a_ii.ldlt().solve(a_is);
 
   // In core with each ordering, and out of core (factors in files under `ooc`, removed when the
   // solver ends).
@@ -175,19 +188,12 @@ TEST_CASE("MumpsSolver's Schur complement of an unsymmetric matrix, and its redu
       g, [](int k) { return 4.2 + 0.01 * k; }, -1.0);
   for (int k = 0; k + 1 < n; ++k) a.coeffRef(k + 1, k) += 0.3 + 0.001 * k;  // an upwind term below the diagonal
   a.makeCompressed();
-  const std::vector<Index> schur = {3, 17, 18, 40, 5};
-  std::vector<Index> interior;
-  for (Index k = 0; k < n; ++k)
-    if (std::find(schur.begin(), schur.end(), k) == schur.end()) interior.push_back(k);
+  const std::vector<Index>& schur = kSchur;
+  const std::vector<Index> interior = interior_of(n);
   const MatX dense = MatX(a);
-  auto block = [&](const std::vector<Index>& r, const std::vector<Index>& c) {
-    MatX b(r.size(), c.size());
-    for (std::size_t i = 0; i < r.size(); ++i)
-      for (std::size_t j = 0; j < c.size(); ++j) b(i, j) = dense(r[i], c[j]);
-    return b;
-  };
   const MatX s_dense =
-      block(schur, schur) - block(schur, interior) * block(interior, interior).lu().solve(block(interior, schur));
+      block(dense, schur, schur) -
+      block(dense, schur, interior) * block(dense, interior, interior).lu().solve(block(dense, interior, schur));
   REQUIRE((s_dense - s_dense.transpose()).norm() > 1e-3 * s_dense.norm());  // the test can tell S from S^T
   MumpsSolver solver(MumpsSolver::Symmetry::General);
   MatX s;
