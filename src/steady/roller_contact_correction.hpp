@@ -1,6 +1,7 @@
 #pragma once
 // The stationary pass's correction on the roller's exact contact (passes.stationary_contact =
-// "roller"), solved by an elastic twin of the strip (elastic_press.hpp).
+// "roller", the default), the contact condensed under the roller with the strip's elastic
+// stiffness (contact/condensed_contact.hpp).
 #include <memory>
 
 #include "roller/steady/stationary_passes.hpp"
