@@ -11,9 +11,7 @@
 
 namespace roller {
 
-Real TrackEnds::window_to_end() const {
-  return std::min(window_start - std::min(start, end), std::max(start, end) - window_end) / half_width;
-}
+Real TrackEnds::window_to_end() const { return std::min(window_start - start, end - window_end) / half_width; }
 
 std::string TrackEnds::note() const {
   switch (kind) {
@@ -31,7 +29,7 @@ std::string TrackEnds::note() const {
       "{} (x = {:.4g} to {:.4g} mm) and hold the rolled layer back; for a long track's, passes.method = "
       "\"stationary\" or a periodic strip rolled over its whole period (docs/validation.md, Stationary passes "
       "against transient passes)",
-      std::min(start, end), std::max(start, end), where, window_start, window_end);
+      start, end, where, window_start, window_end);
 }
 
 nlohmann::json TrackEnds::to_json() const {
@@ -40,7 +38,7 @@ nlohmann::json TrackEnds::to_json() const {
                    {"half_width_mm", half_width},
                    {"note", note()}};
   if (kind == TrackKind::Finite) {
-    j["ends_mm"] = {std::min(start, end), std::max(start, end)};
+    j["ends_mm"] = {start, end};
     j["window_to_end_over_a"] = window_to_end();
   }
   return j;
@@ -60,8 +58,10 @@ std::optional<TrackEnds> track_ends(const Scene& scene, const PassRecord& pass) 
     out.kind = TrackKind::Endless;
   } else {
     const Vec2 centre = given_start_centre(scene);
-    out.start = roller_pose(*scene.roller, centre, travel->first_step - 1).centre.x();
-    out.end = roller_pose(*scene.roller, centre, travel->last_step).centre.x();
+    const Real from = roller_pose(*scene.roller, centre, travel->first_step - 1).centre.x();
+    const Real to = roller_pose(*scene.roller, centre, travel->last_step).centre.x();
+    out.start = std::min(from, to);
+    out.end = std::max(from, to);
   }
   return out;
 }

@@ -46,6 +46,13 @@ TEST_CASE("track ends: a transient pass on a finite strip names its ends and the
   CHECK(j["window_to_end_over_a"].get<double>() == Approx(2.0));
   // A window off the middle: the nearer end counts.
   CHECK(track_ends(load_scene(kShakedown), window(93.0, 100.0, 0.5))->window_to_end() == Approx(2.0));
+  // Rolled the other way (from x = 108 to 92 mm) the ends are the same.
+  const std::optional<TrackEnds> back =
+      track_ends(load_scene(kShakedown, {{"roller.centre", "[108.0, 200.0]"}, {"roller.path[1].dx", "-16.0"}}),
+                 window(96.0, 104.0, 2.0));
+  CHECK(back->start == Approx(92.0));
+  CHECK(back->end == Approx(108.0));
+  CHECK(back->window_to_end() == Approx(2.0));
   // A pass without contact has no track.
   CHECK_FALSE(track_ends(load_scene(kShakedown), PassRecord{}));
 }

@@ -23,7 +23,7 @@ struct EnumNames<TrackKind> {
 
 struct TrackEnds {
   TrackKind kind = TrackKind::Finite;
-  Real start = 0.0, end = 0.0;                // the roller's centre at the travel's ends [mm] (finite)
+  Real start = 0.0, end = 0.0;                // the roller's centre at the travel's ends, start <= end [mm] (finite)
   Real window_start = 0.0, window_end = 0.0;  // passes.csv's window [mm]
   Real half_width = 0.0;                      // the pass's contact half-width a [mm]
   // The window's distance to the nearer end, in a (finite tracks).
