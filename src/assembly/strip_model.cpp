@@ -263,12 +263,14 @@ Index StripModel::commit(const VecX& u) {
     check_not_inverted(reference);
     for (Index e = 0; e < mesh_.n_elements(); ++e) {
       const auto f = deformation_gradients(point_geometry(e, reference_), element_values(e, u));
+      const int n_back = materials_.of(e).n_back_stresses();
       for (int q = 0; q < n_points_; ++q) {
         MaterialState& s = trial[e * n_points_ + q];
         s.stress = push_forward(f[q], s.stress);
         // Back-stresses rotate as the stress does; the deviator is taken again so that the flow
         // stays volume-preserving (docs/model.md, Hardening laws).
-        for (Vec4& alpha : s.back_stress) {
+        for (int i = 0; i < n_back; ++i) {
+          Vec4& alpha = s.back_stress[static_cast<std::size_t>(i)];
           alpha = push_forward(f[q], alpha);
           alpha.head<3>().array() -= alpha.head<3>().sum() / 3.0;
         }

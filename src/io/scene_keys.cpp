@@ -686,7 +686,9 @@ std::vector<SceneKey> make_keys() {
           write_nothing),
       key(
           "material.voce_Q", [](auto& s) -> auto& { return s.material.voce_saturation; },
-          "Voce isotropic hardening Q (1 - exp(-b eps_p)): saturation Q [MPa]", closed(0.0, kMaxModulus))
+          "Voce isotropic term Q (1 - exp(-b eps_p)): saturation Q [MPa], < 0 for cyclic softening "
+          "(yield_stress + Q > 0)",
+          closed(-kMaxModulus, kMaxModulus))
           .written_if([](const Scene& s) { return s.material.plastic && s.material.voce_saturation != 0.0; }),
       key(
           "material.voce_b", [](auto& s) -> auto& { return s.material.voce_rate; }, "Voce rate b [-]", closed(0.0, 1e6))

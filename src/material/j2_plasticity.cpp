@@ -128,35 +128,42 @@ Mat4 consistent_tangent(const MaterialParams& p, const Vec4& unit_normal, Real t
 // Euler of Armstrong-Frederick), or at a fixed beta_i = 1/(1 + gamma_i d*) when the recovery is
 // frozen at d* (docs/model.md, Hardening laws: the interior-point backend's scheme). The flow
 // direction n is that of eta = s_trial - sum beta_i alpha_i^n.
+// Per-back-stress arrays sized to the law's count, held inline up to kMaxBackStresses (no heap
+// allocation in the update).
+using BackStressArray = Eigen::Array<Real, Eigen::Dynamic, 1, 0, kMaxBackStresses, 1>;
+using BackStressColumns = Eigen::Matrix<Real, 4, Eigen::Dynamic, 0, 4, kMaxBackStresses>;
+
 struct BackStressTerms {  // every field set by evaluate_back_stress_terms
   Vec4 eta;               // s_trial - sum beta_i alpha_i^n
   Vec4 drift;             // d eta / d d = sum gamma_i beta_i^2 alpha_i^n (0 when frozen)
   Real modulus;           // sum C_i beta_i
   Real slope;             // d(d * sum C_i beta_i)/d d
-  Eigen::Array4d beta;    // beta_i
+  BackStressArray beta;   // beta_i
 };
 
 // A committed state's back-stresses with their laws, gathered once per update so that the
-// consistency iteration works on fixed-size arrays (entries past n are zero and add nothing).
+// consistency iteration works on arrays of the law's length.
 struct BackStressSet {
   int n = 0;
-  Real max_recovery = 0.0;                           // max gamma_i
-  Eigen::Array4d modulus = Eigen::Array4d::Zero();   // C_i
-  Eigen::Array4d recovery = Eigen::Array4d::Zero();  // gamma_i
-  Mat4 alpha = Mat4::Zero();                         // columns alpha_i^n
+  Real max_recovery = 0.0;   // max gamma_i (0 without back-stresses)
+  BackStressArray modulus;   // C_i
+  BackStressArray recovery;  // gamma_i
+  BackStressColumns alpha;   // columns alpha_i^n
 };
 
 BackStressSet back_stress_set(const MaterialParams& p, const MaterialState& committed) {
-  static_assert(kMaxBackStresses == 4, "the back-stress arrays hold four");
   BackStressSet b;
   b.n = p.n_back_stresses();
+  b.modulus.resize(b.n);
+  b.recovery.resize(b.n);
+  b.alpha.resize(4, b.n);
   for (int i = 0; i < b.n; ++i) {
     const BackStressLaw law = p.back_stress_law(i);
     b.modulus(i) = law.modulus;
     b.recovery(i) = law.recovery;
     b.alpha.col(i) = committed.back_stress[static_cast<std::size_t>(i)];
   }
-  b.max_recovery = b.recovery.maxCoeff();
+  b.max_recovery = b.n > 0 ? b.recovery.maxCoeff() : 0.0;
   return b;
 }
 
@@ -168,12 +175,12 @@ void evaluate_back_stress_terms(const BackStressSet& b, const Vec4& s_trial, Rea
   t.drift.setZero();
   if (b.n == 0) {
     t.modulus = t.slope = 0.0;
-    t.beta.setOnes();
+    t.beta.resize(0);
     return;
   }
   const Real d_recovery = frozen.value_or(d);
   if (d_recovery == 0.0) {
-    t.beta.setOnes();  // the elastic check's d = 0, without four divisions on its path
+    t.beta.setOnes(b.n);  // the elastic check's d = 0, without n divisions on its path
   } else {
     t.beta = 1.0 / (1.0 + b.recovery * d_recovery);
   }
@@ -237,14 +244,14 @@ Real first_multiplier_guess(const MaterialParams& p, const BackStressSet& b, con
                             const Consistency& c0, Real eps_p) {
   const Real linear = c0.newton_step();
   if (!(q0 > 0.0) || !(linear > 0.0)) return linear;
-  const Eigen::Array4d k = (1.5 / q0) * (b.alpha.transpose() * as_strain_vector(t0.eta)).array();
-  const Eigen::Array4d c = b.modulus - b.recovery * k;
+  const BackStressArray k = (1.5 / q0) * (b.alpha.transpose() * as_strain_vector(t0.eta)).array();
+  const BackStressArray c = b.modulus - b.recovery * k;
   // sigma_Y taken linear from eps_p: Voce's curvature over d moves the root by far less than m's error.
   const Real g3h = 3.0 * p.shear_modulus() + yield_slope_at(p, eps_p);
   const Real r0 = c0.residual;  // q0 - sigma_Y(eps_p)
   Real d = linear;
   for (int iter = 0; iter < 20; ++iter) {
-    const Eigen::Array4d beta = 1.0 / (1.0 + b.recovery * d);
+    const BackStressArray beta = 1.0 / (1.0 + b.recovery * d);
     const Real m = r0 - (g3h + (c * beta).sum()) * d;
     const Real descent = g3h + (c * beta.square()).sum();
     const Real step = m / descent;
@@ -267,7 +274,7 @@ void advance_first_order(const BackStressSet& b, std::optional<Real> frozen, Rea
   at.consistency.residual = 0.0;
   if (frozen || b.n == 0) return;
   BackStressTerms& t = at.terms;
-  const Eigen::Array4d beta2 = t.beta.square();
+  const BackStressArray beta2 = t.beta.square();
   t.eta += delta * t.drift;
   t.modulus -= delta * (b.modulus * b.recovery * beta2).sum();
   t.slope -= 2.0 * delta * (b.modulus * b.recovery * beta2 * t.beta).sum();
@@ -580,12 +587,12 @@ MaterialUpdate checked_update(const MaterialParams& p, const Vec4& strain_increm
         "update_material: non-finite stress, tangent or energy from a finite strain increment; "
         "check the material with MaterialParams::is_valid (E_T < E, yield_stress > 0)");
   }
-  // The return mapping's plastic multiplier is >= 0: plastic strain only accumulates and work
-  // hardening never softens (the sub-steps' drift correction may take back a little).
-  ROLLER_ASSERT(
-      p.integration == StressIntegration::Substep ||
-          (u.trial.eq_plastic_strain >= committed.eq_plastic_strain && u.trial.yield_stress >= committed.yield_stress),
-      "the return mapping never lowers the plastic strain or the yield stress");
+  // The return mapping's plastic multiplier is >= 0: plastic strain only accumulates, and the yield
+  // stress only grows unless a Voce term softens (the sub-steps' drift correction may take back a little).
+  ROLLER_ASSERT(p.integration == StressIntegration::Substep ||
+                    (u.trial.eq_plastic_strain >= committed.eq_plastic_strain &&
+                     (p.voce_saturation < 0.0 || u.trial.yield_stress >= committed.yield_stress)),
+                "the return mapping never lowers the plastic strain, nor the yield stress of a hardening law");
   return u;
 }
 

@@ -13,10 +13,14 @@ std::string describe_text(const std::string& field, const std::string& value, co
   return "material." + field + " = " + value + ": " + rule;
 }
 
-std::string describe(const std::string& field, Real value, const std::string& rule) {
+std::string fmt_real(Real value) {
   std::ostringstream out;
   out << std::setprecision(12) << value;
-  return describe_text(field, out.str(), rule);
+  return out.str();
+}
+
+std::string describe(const std::string& field, Real value, const std::string& rule) {
+  return describe_text(field, fmt_real(value), rule);
 }
 
 // The comparisons are written so that NaN fails every rule.
@@ -54,8 +58,9 @@ std::string first_violation(const MaterialParams& p) {
                         "use a back-stress with gamma = 0 for a linear kinematic part and voce_Q/voce_b for "
                         "an isotropic one)");
       if (!(p.n_chaboche >= 1 && p.n_chaboche <= kMaxBackStresses))
-        return describe_text("chaboche_C", "(" + std::to_string(p.n_chaboche) + " values)",
-                             "hardening = \"chaboche\" needs 1 to 4 back-stresses");
+        return describe_text(
+            "chaboche_C", "(" + std::to_string(p.n_chaboche) + " values)",
+            "hardening = \"chaboche\" needs 1 to " + std::to_string(kMaxBackStresses) + " back-stresses");
       for (int i = 0; i < p.n_chaboche; ++i) {
         const BackStressLaw& b = p.chaboche[static_cast<std::size_t>(i)];
         const std::string entry = "entry " + std::to_string(i + 1) + " ";
@@ -68,10 +73,20 @@ std::string first_violation(const MaterialParams& p) {
       return describe_text("chaboche_C", "(" + std::to_string(p.n_chaboche) + " values)",
                            "back-stresses need hardening = \"chaboche\" (it is \"" + law + "\")");
     }
-    if (!(std::isfinite(p.voce_saturation) && p.voce_saturation >= 0.0))
-      return describe("voce_Q", p.voce_saturation, "must be finite and >= 0 [MPa] (Voce saturation)");
+    if (!std::isfinite(p.voce_saturation))
+      return describe("voce_Q", p.voce_saturation, "must be finite [MPa] (Voce saturation; < 0 softens)");
     if (!(std::isfinite(p.voce_rate) && p.voce_rate >= 0.0))
       return describe("voce_b", p.voce_rate, "must be finite and >= 0 (Voce rate)");
+    // Softening: the yield stress saturates at sigma_y0 + Q, which must stay a yield stress, and it
+    // may not fall faster than 3G rises, or the return mapping's consistency has no unique root.
+    if (p.voce_saturation < 0.0 && !(p.yield_stress + p.voce_saturation > 0.0))
+      return describe("voce_Q", p.voce_saturation,
+                      "must satisfy yield_stress + voce_Q > 0 (yield_stress = " + fmt_real(p.yield_stress) +
+                          " MPa; a softening Voce term saturates at their sum)");
+    if (p.voce_saturation < 0.0 && !(p.voce_saturation * p.voce_rate > -3.0 * p.shear_modulus()))
+      return describe("voce_b", p.voce_rate,
+                      "must satisfy voce_Q * voce_b > -3G = " + fmt_real(-3.0 * p.shear_modulus()) +
+                          " MPa (softening faster than the elastic shear stiffness has no unique return mapping)");
     if (p.integration == StressIntegration::Substep &&
         (p.hardening != Hardening::Isotropic || p.voce_saturation != 0.0))
       return describe_text(

@@ -118,7 +118,7 @@ std::vector<MelanRow> depth_rows(const Mesh& mesh, const std::vector<Vec4>& stre
     row.depth = depth;
     row.x.push_back(x);
     row.stress.push_back(mean);
-    row.yield_stress.push_back(m.yield_stress);
+    row.yield_stress.push_back(m.lowest_yield_stress());
   }
   std::vector<MelanRow> out;
   for (auto& [key, row] : rows) out.push_back(std::move(row));
@@ -163,7 +163,7 @@ MelanRow surface_row(const Mesh& mesh, const ElementMaterials& plastic, Real top
     s[2] = m.poisson_ratio * (s[0] + s[1]);  // plane strain, linear elastic
     row.x.push_back(x);
     row.stress.push_back(s);
-    row.yield_stress.push_back(m.yield_stress);
+    row.yield_stress.push_back(m.lowest_yield_stress());
     row.back_stress_bound =
         row.x.size() == 1 ? back_stress_bound(m) : std::min(row.back_stress_bound, back_stress_bound(m));
   }

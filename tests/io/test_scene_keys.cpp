@@ -340,7 +340,29 @@ TEST_CASE("hardening laws' keys round-trip and appear in the resolved scene with
         parse_scene(base + "hardening = \"chaboche\"\nchaboche_C = [1e5, 1e4]\nchaboche_gamma = [10.0]\n", "e.toml"),
         Catch::Contains("material.chaboche_gamma") && Catch::Contains("one recovery per modulus"));
     CHECK_THROWS_WITH(parse_scene(base + "hardening = \"chaboche\"\n", "e.toml"),
-                      Catch::Contains("1 to 4 back-stresses"));
+                      Catch::Contains("1 to 10 back-stresses"));
+    CHECK_THROWS_WITH(parse_scene(base + "hardening = \"chaboche\"\nchaboche_C = [1,2,3,4,5,6,7,8,9,10,11]\n"
+                                         "chaboche_gamma = [0,0,0,0,0,0,0,0,0,0,0]\n",
+                                  "e.toml"),
+                      Catch::Contains("material.chaboche_C") && Catch::Contains("1 to 10 moduli"));
+    // A softening Voce term: its saturated yield stress must stay positive, its rate below 3G's.
+    CHECK_THROWS_WITH(parse_scene(base + "voce_Q = -250.0\nvoce_b = 1.0\n", "e.toml"),
+                      Catch::Contains("material.voce_Q = -250") && Catch::Contains("yield_stress + voce_Q > 0"));
+    CHECK_THROWS_WITH(parse_scene(base + "voce_Q = -100.0\nvoce_b = 1e4\n", "e.toml"),
+                      Catch::Contains("material.voce_b = 10000") && Catch::Contains("voce_Q * voce_b > -3G"));
+  }
+  SECTION("ten back-stresses and a softening Voce term") {
+    const Scene scene = parse_scene(base +
+                                        "hardening = \"chaboche\"\nchaboche_C = [10,9,8,7,6,5,4,3,2,1]\n"
+                                        "chaboche_gamma = [0,1,2,3,4,5,6,7,8,9]\nvoce_Q = -40.0\nvoce_b = 0.04\n",
+                                    "ten.toml");
+    CHECK(scene.material.n_back_stresses() == 10);
+    CHECK(scene.material.back_stress_law(9).modulus == 1.0);
+    CHECK(scene.material.back_stress_law(9).recovery == 9.0);
+    CHECK(scene.material.lowest_yield_stress() == 210.0);
+    const std::string first = scene_to_toml(scene);
+    CHECK(scene_to_toml(parse_scene(first, "resolved.toml")) == first);
+    CHECK(toml::parse(first)["material"]["voce_Q"].value<double>() == -40.0);
     CHECK_THROWS_WITH(parse_scene(base + "hardening = \"chaboche\"\ntangent_modulus = 100.0\nchaboche_C = [1e5]\n"
                                          "chaboche_gamma = [10.0]\n",
                                   "e.toml"),

@@ -48,6 +48,24 @@ MaterialParams armstrong_frederick() { return chaboche({{5.0e4, 250.0}}); }
 // Chaboche with three back-stresses, the last one linear (gamma = 0).
 MaterialParams chaboche3() { return chaboche({{1.2e5, 1200.0}, {2.0e4, 150.0}, {2.0e3, 0.0}}); }
 
+// Ten back-stresses, the most the law takes: R260's six (problems/ratchet_rail.toml), four more with
+// a linear one last, and a softening Voce term fast enough to show within the tests' strains.
+MaterialParams chaboche10_softening() {
+  MaterialParams p = chaboche({{3.5e5, 5000.0},
+                               {8.0e4, 1000.0},
+                               {1.5e4, 150.0},
+                               {1.0e4, 20.0},
+                               {8.0e3, 20.0},
+                               {190.0, 0.01},
+                               {5.0e3, 400.0},
+                               {3.0e3, 60.0},
+                               {1.0e3, 5.0},
+                               {500.0, 0.0}});
+  p.voce_saturation = -60.0;
+  p.voce_rate = 30.0;
+  return p;
+}
+
 MaterialParams prager() {
   MaterialParams p = base_steel();
   p.hardening = Hardening::Kinematic;
@@ -55,9 +73,10 @@ MaterialParams prager() {
   return p;
 }
 
-// sigma_Y + sum of the back-stresses' monotonic closed forms at plastic strain eps_p.
+// sigma_Y(eps_p) (Voce's term of either sign) + sum of the back-stresses' monotonic closed forms
+// at plastic strain eps_p.
 Real monotonic_stress(const MaterialParams& p, Real eps_p) {
-  Real s = p.yield_stress;
+  Real s = p.yield_stress - p.voce_saturation * std::expm1(-p.voce_rate * eps_p);
   for (int i = 0; i < p.n_chaboche; ++i) {
     const BackStressLaw b = p.chaboche[static_cast<std::size_t>(i)];
     s += b.recovery > 0.0 ? b.modulus / b.recovery * -std::expm1(-b.recovery * eps_p) : b.modulus * eps_p;
@@ -156,6 +175,13 @@ TEST_CASE("Armstrong-Frederick and Chaboche follow their monotonic closed forms 
     const Real error = extrapolated_error([&](int n) { return monotonic_error(p, 0.012, n); }, 800);
     CHECK(std::abs(error) / monotonic_stress(p, 0.012) < 1e-6);
   }
+  SECTION("Chaboche with ten back-stresses and a softening Voce term") {
+    const MaterialParams p = chaboche10_softening();
+    // The Voce term has softened the yield stress by more than half its Q at the end.
+    REQUIRE(-std::expm1(-p.voce_rate * 0.03) > 0.5);
+    const Real error = extrapolated_error([&](int n) { return monotonic_error(p, 0.03, n); }, 1600);
+    CHECK(std::abs(error) / monotonic_stress(p, 0.03) < 1e-6);
+  }
 }
 
 TEST_CASE("Armstrong-Frederick and Chaboche stabilise on the closed-form loop under symmetric strain cycling",
@@ -169,6 +195,22 @@ TEST_CASE("Armstrong-Frederick and Chaboche stabilise on the closed-form loop un
     const MaterialParams p = chaboche3();
     // The linear back-stress drifts nothing under symmetric cycling once the others have settled.
     const Real error = extrapolated_error([&](int n) { return loop_error(p, 0.006, n, 8); }, 800);
+    CHECK(std::abs(error) / p.yield_stress < 1e-6);
+  }
+  SECTION("Chaboche with ten back-stresses: the sum of their loops") {
+    // Every recovery fast enough (gamma >= 150) to forget the first quarter cycle within eight, and
+    // no Voce term (the loop of a softening surface keeps shrinking).
+    const MaterialParams p = chaboche({{3.5e5, 5000.0},
+                                       {8.0e4, 1000.0},
+                                       {1.5e4, 150.0},
+                                       {1.0e4, 400.0},
+                                       {8.0e3, 250.0},
+                                       {5.0e3, 600.0},
+                                       {3.0e3, 300.0},
+                                       {1.0e3, 200.0},
+                                       {2.0e3, 1500.0},
+                                       {500.0, 0.0}});
+    const Real error = extrapolated_error([&](int n) { return loop_error(p, 0.006, n, 8); }, 1600);
     CHECK(std::abs(error) / p.yield_stress < 1e-6);
   }
 }
@@ -299,7 +341,8 @@ std::vector<std::pair<std::string, MaterialParams>> laws() {
   return {{"kinematic", kin},
           {"mixed with Voce", mixed},
           {"Armstrong-Frederick", armstrong_frederick()},
-          {"Chaboche", chaboche3()}};
+          {"Chaboche", chaboche3()},
+          {"Chaboche, ten with Voce softening", chaboche10_softening()}};
 }
 
 }  // namespace
@@ -354,10 +397,11 @@ MaterialParams chaboche4_fast() {
 //   alpha_i (1 + gamma_i dp) = alpha_i^n + 2/3 C_i deps_p.
 TEST_CASE("The return mapping of every recovery law solves the backward-Euler equations to round-off",
           "[material][hardening]") {
-  for (const auto& [name, p] :
-       std::vector<std::pair<std::string, MaterialParams>>{{"Armstrong-Frederick", armstrong_frederick()},
-                                                           {"Chaboche", chaboche3()},
-                                                           {"Chaboche, four with Voce", chaboche4_fast()}}) {
+  for (const auto& [name, p] : std::vector<std::pair<std::string, MaterialParams>>{
+           {"Armstrong-Frederick", armstrong_frederick()},
+           {"Chaboche", chaboche3()},
+           {"Chaboche, four with Voce", chaboche4_fast()},
+           {"Chaboche, ten with Voce softening", chaboche10_softening()}}) {
     const Real ey = p.yield_stress / p.youngs_modulus;
     const Real g = p.shear_modulus();
     const Vec4 direction(0.7, -0.2, 0.05, 0.8);
@@ -428,8 +472,18 @@ TEST_CASE("Hardening parameters are checked", "[material][hardening]") {
   CHECK_FALSE(p.is_valid(&why));
   CHECK(why.find("material.chaboche_gamma = -1: entry 1") != std::string::npos);
   p = armstrong_frederick();
-  p.n_chaboche = 5;
+  p.n_chaboche = kMaxBackStresses + 1;
   CHECK_FALSE(p.is_valid(&why));
+  CHECK(why.find("1 to 10 back-stresses") != std::string::npos);
+  p = chaboche10_softening();
+  CHECK(p.is_valid(&why));
+  p.voce_saturation = -p.yield_stress;  // the yield stress would saturate at zero
+  CHECK_FALSE(p.is_valid(&why));
+  CHECK(why.find("material.voce_Q = -250: must satisfy yield_stress + voce_Q > 0") != std::string::npos);
+  p = chaboche10_softening();
+  p.voce_rate = 3.1 * p.shear_modulus() / 60.0;  // softens faster than 3G
+  CHECK_FALSE(p.is_valid(&why));
+  CHECK(why.find("voce_Q * voce_b > -3G") != std::string::npos);
   p = prager();
   p.integration = StressIntegration::Substep;
   CHECK_FALSE(p.is_valid(&why));

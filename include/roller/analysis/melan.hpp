@@ -38,10 +38,12 @@ struct EnumNames<ShakedownBound> {
 
 // The integration points at one depth: the stress history of a point at that depth.
 struct MelanRow {
-  Real depth = 0.0;                // below the strip's top [mm]
-  std::vector<Real> x;             // position of each point along the row [mm]
-  std::vector<Vec4> stress;        // elastic stress [xx, yy, zz, xy] at each point at load factor 1 [MPa]
-  std::vector<Real> yield_stress;  // initial yield stress of each point [MPa]
+  Real depth = 0.0;          // below the strip's top [mm]
+  std::vector<Real> x;       // position of each point along the row [mm]
+  std::vector<Vec4> stress;  // elastic stress [xx, yy, zz, xy] at each point at load factor 1 [MPa]
+  // Yield stress of each point [MPa]: the initial one, or a softening law's saturated one (the
+  // bound must hold after any plastic flow; MaterialParams::lowest_yield_stress).
+  std::vector<Real> yield_stress;
   // The largest von Mises measure the back-stress can reach (sum of C/gamma of a saturating law);
   // infinity for linear kinematic hardening. Only ShakedownBound::Kinematic reads it.
   Real back_stress_bound = std::numeric_limits<Real>::infinity();

@@ -29,7 +29,7 @@ enum class Hardening {
   Isotropic,  // H_iso = H' (from tangent_modulus), no back-stress: today's default
   Kinematic,  // linear kinematic (Prager): one back-stress C = H', gamma = 0
   Mixed,      // H_iso = (1 - m) H', one back-stress C = m H', gamma = 0 (m = kinematic_fraction)
-  Chaboche,   // up to four back-stresses (C_i, gamma_i); one with gamma > 0 is Armstrong-Frederick
+  Chaboche,   // up to ten back-stresses (C_i, gamma_i); one with gamma > 0 is Armstrong-Frederick
 };
 template <>
 struct EnumNames<Hardening> {
@@ -39,7 +39,9 @@ struct EnumNames<Hardening> {
                                                                            {Hardening::Chaboche, "chaboche"}}};
 };
 
-inline constexpr int kMaxBackStresses = 4;
+// Abaqus's combined hardening takes up to ten back-stresses; a calibrated rail steel uses six
+// (problems/ratchet_rail.toml).
+inline constexpr int kMaxBackStresses = 10;
 
 // One back-stress of the Chaboche law: modulus C [MPa] and recovery gamma [-] (C/gamma is its
 // saturation in uniaxial stress).
@@ -63,8 +65,10 @@ struct MaterialParams {
   // Back-stresses of the Chaboche law (the first n_chaboche of the array).
   std::array<BackStressLaw, kMaxBackStresses> chaboche{};
   int n_chaboche = 0;
-  Real voce_saturation = 0.0;  // Q [MPa] >= 0 of the Voce isotropic term Q (1 - exp(-b p))
-  Real voce_rate = 0.0;        // b [-] >= 0
+  // Q [MPa] of the Voce isotropic term Q (1 - exp(-b p)): > 0 cyclic hardening, < 0 cyclic
+  // softening (sigma_y0 + Q > 0 then bounds the yield stress from below).
+  Real voce_saturation = 0.0;
+  Real voce_rate = 0.0;  // b [-] >= 0
 
   // Derived quantities.
   Real shear_modulus() const;  // G = E / (2(1+nu))
@@ -82,6 +86,11 @@ struct MaterialParams {
   BackStressLaw back_stress_law(int i) const;
   // True when the isotropic part has a Voce term (Q and b both non-zero).
   bool has_voce() const { return voce_saturation != 0.0 && voce_rate != 0.0; }
+  // The smallest size the yield surface reaches under any plastic flow: sigma_y0, or the saturated
+  // sigma_y0 + Q of a softening Voce term (the yield stress of a shakedown bound).
+  Real lowest_yield_stress() const {
+    return has_voce() && voce_saturation < 0.0 ? yield_stress + voce_saturation : yield_stress;
+  }
   // True when the update has an incremental potential (no Armstrong-Frederick recovery term).
   bool has_potential() const;
 

@@ -7,6 +7,12 @@
 
 namespace roller {
 
+inline std::array<Vec4, kMaxBackStresses> zero_back_stresses() {
+  std::array<Vec4, kMaxBackStresses> a;
+  a.fill(Vec4::Zero());
+  return a;
+}
+
 struct MaterialState {
   // Cauchy stress [xx, yy, zz, xy] in the configuration at the start of the increment, which
   // is the updated-Lagrangian reference; with that reference it is also the second
@@ -17,7 +23,7 @@ struct MaterialState {
   Real yield_stress = 0.0;       // current size of the yield surface sigma_Y(eps_p) (0 for elastic)
   // Back-stresses alpha_i [xx, yy, zz, xy] (deviatoric; the centre of the yield surface is their
   // sum); the first MaterialParams::n_back_stresses() are used, the rest stay zero.
-  std::array<Vec4, kMaxBackStresses> back_stress{Vec4::Zero(), Vec4::Zero(), Vec4::Zero(), Vec4::Zero()};
+  std::array<Vec4, kMaxBackStresses> back_stress = zero_back_stresses();
 };
 
 }  // namespace roller
