@@ -8,6 +8,7 @@
 #include <optional>
 #include <thread>
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -20,6 +21,7 @@
 #include "roller/driver/simulation.hpp"
 #include "roller/io/scene_loader.hpp"
 #include "roller/io/scene_warnings.hpp"
+#include "roller/material/uniaxial_point.hpp"
 #include "scene_from_python.hpp"
 
 namespace py = pybind11;
@@ -107,6 +109,31 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
   return result;
 }
 
+// The scene's material driven in uniaxial stress through axial strains or stresses (rollerpy
+// material-loops): columns of the samples as numpy arrays.
+py::dict uniaxial_path(const Scene& scene, const std::string& control, const std::vector<Real>& turning_points,
+                       int steps_per_branch) {
+  if (control != "strain" && control != "stress")
+    throw InputError("uniaxial_path: control = '" + control + "': expected 'strain' or 'stress'");
+  if (!scene.material.plastic)
+    throw InputError(scene.file.string() + ": [material] has no yield_stress: it is elastic");
+  const std::vector<UniaxialSample> samples =
+      control == "strain" ? uniaxial_strain_path(scene.material, turning_points, steps_per_branch)
+                          : uniaxial_stress_path(scene.material, turning_points, steps_per_branch);
+  auto column = [&](Real UniaxialSample::*field) {
+    py::array_t<Real> a(static_cast<py::ssize_t>(samples.size()));
+    auto v = a.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < samples.size(); ++i) v(static_cast<py::ssize_t>(i)) = samples[i].*field;
+    return a;
+  };
+  py::dict d;
+  d["strain"] = column(&UniaxialSample::strain);
+  d["stress"] = column(&UniaxialSample::stress);
+  d["plastic_strain"] = column(&UniaxialSample::plastic_strain);
+  d["eq_plastic_strain"] = column(&UniaxialSample::eq_plastic_strain);
+  return d;
+}
+
 }  // namespace
 
 }  // namespace roller::python
@@ -132,6 +159,11 @@ PYBIND11_MODULE(_roller, m) {
   m.def("run", &run, py::arg("scene"), py::arg("out") = py::none(), py::arg("overwrite") = false,
         py::arg("progress") = py::none(), py::arg("verbose") = false, py::arg("resume") = false,
         "runs the scene (or resumes it from the folder `out`); its results in memory, and in `out` when given");
+  m.def("uniaxial_path", &uniaxial_path, py::arg("scene"), py::arg("control"), py::arg("turning_points"),
+        py::arg("steps_per_branch") = 50,
+        "the scene's [material] at a point in uniaxial stress, from the virgin state through the axial strains "
+        "(control='strain') or stresses [MPa] (control='stress'); columns strain, stress, plastic_strain, "
+        "eq_plastic_strain");
   m.def("version", [] {
     const BuildInfo b = build_info();
     return py::dict(py::arg("version") = b.version, py::arg("commit") = b.commit, py::arg("ipopt") = b.ipopt_version,

@@ -15,12 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "../support/uniaxial_stress.hpp"
 #include "roller/material/j2_plasticity.hpp"
+#include "roller/material/uniaxial_point.hpp"
 
 using namespace roller;
-using roller::testing::uniaxial_strain_step;
-using roller::testing::uniaxial_stress_step;
 
 namespace {
 

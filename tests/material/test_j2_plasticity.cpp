@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "../support/uniaxial_stress.hpp"
 #include "roller/core/error.hpp"
 #include "roller/material/j2_plasticity.hpp"
+#include "roller/material/uniaxial_point.hpp"
 
 using namespace roller;
 
@@ -209,7 +209,7 @@ TEST_CASE("uniaxial stress follows the bilinear curve, through reverse yielding"
   Real max_lateral_stress = 0.0;
   for (int k = 1; k <= n_load + n_unload; ++k) {
     const Real d = k <= n_load ? eps_max / n_load : -2.0 * eps_max / n_unload;
-    const MaterialUpdate u = testing::uniaxial_strain_step(p, d, state).update;
+    const MaterialUpdate u = uniaxial_strain_step(p, d, state).update;
     state = u.trial;
     strain += d;
     const UniaxialAnswer exact = k <= n_load ? bilinear_loading(p, strain) : bilinear_reversal(p, eps_max, strain);

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "../support/run_scene.hpp"
@@ -15,12 +16,13 @@ using namespace roller;
 namespace {
 
 // The block's mean axial strain E_yy at the end of every step (top displacement / height).
-std::vector<Real> block_strains(const std::vector<SceneOverride>& overrides) {
+std::vector<Real> block_strains(const std::vector<SceneOverride>& overrides,
+                                const std::string& name = "uniaxial_ratchet") {
   // Newton to a relative residual of 1e-12, so that the comparison with the point is not limited
   // by the scene's 1e-8 (amplified by E over the plastic tangent in the strain).
   std::vector<SceneOverride> o = overrides;
   o.push_back({"newton.residual_tolerance", "1e-12"});
-  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/uniaxial_ratchet.toml", o));
+  Simulation sim(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/" + name + ".toml", o));
   const Mesh& mesh = sim.model().mesh();
   std::vector<Real> strains;
   for (int step = 1; step <= sim.scene().total_steps(); ++step) {
@@ -109,5 +111,25 @@ TEST_CASE("uniaxial_ratchet with Prager's linear kinematic hardening closes its 
   for (std::size_t c = 0; c + 1 < change.size(); ++c) {
     INFO("cycle " << c + 1 << ": change " << change[c] << ", then " << change[c + 1]);
     CHECK(change[c + 1] <= std::max(0.1 * change[c], 1e-14));
+  }
+}
+
+TEST_CASE("ratchet_rail: the R260 block follows its material point and ratchets less every cycle",
+          "[scenes][hardening]") {
+  const Scene scene = load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/ratchet_rail.toml");
+  REQUIRE(scene.material.n_back_stresses() == 6);
+  REQUIRE(scene.material.voce_saturation == -40.0);
+  const std::vector<Real> fe = block_strains({}, "ratchet_rail");
+  const std::vector<Real> point = point_strains(scene.material, scene_stress_history(scene));
+  REQUIRE(fe.size() == point.size());
+  for (std::size_t k = 0; k < fe.size(); ++k) CHECK(fe[k] == Approx(point[k]).epsilon(1e-8).margin(1e-10));
+  // The slow back-stresses (gamma = 20 and 0.01) take up the mean stress: the strain at the
+  // sigma_max peaks grows every cycle, by less each time.
+  std::vector<Real> peaks;
+  for (std::size_t k = 19; k < fe.size(); k += 40) peaks.push_back(fe[k]);
+  for (std::size_t c = 1; c + 1 < peaks.size(); ++c) {
+    INFO("cycle " << c + 1 << ": " << peaks[c] - peaks[c - 1] << ", then " << peaks[c + 1] - peaks[c]);
+    CHECK(peaks[c + 1] - peaks[c] > 0.0);
+    CHECK(peaks[c + 1] - peaks[c] < peaks[c] - peaks[c - 1]);
   }
 }
