@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
+#include "roller/core/error.hpp"
 #include "roller/core/json_vectors.hpp"
 
 namespace roller {
@@ -73,13 +75,19 @@ void PassTrack::observe(Real centre_x, const std::vector<Real>& contact_x, const
   for (Real p : contact_pressure) peak_pressure = std::max(peak_pressure, p);
 }
 
+void PassTrack::observe_force(const Vec2& force_on_strip) {
+  if (std::abs(force_on_strip.y()) <= std::abs(largest_force.y())) return;
+  largest_force = force_on_strip;
+}
+
 nlohmann::json PassTrack::save() const {
   return {{"touched", touched},
           {"x_min", x_min},
           {"x_max", x_max},
           {"half_width", half_width},
           {"load_half_width", load_half_width},
-          {"peak_pressure", peak_pressure}};
+          {"peak_pressure", peak_pressure},
+          {"largest_force", {largest_force.x(), largest_force.y()}}};
 }
 
 PassTrack PassTrack::load(const nlohmann::json& j) {
@@ -90,6 +98,8 @@ PassTrack PassTrack::load(const nlohmann::json& j) {
   t.half_width = j.at("half_width").get<Real>();
   t.load_half_width = j.at("load_half_width").get<Real>();
   t.peak_pressure = j.at("peak_pressure").get<Real>();
+  if (j.contains("largest_force"))  // absent in a state file written before it was kept
+    t.largest_force = Vec2(j.at("largest_force").at(0).get<Real>(), j.at("largest_force").at(1).get<Real>());
   return t;
 }
 
@@ -168,6 +178,13 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
   r.residual_shear_strain = weighted_mean(mesh, in_band, [&](Index e) { return mean_shear_strain(strip, e); });
   r.residual_shear_increment =
       r.residual_shear_strain - weighted_mean(mesh, in_band, [&](Index e) { return start.shear_strain[e]; });
+  // The top row: the window's elements at its least depth (Kapoor's ratchetting surface layer).
+  Real top_depth = std::numeric_limits<Real>::infinity();
+  for (Index e = 0; e < mesh.n_elements(); ++e)
+    if (in_window[e]) top_depth = std::min(top_depth, depth[e]);
+  auto in_top_row = [&](Index e) { return in_window[e] && depth[e] <= top_depth + 1e-9 * strip_height; };
+  r.surface_shear_increment =
+      weighted_mean(mesh, in_top_row, [&](Index e) { return mean_shear_strain(strip, e) - start.shear_strain[e]; });
   return r;
 }
 
@@ -199,6 +216,40 @@ std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_heigh
   }
   std::sort(out.begin(), out.end(), [](const DepthSample& p, const DepthSample& q) { return p.depth < q.depth; });
   return out;
+}
+
+void PassCycles::observe(const StripModel& strip, Real strip_height) {
+  const std::vector<DepthSample> column = depth_profile(strip, strip_height, x);
+  if (depths.empty()) {
+    for (const DepthSample& d : column) depths.push_back({d.depth, {}});
+  }
+  ROLLER_ASSERT(column.size() == depths.size(), "a column keeps its elements over a pass");
+  for (std::size_t i = 0; i < column.size(); ++i) depths[i].stress.push_back(column[i].stress);
+}
+
+nlohmann::json PassCycles::save() const {
+  nlohmann::json j;
+  j["x"] = x;
+  j["depths"] = nlohmann::json::array();
+  for (const DepthCycle& d : depths) {
+    std::vector<Real> flat;
+    for (const Vec4& s : d.stress) flat.insert(flat.end(), s.data(), s.data() + 4);
+    j["depths"].push_back({{"depth", d.depth}, {"stress", to_list(flat)}});
+  }
+  return j;
+}
+
+PassCycles PassCycles::load(const nlohmann::json& j) {
+  PassCycles c;
+  c.x = j.at("x").get<Real>();
+  for (const nlohmann::json& d : j.at("depths")) {
+    const std::vector<Real> flat = to_reals(d.at("stress"));
+    DepthCycle cycle{d.at("depth").get<Real>(), {}};
+    for (std::size_t k = 0; k + 3 < flat.size(); k += 4)
+      cycle.stress.emplace_back(flat[k], flat[k + 1], flat[k + 2], flat[k + 3]);
+    c.depths.push_back(std::move(cycle));
+  }
+  return c;
 }
 
 }  // namespace roller

@@ -113,6 +113,7 @@ Row pass_row(int step, const PassRecord& r) {
           {"shear_depth", "mm", r.shear_depth},
           {"residual_shear_strain", "1", r.residual_shear_strain},
           {"residual_shear_increment", "1", r.residual_shear_increment},
+          {"surface_shear_increment", "1", r.surface_shear_increment},
           {"peak_pressure", "MPa", r.peak_pressure},
           {"contact_half_width", "mm", r.contact_half_width},
           {"track_start", "mm", r.track_start},
@@ -135,10 +136,27 @@ Row depth_row(int step, int pass, Real x, const DepthSample& d) {
           {"back_xy", "MPa", d.back_stress(3)}};
 }
 
+Row fatigue_row(int step, int pass, Real x, const FatigueAtDepth& d) {
+  return {{"step", "-", Index{step}},
+          {"pass", "-", Index{pass}},
+          {"x", "mm", x},
+          {"depth", "mm", d.depth},
+          {"dang_van", "MPa", d.dang_van.value},
+          {"dang_van_index", "1", d.dang_van_index},
+          {"dang_van_shear", "MPa", d.dang_van.shear},
+          {"dang_van_hydrostatic", "MPa", d.dang_van.hydrostatic},
+          {"path_radius", "MPa", d.dang_van.radius},
+          {"shear_amplitude", "MPa", d.subsurface.shear_amplitude},
+          {"max_hydrostatic", "MPa", d.subsurface.max_hydrostatic},
+          {"fi_sub", "MPa", d.subsurface.value},
+          {"fi_sub_index", "1", d.subsurface_index}};
+}
+
 std::vector<OutputTable> tables_of(const Scene& scene) {
   std::vector<OutputTable> tables{OutputTable::Solver};
   if (scene.roller) tables.insert(tables.end(), {OutputTable::Contact, OutputTable::Roller});
   if (scene.passes.count > 1) tables.insert(tables.end(), {OutputTable::Passes, OutputTable::ResidualDepth});
+  if (scene.fatigue) tables.push_back(OutputTable::Fatigue);
   return tables;
 }
 
@@ -149,6 +167,7 @@ Row empty_row(OutputTable table) {
     case OutputTable::Roller: return roller_row(0, 1, 0.0, Simulation::RollerRecord{});
     case OutputTable::Passes: return pass_row(0, PassRecord{});
     case OutputTable::ResidualDepth: return depth_row(0, 1, 0.0, DepthSample{});
+    case OutputTable::Fatigue: return fatigue_row(0, 1, 0.0, FatigueAtDepth{});
   }
   return {};
 }

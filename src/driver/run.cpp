@@ -15,6 +15,7 @@
 
 #include "file_outputs.hpp"
 #include "output_folder.hpp"
+#include "pass_fatigue.hpp"
 #include "roller/core/error.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
@@ -138,6 +139,7 @@ std::string summary_json(const Simulation& sim, const RunSummary& summary, int f
     if (const std::optional<Real> ratio = p0_over_k(scene)) j["passes"]["p0_over_k"] = *ratio;
     if (const std::optional<TrackEnds> track = last_track(sim)) j["passes"]["track"] = track->to_json();
   }
+  if (const std::optional<FatigueAnswer>& f = sim.state().fatigue) j["fatigue"] = *f;
   return j.dump(2) + "\n";
 }
 
@@ -279,6 +281,7 @@ RunSummary Simulation::run(const RunOptions& options) {
                                    enum_name(summary.verdict->verdict), summary.verdict->criterion);
     if (const std::optional<TrackEnds> track = last_track(*this); track && track->kind == TrackKind::Finite)
       summary.message += "; " + track->note();
+    if (const std::optional<FatigueAnswer>& f = run_->state.fatigue) summary.message += "; " + describe(*f);
   }
   if (files) write_summary(summary_file, *this, summary, first_step, resumed);
   return summary;

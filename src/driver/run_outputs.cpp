@@ -116,6 +116,8 @@ void RunOutputs::write_step(const Simulation::StepRecord& step) {
     add_row(OutputTable::Passes, pass_row(step.step, r));
     for (const DepthSample& d : step.pass_end->profile)
       add_row(OutputTable::ResidualDepth, depth_row(step.step, r.pass, step.pass_end->profile_x, d));
+    if (const std::optional<PassFatigue>& f = step.pass_end->fatigue)
+      for (const FatigueAtDepth& d : f->depths) add_row(OutputTable::Fatigue, fatigue_row(step.step, r.pass, f->x, d));
   }
   if (step.roller) {
     for (const auto& c : step.contact) add_row(OutputTable::Contact, contact_row(step.step, step.pass, c));

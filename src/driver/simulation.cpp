@@ -3,6 +3,7 @@
 #include <memory>
 #include <utility>
 
+#include "pass_fatigue.hpp"
 #include "roller/contact/backend_factory.hpp"
 #include "roller/io/roller_start.hpp"
 #include "roller/io/scene_strip.hpp"
@@ -30,6 +31,8 @@ Simulation::Simulation(Scene scene) : run_(std::make_unique<RunModel>()) {
   run.dynamics = DynamicsState(*run.strip, sc.dynamics.strip_inertia, sc.dynamics.lumped_mass,
                                sc.roller ? sc.roller->suspension : std::nullopt, sc.steps.dt);
   if (sc.passes.count > 1) run.state.pass_baseline = PassBaseline::of(*run.strip);
+  if (sc.fatigue && sc.passes.method == PassMethod::Transient)  // the first pass's cycle from the strip as found
+    run.state.pass_cycles = start_cycles(sc, run.program, 1, *run.strip);
   method_ =
       sc.passes.method == PassMethod::Stationary ? make_stationary_steps(run) : make_transient_steps(run, *increments_);
 }

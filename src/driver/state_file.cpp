@@ -1,10 +1,14 @@
 // State files of a Simulation (simulation.hpp): CBOR documents (nlohmann::json's binary
 // encoding keeps doubles exact) holding everything the next step reads.
+#include <cmath>
 #include <fstream>
+#include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "pass_fatigue.hpp"
 #include "roller/core/error.hpp"
 #include "roller/core/json_vectors.hpp"
 #include "roller/driver/simulation.hpp"
@@ -15,10 +19,12 @@
 
 namespace roller {
 
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(PassRecord, pass, max_plastic_increment, mean_plastic_increment,
-                                   band_plastic_increment, surface_ux, surface_uy, surface_dux, surface_duy,
-                                   shear_depth, residual_shear_strain, residual_shear_increment, peak_pressure,
-                                   contact_half_width, track_start, track_end)
+// With defaults: a state file written before a field was added reads it as zero.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PassRecord, pass, max_plastic_increment, mean_plastic_increment,
+                                                band_plastic_increment, surface_ux, surface_uy, surface_dux,
+                                                surface_duy, shear_depth, residual_shear_strain,
+                                                residual_shear_increment, surface_shear_increment, peak_pressure,
+                                                contact_half_width, track_start, track_end)
 
 namespace {
 
@@ -69,6 +75,8 @@ void save_run_state(const RunState& s, bool multi_pass, nlohmann::json& j) {
     j["pass_track"] = s.pass_track.save();
     j["pass_baseline"] = s.pass_baseline.save();
     j["pass_records"] = s.pass_records;
+    j["pass_cycles"] = s.pass_cycles.save();
+    if (s.fatigue) j["fatigue"] = *s.fatigue;
   }
   j["totals"] = {
       {"iterations", s.totals.iterations}, {"cuts", s.totals.cuts}, {"max_penetration", s.totals.max_penetration}};
@@ -94,6 +102,8 @@ void load_run_state(const nlohmann::json& j, bool multi_pass, RunState& s) {
     s.pass_track = PassTrack::load(j.at("pass_track"));
     s.pass_baseline = PassBaseline::load(j.at("pass_baseline"));
     s.pass_records = j.at("pass_records").get<std::vector<PassRecord>>();
+    if (j.contains("pass_cycles")) s.pass_cycles = PassCycles::load(j.at("pass_cycles"));  // since 2026-12-02
+    if (j.contains("fatigue")) s.fatigue = j.at("fatigue").get<FatigueAnswer>();
   }
   if (j.contains("totals")) {  // files of roller before 2026-11-26 hold none
     const nlohmann::json& t = j.at("totals");

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include "pass_fatigue.hpp"
 #include "roller/analysis/pass_metrics.hpp"
 #include "roller/io/field_output.hpp"
 #include "roller/steady/stationary_passes.hpp"
@@ -30,6 +31,9 @@ class StationarySteps final : public StepMethod {
     res.pass = step;
     res.time = step * run_.scene.steps.dt;
     const PassBaseline baseline = PassBaseline::of(*run_.strip);
+    const std::vector<DepthSample> at_start =  // the fatigue cycle's start
+        run_.scene.fatigue ? depth_profile(*run_.strip, run_.scene.mesh.height, passes.extraction_x())
+                           : std::vector<DepthSample>{};
     const StationaryPasses::Pass pass =
         passes.run(*run_.strip, run_.state.next_pass_start, control.progress, control.stop);
     res.counters.iterations = pass.solve.iterations;
@@ -80,6 +84,14 @@ class StationarySteps final : public StepMethod {
     end.record = measure_pass(step, *run_.strip, run_.scene.mesh.height, track, baseline);
     end.profile_x = passes.extraction_x();
     end.profile = depth_profile(*run_.strip, run_.scene.mesh.height, end.profile_x);
+    if (run_.scene.fatigue) {  // the cycle every point of a row takes through the steady pass
+      Vec2 on_strip = Vec2::Zero();
+      for (const NodeContactRecord& c : passes.contact()) on_strip += c.force;
+      end.fatigue = fatigue_of_pass(
+          run_.scene, end.record, end.profile_x,
+          framed(passes.cycles(pass.solve.states, run_.scene.mesh.height), at_start, end.profile), on_strip);
+      run_.state.fatigue = answer_of(*end.fatigue);
+    }
     run_.state.pass_records.push_back(end.record);
     if (run_.scene.passes.count > 1) res.pass_end = end;
     run_.record_state(res, program_step_);

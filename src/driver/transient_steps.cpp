@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "pass_fatigue.hpp"
 #include "roller/analysis/hertz.hpp"
 #include "step_method.hpp"
 #include "transient_increments.hpp"
@@ -126,12 +127,25 @@ class TransientSteps final : public StepMethod {
     const Real load_half_width =
         force > 0.0 ? hertz_line_contact(force, run_.scene.roller->radius, e_star).half_width : 0.0;
     run_.state.pass_track.observe(run_.state.pose.centre.x(), x, p, load_half_width);
+    Vec2 on_strip = Vec2::Zero();  // the roller's force on the strip
+    for (const auto& c : run_.state.contact) on_strip += c.force;
+    run_.state.pass_track.observe_force(on_strip);
+    const int pass = run_.program.pass_of_step(step);
+    if (run_.scene.fatigue) run_.state.pass_cycles.observe(*run_.strip, run_.scene.mesh.height);
     if (!run_.program.ends_pass(step)) return std::nullopt;
     StepRecord::PassEnd end;
-    end.record = measure_pass(run_.program.pass_of_step(step), *run_.strip, run_.scene.mesh.height,
-                              run_.state.pass_track, run_.state.pass_baseline);
+    end.record =
+        measure_pass(pass, *run_.strip, run_.scene.mesh.height, run_.state.pass_track, run_.state.pass_baseline);
     end.profile_x = 0.5 * (end.record.track_start + end.record.track_end);
     end.profile = depth_profile(*run_.strip, run_.scene.mesh.height, end.profile_x);
+    if (run_.scene.fatigue) {
+      end.fatigue = fatigue_of_pass(run_.scene, end.record, run_.state.pass_cycles.x, run_.state.pass_cycles.depths,
+                                    run_.state.pass_track.largest_force);
+      run_.state.fatigue = answer_of(*end.fatigue);
+      // The next pass's cycle starts where this one ends: the roller lifted.
+      if (pass < run_.scene.passes.count)
+        run_.state.pass_cycles = start_cycles(run_.scene, run_.program, pass + 1, *run_.strip);
+    }
     run_.state.pass_records.push_back(end.record);
     run_.state.pass_track = PassTrack{};
     run_.state.pass_baseline = PassBaseline::of(*run_.strip);

@@ -68,8 +68,11 @@ constexpr Real kMaxLength = 1e9;    // mm
 constexpr Real kMinLength = 1e-6;   // mm
 constexpr Real kMaxModulus = 1e9;   // MPa
 constexpr Real kMinModulus = 1e-6;  // MPa (1 Pa: below foams; 1e-308 underflowed the stresses)
-constexpr Real kMaxDensity = 1e-3;  // t/mm^3 (osmium: 2.3e-8)
-constexpr Real kMaxTime = 1e9;      // s
+// A fatigue limit above any metal's strength (steels' shear fatigue limits are a few hundred MPa):
+// a larger value is one in Pa.
+constexpr Real kMaxFatigueLimit = 1e4;  // MPa
+constexpr Real kMaxDensity = 1e-3;      // t/mm^3 (osmium: 2.3e-8)
+constexpr Real kMaxTime = 1e9;          // s
 // A nanosecond is far below any step of a rolling or impact scene (Z4: 1e-6 s); at dt = 1e-308
 // the inertia M/dt^2 overflowed and the contact solve failed without naming dt.
 constexpr Real kMinTime = 1e-12;       // s
@@ -788,6 +791,29 @@ std::vector<SceneKey> make_keys() {
           "passes.until_verdict", [](auto& s) -> auto& { return s.passes.until_verdict; },
           "stop after the first pass that decides the shakedown verdict (at most count passes)"),
 
+      // [fatigue]
+      key(
+          "fatigue.dang_van_a", [](auto& s) -> auto& { return s.fatigue->dang_van_a; },
+          "Dang Van's weight a_DV of the hydrostatic stress in tau + a_DV sigma_h [-] (steels ~0.3)", closed(0.0, 10.0))
+          .required("Dang Van's a_DV is required in [fatigue] (steels ~0.3)"),
+      key(
+          "fatigue.dang_van_limit", [](auto& s) -> auto& { return s.fatigue->dang_van_limit; },
+          "Dang Van's shear fatigue limit tau_w [MPa] (the index is max(tau + a_DV sigma_h) / tau_w)",
+          with_hint(closed(kMinModulus, kMaxFatigueLimit), "tau_w in Pa? roller works in MPa"))
+          .required("Dang Van's shear fatigue limit tau_w [MPa] is required in [fatigue]"),
+      key(
+          "fatigue.shear_fatigue_limit", [](auto& s) -> auto& { return s.fatigue->shear_fatigue_limit; },
+          "Ekberg's subsurface fatigue limit tau_e [MPa] (the index is FI_sub / tau_e)",
+          with_hint(closed(kMinModulus, kMaxFatigueLimit), "tau_e in Pa? roller works in MPa"))
+          .required("Ekberg's shear fatigue limit tau_e [MPa] is required in [fatigue]"),
+      key(
+          "fatigue.critical_shear_strain", [](auto& s) -> auto& { return s.fatigue->critical_shear_strain; },
+          "Kapoor's critical shear strain gamma_c [-]: the surface's ductility (passes to initiation = gamma_c / its "
+          "shear strain per pass)",
+          closed(1e-6, 1e3))
+          .required("Kapoor's critical shear strain gamma_c is required in [fatigue] (a number of order 10 for a rail "
+                    "steel)"),
+
       // [newton]
       key(
           "newton.max_iterations", [](auto& s) -> auto& { return s.newton.max_iterations; },
@@ -1187,6 +1213,18 @@ std::vector<SceneTable> make_tables() {
                                    enum_name(scene.mesh.element)));
   };
   passes.count = [](const Scene& s) -> std::size_t { return s.passes.count > 1; };
+  SceneTable& fatigue = add("fatigue");
+  fatigue.enter = [](TomlSection&, Scene& scene) { scene.fatigue.emplace(); };
+  fatigue.check = [](TomlSection& s, Scene& scene, Ref) {
+    std::string why;
+    if (!scene.fatigue->is_valid(&why)) s.fail_invalid(why, {});
+    // The indices judge the stabilised pass, and a pass's start is the last one's end.
+    if (scene.passes.count < 2)
+      s.fail("dang_van_a", fmt::format("[fatigue] judges a repeated pass: set passes.count >= 2 (it is {}) and "
+                                       "the indices of every pass go to fatigue.csv",
+                                       scene.passes.count));
+  };
+  fatigue.count = [](const Scene& s) -> std::size_t { return s.fatigue.has_value(); };
   add("newton").check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
     if (!scene.newton.is_valid(&why)) s.fail_invalid(why, {});

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <ostream>
 
 #include <fmt/format.h>
@@ -144,6 +145,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model, 
   // Half-way between the contact's trailing edge and the strip's downstream end.
   extraction_x_ = 0.5 * (centre_x_ - travel_ * hertz_.half_width + strip_.end_x(StationaryStrip::End::Downstream));
   const Index base_points = model.mesh().n_elements() * strip_.points_per_element();
+  base_points_ = base_points;
   extraction_ = extraction_points(strip_, base_points, extraction_x_);
   TravelLoad load = travel_load(phased_, model.mesh(), hertz_, steady, travel_, centre_x_);
   contact_ = std::move(load.contact);
@@ -227,6 +229,32 @@ std::vector<Vec4> strains_of(const std::vector<LongTrackState>& track) {
 }
 
 }  // namespace
+
+std::vector<DepthCycle> StationaryPasses::cycles(const std::vector<MaterialState>& states, Real strip_height) const {
+  const int per_element = strip_.points_per_element();
+  std::map<Index, std::vector<const Streamline*>> rows;  // by the row's first element
+  for (const Streamline& lane : strip_.streamlines())
+    if (!lane.points.empty() && lane.points.front() < base_points_)
+      rows[lane.points.front() / per_element].push_back(&lane);
+  std::vector<DepthCycle> out;
+  for (const auto& [first, lanes] : rows) {
+    DepthCycle cycle;
+    Real y = 0.0;
+    const std::size_t n = lanes.front()->points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      Vec4 mean = Vec4::Zero();
+      for (const Streamline* lane : lanes) {
+        mean += states[static_cast<std::size_t>(lane->points[k])].stress;
+        y += strip_.point_position(lane->points[k]).y();
+      }
+      cycle.stress.push_back(mean / static_cast<Real>(lanes.size()));
+    }
+    cycle.depth = strip_height - y / static_cast<Real>(n * lanes.size());
+    out.push_back(std::move(cycle));
+  }
+  std::sort(out.begin(), out.end(), [](const DepthCycle& p, const DepthCycle& q) { return p.depth < q.depth; });
+  return out;
+}
 
 StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX& start, std::ostream* progress,
                                              const std::atomic<int>* stop) {

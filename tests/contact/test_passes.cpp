@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -28,8 +29,8 @@ const std::string kPass =
 
 SceneOverride override_of(const std::string& text) { return parse_override(text); }
 
-// The largest |value| of a column of a CSV file with a header row.
-Real column_peak(const std::string& csv, const std::string& column) {
+// A column of a CSV file with a header row, row by row.
+std::vector<Real> column_values(const std::string& csv, const std::string& column) {
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
@@ -39,13 +40,20 @@ Real column_peak(const std::string& csv, const std::string& column) {
     ++index;
     if (name == column) break;
   }
-  Real peak = 0.0;
+  std::vector<Real> values;
   while (std::getline(in, line)) {
     std::istringstream row(line);
     std::string cell;
     for (int i = 0; i <= index; ++i) std::getline(row, cell, ',');
-    peak = std::max(peak, std::abs(std::stod(cell)));
+    values.push_back(std::stod(cell));
   }
+  return values;
+}
+
+// The largest |value| of a column of a CSV file with a header row.
+Real column_peak(const std::string& csv, const std::string& column) {
+  Real peak = 0.0;
+  for (const Real v : column_values(csv, column)) peak = std::max(peak, std::abs(v));
   return peak;
 }
 
@@ -95,7 +103,10 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
       "run problems/rolling_friction.toml --set material.yield_stress=600.0 --set "
       "material.tangent_modulus=2100.0 --set steps.count=8 --set passes.count=3 --set "
       "'" +
-      kPass + "' --set output.save_states=[12] --set output.vtu=false --out ";
+      kPass +
+      "' --set output.save_states=[12] --set output.vtu=false --set fatigue.dang_van_a=0.3 --set "
+      "fatigue.dang_van_limit=300.0 --set fatigue.shear_fatigue_limit=300.0 --set fatigue.critical_shear_strain=11.0 "
+      "--out ";
   const test::Run r = test::run_roller(run + whole.string());
   INFO(r.output);
   REQUIRE(r.exit_code == 0);
@@ -107,8 +118,20 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   const auto depth_rows = std::count(depth.begin(), depth.end(), '\n') - 1;
   CHECK(depth_rows % 3 == 0);
   CHECK(depth_rows >= 3 * 30);  // the strip's 30 rows of elements (mesh ny)
+  // The fatigue indices: the same column's depths after every pass, the last pass's answer in
+  // summary.json and on the answer line.
+  const std::string fatigue = test::read_text(whole / "fatigue.csv");
+  CHECK(std::count(fatigue.begin(), fatigue.end(), '\n') - 1 == depth_rows);
   const auto summary = nlohmann::json::parse(test::read_text(whole / "summary.json"));
   CHECK(summary["passes"]["count"] == 3);
+  CHECK(summary["fatigue"]["pass"] == 3);
+  CHECK(summary["fatigue"]["dang_van_index"].get<double>() > 0.0);
+  CHECK(summary["fatigue"]["peak_pressure"].get<double>() > 0.0);
+  CHECK_THAT(r.output, Catch::Contains("fatigue of pass 3: Dang Van"));
+  // Kapoor's life by hand from passes.csv: gamma_c over the last pass's surface shear.
+  const Real surface_shear = column_values(passes, "surface_shear_increment").back();
+  REQUIRE(surface_shear != 0.0);
+  CHECK(summary["fatigue"]["ratchetting_life"].get<double>() == Approx(11.0 / std::abs(surface_shear)).epsilon(1e-6));
   // Three passes of a hardening strip whose increments still fall: a verdict on the increments
   // (here "still falls ... run more passes"), not the one for too few passes.
   const std::string criterion = summary["passes"]["criterion"].get<std::string>();
@@ -128,10 +151,11 @@ TEST_CASE("passes: a plastic three-pass run writes per-pass files and resumes mi
   INFO(resumed.output);
   REQUIRE(resumed.exit_code == 0);
   CHECK_THAT(resumed.output, Catch::Contains("resuming after step 12"));
-  for (const char* f : {"passes.csv", "residual_depth.csv", "roller.csv", "contact.csv"})
+  for (const char* f : {"passes.csv", "residual_depth.csv", "fatigue.csv", "roller.csv", "contact.csv"})
     CHECK(test::read_text(split / f) == test::read_text(whole / f));
   const auto resumed_summary = nlohmann::json::parse(test::read_text(split / "summary.json"));
   CHECK(resumed_summary["passes"] == summary["passes"]);
+  CHECK(resumed_summary["fatigue"] == summary["fatigue"]);
 }
 
 TEST_CASE("a force-loaded roller resumes on the strip to the same bytes", "[contact][passes][force]") {

@@ -67,6 +67,11 @@ q4_formulation = "standard"
 [passes]
 count = 2
 direction = "alternate"
+[fatigue]
+dang_van_a = 0.3
+dang_van_limit = 300.0
+shear_fatigue_limit = 250.0
+critical_shear_strain = 11.0
 [steps]
 count = 5
 dt = 1e-4
@@ -391,4 +396,38 @@ TEST_CASE("a load history is piecewise linear through (0, 0), held after its las
   // A point on the way as large as the strip is refused, not only the last one.
   CHECK_THROWS_WITH(parse_scene(base + "y = { history = [[2, 1.5], [4, 0.1]] }\n", "h.toml"),
                     Catch::Contains("mesh.height"));
+}
+
+TEST_CASE("[fatigue]: every criterion constant is required and physical, and a single pass is refused",
+          "[io][scene][keys][fatigue]") {
+  const std::string scene = test::read_text(std::string(ROLLER_SOURCE_DIR) + "/problems/shakedown_p45.toml");
+  const std::string fatigue =
+      "\n[fatigue]\ndang_van_a = 0.3\ndang_van_limit = 300.0\nshear_fatigue_limit = 250.0\n"
+      "critical_shear_strain = 11.0\n";
+  REQUIRE(error_of(scene + fatigue).empty());
+  const Scene loaded = parse_scene(scene + fatigue, "f.toml");
+  REQUIRE(loaded.fatigue);
+  CHECK(loaded.fatigue->shear_fatigue_limit == 250.0);
+  // Each key missing: named, with what it is.
+  for (const char* key : {"dang_van_a", "dang_van_limit", "shear_fatigue_limit", "critical_shear_strain"}) {
+    std::string without = fatigue;
+    const auto at = without.find(key);
+    without.erase(at, without.find('\n', at) + 1 - at);
+    INFO(key);
+    CHECK_THAT(error_of(scene + without),
+               Catch::Contains(std::string("fatigue.") + key) && Catch::Contains("is required in [fatigue]"));
+  }
+  // Non-physical values: the key, the value and the bound.
+  CHECK_THAT(error_of(scene + fatigue, {{"fatigue.dang_van_a", "-0.1"}}),
+             Catch::Contains("fatigue.dang_van_a") && Catch::Contains("-0.1"));
+  CHECK_THAT(error_of(scene + fatigue, {{"fatigue.dang_van_limit", "0.0"}}), Catch::Contains("fatigue.dang_van_limit"));
+  CHECK_THAT(error_of(scene + fatigue, {{"fatigue.shear_fatigue_limit", "-5.0"}}),
+             Catch::Contains("fatigue.shear_fatigue_limit"));
+  CHECK_THAT(error_of(scene + fatigue, {{"fatigue.critical_shear_strain", "0.0"}}),
+             Catch::Contains("fatigue.critical_shear_strain"));
+  // A limit in Pa: the likely unit.
+  CHECK_THAT(error_of(scene + fatigue, {{"fatigue.dang_van_limit", "3e8"}}), Catch::Contains("MPa"));
+  // One pass has no stabilised cycle to judge.
+  CHECK_THAT(error_of(scene + fatigue, {{"passes.count", "1"}}),
+             Catch::Contains("[fatigue] judges a repeated pass") && Catch::Contains("passes.count >= 2"));
 }

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "roller/analysis/fatigue.hpp"
 #include "roller/analysis/shakedown.hpp"
 #include "roller/assembly/strip_model.hpp"
 
@@ -14,15 +15,18 @@ namespace roller {
 // The contact during a pass: where the roller rolled while touching, how wide and hard it pressed.
 struct PassTrack {
   bool touched = false;
-  Real x_min = 0.0, x_max = 0.0;  // roller centre x at the steps with contact [mm]
-  Real half_width = 0.0;          // largest contact half-width, from the outermost nodes in contact [mm]
-  Real load_half_width = 0.0;     // Hertz's half-width of the largest normal contact force [mm]
-  Real peak_pressure = 0.0;       // largest nodal contact pressure [MPa]
+  Real x_min = 0.0, x_max = 0.0;      // roller centre x at the steps with contact [mm]
+  Real half_width = 0.0;              // largest contact half-width, from the outermost nodes in contact [mm]
+  Real load_half_width = 0.0;         // Hertz's half-width of the largest normal contact force [mm]
+  Real peak_pressure = 0.0;           // largest nodal contact pressure [MPa]
+  Vec2 largest_force = Vec2::Zero();  // the roller's force on the strip at the step it pressed hardest [N/mm]
 
   // One step: the centre's x, the x of the nodes in contact with their pressures, and Hertz's
   // half-width of the step's normal contact force.
   void observe(Real centre_x, const std::vector<Real>& contact_x, const std::vector<Real>& contact_pressure,
                Real step_load_half_width);
+  // One step's force of the roller on the strip: kept when it presses harder than any before.
+  void observe_force(const Vec2& force_on_strip);
   nlohmann::json save() const;
   static PassTrack load(const nlohmann::json& j);
 };
@@ -55,5 +59,16 @@ struct DepthSample {
   Vec4 back_stress = Vec4::Zero();  // mean centre of the yield surface, sum of back-stresses [MPa]
 };
 std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_height, Real x);
+
+// The stress cycle of a pass at one column of elements (x), depth by depth, fed step by step:
+// what the fatigue indices of a transient pass judge (analysis/fatigue.hpp).
+struct PassCycles {
+  Real x = 0.0;
+  std::vector<DepthCycle> depths;  // by depth, as depth_profile orders them
+
+  void observe(const StripModel& strip, Real strip_height);  // appends the column's element means
+  nlohmann::json save() const;
+  static PassCycles load(const nlohmann::json& j);
+};
 
 }  // namespace roller

@@ -27,6 +27,7 @@ struct PassRecord {
   Real shear_depth = 0.0;                   // 0.78 a below the surface [mm]
   Real residual_shear_strain = 0.0;         // band mean of 2 eps_xy after the pass
   Real residual_shear_increment = 0.0;      // its change over the pass
+  Real surface_shear_increment = 0.0;       // the window's top row of elements: change of 2 eps_xy over the pass
   Real peak_pressure = 0.0;                 // largest nodal contact pressure of the pass [MPa]
   Real contact_half_width = 0.0;            // largest a of the pass [mm]
   Real track_start = 0.0, track_end = 0.0;  // x of the window [mm]

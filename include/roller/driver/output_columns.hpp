@@ -28,24 +28,26 @@ Row contact_row(int step, int pass, const NodeContactRecord& c);
 Row roller_row(int step, int pass, Real time, const Simulation::RollerRecord& r);
 Row pass_row(int step, const PassRecord& r);
 Row depth_row(int step, int pass, Real x, const DepthSample& d);
+Row fatigue_row(int step, int pass, Real x, const FatigueAtDepth& d);
 
 // Contact pressure and tangential traction of a node [MPa]: its forces over its tributary length
 // (contact.csv's p_n, p_t and the VTU's contact fields).
 Vec2 tractions(const NodeContactRecord& c);
 
-enum class OutputTable { Solver, Contact, Roller, Passes, ResidualDepth };
+enum class OutputTable { Solver, Contact, Roller, Passes, ResidualDepth, Fatigue };
 template <>
 struct EnumNames<OutputTable> {
-  static constexpr std::array<std::pair<OutputTable, const char*>, 5> names{
+  static constexpr std::array<std::pair<OutputTable, const char*>, 6> names{
       {{OutputTable::Solver, "solver"},
        {OutputTable::Contact, "contact"},
        {OutputTable::Roller, "roller"},
        {OutputTable::Passes, "passes"},
-       {OutputTable::ResidualDepth, "residual_depth"}}};
+       {OutputTable::ResidualDepth, "residual_depth"},
+       {OutputTable::Fatigue, "fatigue"}}};
 };
 
 // The tables a scene's run fills: solver always, contact and roller with a roller, passes and
-// residual_depth with more than one pass.
+// residual_depth with more than one pass, fatigue with [fatigue].
 std::vector<OutputTable> tables_of(const Scene& scene);
 // A table's columns (the names of a row of an empty record) and its file in the output folder.
 Row empty_row(OutputTable table);

@@ -3,6 +3,7 @@
 // strip_model.hpp, its own transactional commit) nor the dynamics histories (dynamics/
 // dynamics_state.hpp): one value, so that a copy is the undo of a step and the state files
 // serialise it whole (driver/state_file.cpp).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,10 @@ struct RunState {
   PassTrack pass_track;
   PassBaseline pass_baseline;
   std::vector<PassRecord> pass_records;
+  // With [fatigue]: the transient pass's stress cycle so far (at the track's middle), and the last
+  // pass's answer.
+  PassCycles pass_cycles;
+  std::optional<FatigueAnswer> fatigue;
   // The run-time monitor's warnings so far (each kind once; summary.json lists them), and whether
   // the once-a-run warning of operator A's pointwise loss is among them.
   std::vector<std::string> warnings;

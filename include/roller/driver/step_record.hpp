@@ -46,6 +46,7 @@ struct StepRecord {
     PassRecord record;
     Real profile_x = 0.0;
     std::vector<DepthSample> profile;
+    std::optional<PassFatigue> fatigue;  // with [fatigue]
   };
   std::optional<PassEnd> pass_end;
   // The state at the end of the step (as it stands after a failed one): the contact of its

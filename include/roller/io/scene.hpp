@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "roller/analysis/fatigue.hpp"
 #include "roller/contact/contact_options.hpp"
 #include "roller/contact/roller.hpp"
 #include "roller/core/enum_names.hpp"
@@ -149,6 +150,8 @@ struct Scene {
   std::optional<RollerSpec> roller;  // absent: no contact
   PassSpec passes;                   // the roller's path repeated (steps.count steps per pass)
   ContactOptions contact;
+  // [fatigue]: the fatigue indices of every pass (docs/model.md, Fatigue); absent: none.
+  std::optional<FatigueParams> fatigue;
   // Start from the strip state saved by another run (state file; roller and friction history
   // start afresh): [restart] from = "...", resolved against the scene file's folder.
   std::filesystem::path initial_state;

@@ -22,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include "roller/analysis/fatigue.hpp"
 #include "roller/analysis/hertz.hpp"
 #include "roller/assembly/phased_strip.hpp"
 #include "roller/assembly/stationary_strip.hpp"
@@ -60,6 +61,10 @@ class StationaryPasses {
   // signal's number in `stop` ends the iteration as interrupted (checked every iteration).
   Pass run(const StripModel& strip, const VecX& start, std::ostream* progress, const std::atomic<int>* stop);
 
+  // A pass's stress cycles by depth (its states): along each row of elements of the strip (the
+  // first copy), the element means from upstream to downstream, the path every point of the row
+  // takes through the steady pass. `strip_height`: the depth's origin.
+  std::vector<DepthCycle> cycles(const std::vector<MaterialState>& states, Real strip_height) const;
   const HertzSolution& hertz() const { return hertz_; }
   Real centre_x() const { return centre_x_; }
   Real extraction_x() const { return extraction_x_; }
@@ -96,6 +101,7 @@ class StationaryPasses {
   // Makes the correction on the roller's contact (passes.stationary_contact = "roller"), one a pass.
   std::function<std::unique_ptr<RollerCorrection>()> new_roller_correction_;
   std::optional<RollerPose> pose_;  // the roller's, with the roller's contact
+  Index base_points_ = 0;           // the strip's points (the first copy's)
   std::vector<Index> extraction_;   // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;
   VecX elastic_load_, elastic_displacement_;  // elastic_displacement()'s last load, and its displacement
