@@ -65,3 +65,30 @@ def test_residual_depth_leaves_out_a_vanishing_shear_and_ends_below_what_the_pas
     assert "sxy" in sheared.keys and sheared.note == ""
     assert sheared.depth == 16.0  # sigma_xy reaches the bottom
     assert passes.depth_panels(rows(0.0), cap=2.0).depth == 2.0
+
+
+def test_a_run_with_fatigue_draws_its_indices_and_says_its_surface_and_life(tmp_path):
+    out = str(tmp_path / "fatigue")
+    write_run(out, "wheel_rail_r260", "tangent_modulus = 0.0", [3e-3, 2e-3])
+    with open(os.path.join(out, "fatigue.csv"), "w") as f:
+        f.write("step,pass,x,depth,dang_van,dang_van_index,dang_van_shear,dang_van_hydrostatic,path_radius,"
+                "shear_amplitude,max_hydrostatic,fi_sub,fi_sub_index\n")
+        for p in (1, 2):
+            for depth in (0.4, 1.2, 2.0, 5.0, 20.0, 80.0):
+                index = 1.5 / (1.0 + depth / 2.0)
+                f.write("%d,%d,100,%g,%g,%g,300,-200,250,280,-100,300,%g\n"
+                        % (21 * p, p, depth, 300 * index, index, 1.1 * index))
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        f.write('{"scene": "wheel_rail_r260", "passes": {"verdict": "ratchetting"}, "fatigue": {"pass": 2, '
+                '"surface_index": 0.39, "traction_coefficient": 0.5, "shear_yield": 161.7, '
+                '"peak_pressure": 1408.6, "ratchetting_life": 208.0}}')
+    written = passes.plot(out)
+    assert os.path.join(out, "fatigue.png") in written
+    assert os.path.getsize(os.path.join(out, "fatigue.png")) > 10000
+    title = passes.fatigue_title("t", {"pass": 2, "surface_index": 0.39, "traction_coefficient": 0.5,
+                                       "shear_yield": 161.7, "peak_pressure": 1408.6, "ratchetting_life": None})
+    assert "FI_surf 0.39" in title and "k/p0 = 0.115" in title and "no surface ratchet" in title
+    # A run without [fatigue] draws no fatigue figure.
+    plain = str(tmp_path / "plain")
+    write_run(plain, "shakedown_p45", "tangent_modulus = 0.0", [3e-3])
+    assert not any(p.endswith("fatigue.png") for p in passes.plot(plain))

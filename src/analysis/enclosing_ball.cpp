@@ -19,7 +19,8 @@ Ball ball_of(const Vec3& a, const Vec3& b) {
 Ball smallest_holding(const std::vector<Ball>& candidates, const std::vector<Vec3>& points, Real tolerance) {
   Ball best{Vec3::Zero(), -1.0}, largest = candidates.front();
   for (const Ball& b : candidates) {
-    const bool holds = std::all_of(points.begin(), points.end(), [&](const Vec3& p) { return b.contains(p, tolerance); });
+    const bool holds =
+        std::all_of(points.begin(), points.end(), [&](const Vec3& p) { return b.contains(p, tolerance); });
     if (holds && (best.radius < 0.0 || b.radius < best.radius)) best = b;
     if (b.radius > largest.radius) largest = b;
   }

@@ -165,8 +165,8 @@ std::string describe(const FatigueAnswer& a) {
   return fmt::format(
       "fatigue of pass {}: Dang Van {:.3g} at {:.3g} mm ({}), Ekberg FI_sub/tau_e {:.3g} at {:.3g} mm ({}), "
       "FI_surf {:.3g} (f = {:.3g}, k/p0 = {:.3g}: {}), {}",
-      a.pass, a.dang_van_index, a.dang_van_depth, says(a.dang_van_index > 1.0), a.subsurface_index,
-      a.subsurface_depth, says(a.subsurface_index > 1.0), a.surface_index, a.traction_coefficient,
+      a.pass, a.dang_van_index, a.dang_van_depth, says(a.dang_van_index > 1.0), a.subsurface_index, a.subsurface_depth,
+      says(a.subsurface_index > 1.0), a.surface_index, a.traction_coefficient,
       a.peak_pressure > 0.0 ? a.shear_yield / a.peak_pressure : 0.0, says(a.surface_index > 0.0), life);
 }
 

@@ -72,10 +72,14 @@ void to_json(nlohmann::json& j, const FatigueAnswer& a) {
 
 void from_json(const nlohmann::json& j, FatigueAnswer& a) {
   a.pass = j.at("pass").get<int>();
-  for (auto [key, field] : {std::pair{"dang_van_index", &a.dang_van_index}, {"dang_van_depth", &a.dang_van_depth},
-                            {"subsurface_index", &a.subsurface_index}, {"subsurface_depth", &a.subsurface_depth},
-                            {"traction_coefficient", &a.traction_coefficient}, {"peak_pressure", &a.peak_pressure},
-                            {"shear_yield", &a.shear_yield}, {"shear_strain_per_pass", &a.shear_strain_per_pass}})
+  for (auto [key, field] : {std::pair{"dang_van_index", &a.dang_van_index},
+                            {"dang_van_depth", &a.dang_van_depth},
+                            {"subsurface_index", &a.subsurface_index},
+                            {"subsurface_depth", &a.subsurface_depth},
+                            {"traction_coefficient", &a.traction_coefficient},
+                            {"peak_pressure", &a.peak_pressure},
+                            {"shear_yield", &a.shear_yield},
+                            {"shear_strain_per_pass", &a.shear_strain_per_pass}})
     *field = j.at(key).get<Real>();
   const nlohmann::json& surface = j.at("surface_index");
   a.surface_index = surface.is_null() ? -std::numeric_limits<Real>::infinity() : surface.get<Real>();

@@ -139,8 +139,8 @@ TEST_CASE("the surface index, the ratchetting life and the governing depths", "[
   const FatigueAnswer a = answer_of(f);
   CHECK(a.dang_van_depth == 0.5);
   CHECK(a.ratchetting_life == Approx(5500.0));
-  CHECK_THAT(describe(a), Catch::Contains("Dang Van 1.5 at 0.5 mm (initiates)") &&
-                              Catch::Contains("FI_surf -0.2") && Catch::Contains("5.5e+03 passes"));
+  CHECK_THAT(describe(a), Catch::Contains("Dang Van 1.5 at 0.5 mm (initiates)") && Catch::Contains("FI_surf -0.2") &&
+                              Catch::Contains("5.5e+03 passes"));
   p.dang_van_limit = 0.0;
   CHECK_FALSE(p.is_valid(&why));
   CHECK_THAT(why, Catch::Contains("fatigue.dang_van_limit = 0"));

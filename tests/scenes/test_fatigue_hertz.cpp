@@ -91,9 +91,10 @@ Errors against_half_plane(const PassFatigue& f, const Scene& scene) {
 
 }  // namespace
 
-TEST_CASE("fatigue of the elastic Hertz line contact: FI_sub within 1 %, the governing Dang Van index within 1 % of the "
-          "half-plane's",
-          "[scenes][fatigue][slow]") {
+TEST_CASE(
+    "fatigue of the elastic Hertz line contact: FI_sub within 1 %, the governing Dang Van index within 1 % of the "
+    "half-plane's",
+    "[scenes][fatigue][slow]") {
   Scene coarse_scene, fine_scene;
   const PassFatigue coarse = elastic_pass(1, coarse_scene);
   const PassFatigue fine = elastic_pass(2, fine_scene);
@@ -127,14 +128,14 @@ TEST_CASE("FI_surf of a sliding Hertz load changes sign on the shakedown map's s
   // that the stationary pass has a steady state). The index reads the pass's own force and contact.
   for (const double mu : {0.4, 0.6}) {
     INFO("mu = " << mu);
-    const HertzPass p = hertz_pass(
-        {{"material.yield_stress", "1998.52"},
-         {"material.tangent_modulus", "20000.0"},
-         {"material.hardening", "\"kinematic\""},
-         {"contact.friction", std::to_string(mu)},
-         {"roller.path",
-          "[{steps=[1,3], fy=7249.8292, friction=0.0}, {steps=[4,19], dx=16.0, fy=7249.8292, slip=1.0}, "
-          "{steps=[20,21], dy=0.3}]"}});
+    const HertzPass p =
+        hertz_pass({{"material.yield_stress", "1998.52"},
+                    {"material.tangent_modulus", "20000.0"},
+                    {"material.hardening", "\"kinematic\""},
+                    {"contact.friction", std::to_string(mu)},
+                    {"roller.path",
+                     "[{steps=[1,3], fy=7249.8292, friction=0.0}, {steps=[4,19], dx=16.0, fy=7249.8292, slip=1.0}, "
+                     "{steps=[20,21], dy=0.3}]"}});
     const PassFatigue& f = *p.end.fatigue;
     const Real k = p.scene.material.yield_stress / std::sqrt(3.0);
     CHECK(f.surface.traction_coefficient == Approx(mu).epsilon(1e-6));

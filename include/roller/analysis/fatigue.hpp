@@ -37,9 +37,9 @@ struct DangVan {
 DangVan dang_van(const std::vector<Vec4>& cycle, Real a);
 
 struct EkbergSubsurface {
-  Real shear_amplitude = 0.0;   // tau_eq,a [MPa]
-  Real max_hydrostatic = 0.0;   // sigma_h,max [MPa]
-  Real value = 0.0;             // FI_sub = tau_eq,a + a sigma_h,max [MPa]
+  Real shear_amplitude = 0.0;  // tau_eq,a [MPa]
+  Real max_hydrostatic = 0.0;  // sigma_h,max [MPa]
+  Real value = 0.0;            // FI_sub = tau_eq,a + a sigma_h,max [MPa]
 };
 EkbergSubsurface ekberg_subsurface(const std::vector<Vec4>& cycle, Real a);
 
@@ -61,9 +61,9 @@ struct DepthCycle {
 
 // What a pass's load and surface give the surface indices.
 struct PassSurface {
-  Real traction_coefficient = 0.0;  // |Q|/P of the pass's largest normal force
-  Real peak_pressure = 0.0;         // Hertz's p0 of that force [MPa]
-  Real shear_yield = 0.0;           // k: the surface material's lowest yield stress / sqrt3 [MPa]
+  Real traction_coefficient = 0.0;   // |Q|/P of the pass's largest normal force
+  Real peak_pressure = 0.0;          // Hertz's p0 of that force [MPa]
+  Real shear_yield = 0.0;            // k: the surface material's lowest yield stress / sqrt3 [MPa]
   Real shear_strain_per_pass = 0.0;  // the top layer's change of 2 eps_xy over the pass
 };
 

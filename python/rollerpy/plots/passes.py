@@ -11,6 +11,9 @@ writes into OUT_DIR:
   residual_depth.png  residual stresses sigma_xx, sigma_zz (the out-of-plane one) and sigma_xy,
                       the equivalent plastic strain and, with a kinematic law, the back-stress
                       sum alpha_xx under the middle of the track against depth, one curve per pass
+  fatigue.png         with [fatigue] (fatigue.csv): Dang Van's index and Ekberg's FI_sub/tau_e
+                      against depth, one curve per pass, the limit 1 marked; FI_surf and Kapoor's
+                      ratchetting life of the last pass (summary.json) in the title
   ratchet.png         with --compare: the net residual shear strain increment per pass (signed:
                       positive when the material above that depth moved in +x, the roller's
                       travel, relative to the material below) and the
@@ -22,7 +25,7 @@ import os
 import tomllib
 from dataclasses import dataclass
 
-from matplotlib.ticker import MaxNLocator
+from matplotlib.ticker import FixedLocator, FormatStrFormatter, MaxNLocator, NullFormatter
 
 from ..command import parser
 from ..outputs import read_numbers, read_summary
@@ -116,13 +119,58 @@ def plot_depth(out, rows, title):
     plt.close(fig)
 
 
+def fatigue_title(title, fatigue):
+    """The figure's title with the last pass's surface index and ratchetting life (summary.json)."""
+    if not fatigue:
+        return title
+    life = fatigue.get("ratchetting_life")
+    life_text = "no surface ratchet" if life is None else "%.3g passes to ratchetting failure" % life
+    surface = fatigue.get("surface_index")
+    surface_text = "FI_surf %.3g" % surface if surface is not None else "no contact"
+    return "%s\npass %d: %s (f = %.3g, k/p0 = %.3g), %s" % (
+        title, fatigue["pass"], surface_text, fatigue["traction_coefficient"],
+        fatigue["shear_yield"] / fatigue["peak_pressure"] if fatigue["peak_pressure"] > 0 else 0.0, life_text)
+
+
+def plot_fatigue(out, rows, title, fatigue):
+    """fatigue.png: the two subsurface indices against depth, one curve per pass."""
+    passes = sorted({int(r["pass"]) for r in rows})
+    panels = [("dang_van_index", "Dang Van: max (τ + a σ_h) / τ_w"), ("fi_sub_index", "Ekberg: FI_sub / τ_e")]
+    fig, axes = plt.subplots(1, 2, figsize=(8, 5), sharey=True)
+    colours = plt.cm.viridis([i / max(1, len(passes) - 1) for i in range(len(passes))])
+    for colour, p in zip(colours, passes):
+        sel = [r for r in rows if int(r["pass"]) == p]
+        for ax, (key, _) in zip(axes, panels):
+            ax.plot([r[key] for r in sel], [r["depth"] for r in sel], color=colour, label="pass %d" % p)
+    for ax, (_, label) in zip(axes, panels):
+        ax.axvline(1.0, color="r", lw=1.0, ls="--")
+        ax.set_xlabel(label + "\n(> 1: initiation)")
+        ax.grid(True, alpha=0.3)
+    # Depth on a log axis: the surface's rows, where rolling contact initiates, beside the decay
+    # below; down to where the indices have fallen to a tenth of their largest.
+    largest = max(max(r["dang_van_index"], r["fi_sub_index"]) for r in rows)
+    reached = [r["depth"] for r in rows if max(r["dang_van_index"], r["fi_sub_index"]) > 0.1 * largest]
+    axes[0].set_yscale("log")
+    axes[0].yaxis.set_major_locator(FixedLocator([0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500]))
+    axes[0].yaxis.set_major_formatter(FormatStrFormatter("%g"))
+    axes[0].yaxis.set_minor_formatter(NullFormatter())
+    axes[0].set_ylim(min(max(r["depth"] for r in rows), 1.2 * max(reached)), 0.8 * min(r["depth"] for r in rows))
+    axes[0].set_ylabel("depth below the surface [mm] (element centres)")
+    axes[-1].legend(fontsize=8)
+    fig.suptitle(fatigue_title(title, fatigue), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "fatigue.png"), dpi=150)
+    plt.close(fig)
+
+
 def _half_width(out):
     rows = read_numbers(os.path.join(out, "passes.csv"))
     return max(r["contact_half_width"] for r in rows) if rows else 1.0
 
 
 def plot(out):
-    """passes.png and residual_depth.png of the run in `out`; returns their paths."""
+    """passes.png, residual_depth.png and (with fatigue.csv) fatigue.png of the run in `out`;
+    returns their paths."""
     summary = read_summary(out) if os.path.exists(os.path.join(out, "summary.json")) else {}
     passes = summary.get("passes", {})
     title = "%s: %s" % (summary.get("scene", out), passes.get("verdict", "").replace("_", " "))
@@ -130,7 +178,12 @@ def plot(out):
         title += " (p0/k = %.2f)" % passes["p0_over_k"]
     plot_passes(out, read_numbers(os.path.join(out, "passes.csv")), title)
     plot_depth(out, read_numbers(os.path.join(out, "residual_depth.csv")), title)
-    return os.path.join(out, "passes.png"), os.path.join(out, "residual_depth.png")
+    written = [os.path.join(out, "passes.png"), os.path.join(out, "residual_depth.png")]
+    fatigue_csv = os.path.join(out, "fatigue.csv")
+    if os.path.exists(fatigue_csv):
+        plot_fatigue(out, read_numbers(fatigue_csv), title, summary.get("fatigue"))
+        written.append(os.path.join(out, "fatigue.png"))
+    return written
 
 
 def run_label(out):
@@ -187,6 +240,6 @@ def main(argv=None):
     ap.add_argument("--compare", nargs="+", default=[], metavar="OUT_DIR",
                     help="other multi-pass runs drawn beside OUT_DIR in ratchet.png")
     args = ap.parse_args(argv)
-    print("wrote %s and %s" % plot(args.out))
+    print("wrote", ", ".join(plot(args.out)))
     if args.compare:
         print("wrote", plot_ratchet([args.out] + args.compare, os.path.join(args.out, "ratchet.png")))
