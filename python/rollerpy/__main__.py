@@ -15,6 +15,7 @@ COMMANDS = {
     "plot-monotonicity": ("rollerpy.plots.monotonicity", "maps of `roller monotonicity` (docs/monotonicity.md)"),
     "plot-shakedown-map": ("rollerpy.plots.shakedown_map", "the shakedown map of a study.csv"),
     "material-loops": ("rollerpy.plots.material_loops", "a scene's material in uniaxial loops and ratchetting"),
+    "rcf-map": ("rollerpy.plots.rcf_map", "a steel's rolling-contact-fatigue map: Johnson's regions, Ekberg's limits"),
     "plot-melan-map": ("rollerpy.plots.melan_map", "roller shakedown-limit --map's map against Johnson's limits"),
     "shakedown-map": ("rollerpy.validation.shakedown_map", "run the shakedown-map study and draw the map"),
     "shakedown": ("rollerpy.validation.shakedown", "repeated rolling against Johnson's shakedown results"),

@@ -15,6 +15,7 @@
 
 #include "python_sink.hpp"
 #include "results_to_python.hpp"
+#include "roller/analysis/fatigue.hpp"
 #include "roller/core/error.hpp"
 #include "roller/core/version.hpp"
 #include "roller/driver/output_columns.hpp"
@@ -134,6 +135,22 @@ py::dict uniaxial_path(const Scene& scene, const std::string& control, const std
   return d;
 }
 
+// The fatigue criteria of one point's stress cycle (rows [xx, yy, zz, xy] in MPa), as a run
+// computes them (analysis/fatigue.hpp): rollerpy rcf-map evaluates them on closed-form cycles.
+py::dict fatigue_of_cycle(const py::array_t<Real, py::array::c_style | py::array::forcecast>& cycle, Real a) {
+  if (cycle.ndim() != 2 || cycle.shape(1) != 4)
+    throw InputError("fatigue_of_cycle: the cycle must be an array of rows [xx, yy, zz, xy]");
+  const auto c = cycle.unchecked<2>();
+  std::vector<Vec4> path;
+  for (py::ssize_t i = 0; i < c.shape(0); ++i) path.push_back(Vec4(c(i, 0), c(i, 1), c(i, 2), c(i, 3)));
+  const DangVan dv = dang_van(path, a);
+  const EkbergSubsurface sub = ekberg_subsurface(path, a);
+  return py::dict(py::arg("dang_van") = dv.value, py::arg("dang_van_shear") = dv.shear,
+                  py::arg("dang_van_hydrostatic") = dv.hydrostatic, py::arg("path_radius") = dv.radius,
+                  py::arg("fi_sub") = sub.value, py::arg("shear_amplitude") = sub.shear_amplitude,
+                  py::arg("max_hydrostatic") = sub.max_hydrostatic);
+}
+
 }  // namespace
 
 }  // namespace roller::python
@@ -164,6 +181,9 @@ PYBIND11_MODULE(_roller, m) {
         "the scene's [material] at a point in uniaxial stress, from the virgin state through the axial strains "
         "(control='strain') or stresses [MPa] (control='stress'); columns strain, stress, plastic_strain, "
         "eq_plastic_strain");
+  m.def("fatigue_of_cycle", &fatigue_of_cycle, py::arg("cycle"), py::arg("a"),
+        "Dang Van's value max(tau + a sigma_h) and Ekberg's FI_sub = tau_eq,a + a sigma_h,max [MPa] of a stress "
+        "cycle (an n x 4 array of [xx, yy, zz, xy] rows), with their parts (docs/model.md, Fatigue)");
   m.def("version", [] {
     const BuildInfo b = build_info();
     return py::dict(py::arg("version") = b.version, py::arg("commit") = b.commit, py::arg("ipopt") = b.ipopt_version,
