@@ -18,12 +18,6 @@ namespace {
 constexpr Real kMaxShearDepth = 0.78;
 constexpr Real kWindowDepth = 4.0;  // window depth in a
 
-Vec2 centroid(const Mesh& mesh, Index e) {
-  Vec2 c = Vec2::Zero();
-  for (Index a : mesh.elements[e]) c += mesh.nodes[a];
-  return c / static_cast<Real>(mesh.elements[e].size());
-}
-
 Real area(const Mesh& mesh, Index e) {
   const auto& n = mesh.elements[e];
   Real twice = 0.0;
@@ -162,7 +156,7 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
   std::vector<Real> plastic_increment(mesh.n_elements()), depth(mesh.n_elements());
   std::vector<bool> in_window(mesh.n_elements());
   for (Index e = 0; e < mesh.n_elements(); ++e) {
-    const Vec2 c = centroid(mesh, e);
+    const Vec2 c = element_centroid(mesh, e);
     const Real x = near_track(c.x());
     depth[e] = strip_height - c.y();
     in_window[e] = x >= r.track_start && x <= r.track_end && depth[e] <= kWindowDepth * a;
@@ -203,7 +197,7 @@ std::vector<DepthSample> depth_profile(const StripModel& strip, Real strip_heigh
     }
     if (x < lo || x >= hi) continue;
     DepthSample s;
-    s.depth = strip_height - centroid(mesh, e).y();
+    s.depth = strip_height - element_centroid(mesh, e).y();
     for (int q = 0; q < strip.points_per_element(); ++q) {
       const MaterialState& state = strip.state(e, q);
       s.stress += state.stress;

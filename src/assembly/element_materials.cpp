@@ -39,11 +39,7 @@ ElementMaterials linear_elastic(ElementMaterials materials) {
   return materials;
 }
 
-Real centroid_depth(const Mesh& mesh, Index e, Real top) {
-  Real y = 0.0;
-  for (Index a : mesh.elements[e]) y += mesh.nodes[a].y();
-  return top - y / static_cast<Real>(mesh.elements[e].size());
-}
+Real centroid_depth(const Mesh& mesh, Index e, Real top) { return top - element_centroid(mesh, e).y(); }
 
 ElementMaterials assign_materials(const Mesh& mesh, const LayeredMaterial& layered) {
   if (layered.is_homogeneous()) return uniform_materials(layered.base, mesh.n_elements());

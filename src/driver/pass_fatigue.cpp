@@ -1,6 +1,8 @@
 #include "pass_fatigue.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <utility>
 
@@ -48,6 +50,26 @@ PassCycles start_cycles(const Scene& scene, const RollerProgram& program, int pa
                : program.pass_start(pass).centre.x();
   c.observe(strip, scene.mesh.height);
   return c;
+}
+
+std::vector<VtuField> fatigue_cell_fields(const Mesh& mesh, Real strip_height, const PassFatigue& f, Real window_start,
+                                          Real window_end) {
+  const Index n = mesh.n_elements();
+  VtuField dang_van{"dang_van_index", 1, std::vector<Real>(n, 0.0), {}};
+  VtuField subsurface{"fi_sub_index", 1, std::vector<Real>(n, 0.0), {}};
+  if (f.depths.empty()) return {dang_van, subsurface};
+  for (Index e = 0; e < n; ++e) {
+    const Vec2 c = element_centroid(mesh, e);
+    if (c.x() < window_start || c.x() > window_end) continue;
+    const Real depth = strip_height - c.y();
+    // The depths are sorted: the nearest is at the first one at or below, or the one above it.
+    auto it = std::lower_bound(f.depths.begin(), f.depths.end(), depth,
+                               [](const FatigueAtDepth& d, Real z) { return d.depth < z; });
+    if (it == f.depths.end() || (it != f.depths.begin() && depth - std::prev(it)->depth < it->depth - depth)) --it;
+    dang_van.values[e] = it->dang_van_index;
+    subsurface.values[e] = it->subsurface_index;
+  }
+  return {dang_van, subsurface};
 }
 
 namespace {

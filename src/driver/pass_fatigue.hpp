@@ -11,6 +11,8 @@
 #include "roller/analysis/shakedown.hpp"
 #include "roller/io/roller_program.hpp"
 #include "roller/io/scene.hpp"
+#include "roller/io/vtu_writer.hpp"
+#include "roller/mesh/mesh.hpp"
 
 namespace roller {
 
@@ -30,5 +32,11 @@ std::vector<DepthCycle> framed(std::vector<DepthCycle> lanes, const std::vector<
 // A transient pass's cycles before its first step: at the middle of its travel segment, starting
 // from the strip as the pass finds it (the roller far away).
 PassCycles start_cycles(const Scene& scene, const RollerProgram& program, int pass, const StripModel& strip);
+
+// The pass's indices as VTU cell fields (dang_van_index, fi_sub_index): each element whose centroid
+// lies in the track window [window_start, window_end] takes the indices of the column's element
+// nearest its depth (a steady pass's cycle is the same along the window); 0 elsewhere.
+std::vector<VtuField> fatigue_cell_fields(const Mesh& mesh, Real strip_height, const PassFatigue& f, Real window_start,
+                                          Real window_end);
 
 }  // namespace roller

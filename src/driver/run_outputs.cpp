@@ -1,5 +1,7 @@
 #include "run_outputs.hpp"
 
+#include "pass_fatigue.hpp"
+
 namespace roller {
 
 namespace {
@@ -77,10 +79,11 @@ void RunOutputs::add_row(OutputTable table, const Row& row) {
 }
 
 void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactRecord>& contact,
-                              const std::optional<RollerPose>& roller) {
+                              const std::optional<RollerPose>& roller, std::vector<VtuField> cells) {
   if (!scene_.output.vtu || sinks_.empty()) return;
   StepFields f{step, pass, step * scene_.steps.dt,
                strip_fields(model_, model_.total_displacement() - step_start_displacement_), roller};
+  for (VtuField& c : cells) f.strip.cell_data.push_back(std::move(c));
   if (scene_.roller) append_contact_fields(contact, model_.mesh().n_nodes(), f.strip.point_data);
   if (scene_.dynamics.strip_inertia) {
     f.strip.point_data.push_back(nodal_vector("velocity", dynamics_.velocity()));
@@ -125,9 +128,13 @@ void RunOutputs::write_step(const Simulation::StepRecord& step) {
   }
   const bool mid_pass = mid_pass_step_ > 0 && (step.step - 1) % scene_.steps.n_steps + 1 == mid_pass_step_;
   if (step.loaded_fields) write_loaded_fields(step);
+  std::vector<VtuField> fatigue;
+  if (step.pass_end && step.pass_end->fatigue)
+    fatigue = fatigue_cell_fields(model_.mesh(), scene_.mesh.height, *step.pass_end->fatigue,
+                                  step.pass_end->record.track_start, step.pass_end->record.track_end);
   if (fields_written(scene_, step.step) || mid_pass)
     write_fields(step.step, step.pass, step.contact,
-                 step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt);
+                 step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt, std::move(fatigue));
   step_start_displacement_ = model_.total_displacement();
 }
 

@@ -29,9 +29,10 @@ class RunOutputs {
 
  private:
   void add_row(OutputTable table, const Row& row);
-  // The strip's fields of a step, and the roller (its pose; none without a roller) beside them.
+  // The strip's fields of a step, and the roller (its pose; none without a roller) beside them,
+  // with `cells` (a pass's fatigue indices) added to the strip's cell data.
   void write_fields(int step, int pass, const std::vector<NodeContactRecord>& contact,
-                    const std::optional<RollerPose>& roller);
+                    const std::optional<RollerPose>& roller, std::vector<VtuField> cells = {});
   // A stationary pass's loaded state beside the step's fields.
   void write_loaded_fields(const Simulation::StepRecord& step);
   // Fields to every sink (copies to all but the last).

@@ -73,6 +73,12 @@ std::vector<Index> node_masters(const Mesh& mesh) {
   return masters;
 }
 
+Vec2 element_centroid(const Mesh& mesh, Index e) {
+  Vec2 c = Vec2::Zero();
+  for (Index a : mesh.elements[e]) c += mesh.nodes[a];
+  return c / static_cast<Real>(mesh.elements[e].size());
+}
+
 Real nearest_image_x(const Mesh& mesh, Real x, Real near) {
   if (mesh.period <= 0.0) return x;
   return x + mesh.period * std::round((near - x) / mesh.period);

@@ -103,9 +103,7 @@ std::vector<MelanRow> depth_rows(const Mesh& mesh, const std::vector<Vec4>& stre
                                  const ElementMaterials& plastic, Real top) {
   std::map<long long, MelanRow> rows;  // keyed by depth in nm: the elements of a row share it to rounding
   for (Index e = 0; e < mesh.n_elements(); ++e) {
-    Real x = 0.0;
-    for (const Index a : mesh.elements[e]) x += mesh.nodes[a].x();
-    x /= static_cast<Real>(mesh.elements[e].size());
+    const Real x = element_centroid(mesh, e).x();
     const Real depth = centroid_depth(mesh, e, top);  // as assign_materials takes it
     Vec4 mean = Vec4::Zero();
     for (int q = 0; q < points_per_element; ++q) mean += stress[e * points_per_element + q];

@@ -51,6 +51,9 @@ struct Mesh {
 // at the same height (the "left" and "right" sets, both sorted by y).
 std::vector<Index> node_masters(const Mesh& mesh);
 
+// The centroid of element e's nodes (its initial coordinates).
+Vec2 element_centroid(const Mesh& mesh, Index e);
+
 // x moved by a whole number of periods to lie within half a period of `near` (a periodic mesh);
 // x itself when the mesh is not periodic.
 Real nearest_image_x(const Mesh& mesh, Real x, Real near);
