@@ -240,7 +240,7 @@ RunSummary Simulation::run(const RunOptions& options) {
     RunOutputs outputs(run_->scene, *run_->strip, run_->dynamics, run_->state.pose, !resumed, std::move(sinks));
     StepMonitor monitor(run_->scene.output.monitor, run_->scene.steps.dt,
                         run_->scene.dynamics.strip_inertia ? &run_->dynamics.mass_free() : nullptr, run_->backend.get(),
-                        options.progress);
+                        options.progress, run_->scene.passes.method == PassMethod::Stationary);
     run_steps(options, first_step, outputs, monitor, writer, summary);
     writer.finish();
     if (files && summary.status == RunStatus::Interrupted) {

@@ -68,7 +68,10 @@ MonitorReport StepMonitor::check(int step, StripModel& model, bool pointwise_los
         "step {}: the assembled tangent stiffness is not positive definite ({} negative pivots) near x = {:.4g}, "
         "y = {:.4g} mm: operator A lost monotonicity ({}); {}",
         step, r.assembled.n_negative, r.worst_place.x(), r.worst_place.y(), mono.brief_report(),
-        mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
+        stationary_ ? "a stationary pass solves the steady Jacobian, not this tangent of the strip's states after it, "
+                      "so the pass's answer does not rest on it; a transient pass from these states would meet it: "
+                      "smaller steps there"
+        : mono.dt_restore_all > 0.0 && std::isfinite(mono.dt_restore_all)
             ? fmt::format("a time step below {:.3g} s would restore it (3.18)", mono.dt_restore_all)
             : "in a quasistatic strip no time step restores it: use smaller steps (a larger steps.count, or "
               "steps.max_cuts) or check the supports"));

@@ -39,9 +39,16 @@ class StepMonitor {
  public:
   // `mass_free` is the strip's mass over the free dofs (nullptr: quasistatic strip); `backend`
   // the run's contact backend, asked for the inertia of factors it holds (nullptr: none);
-  // `progress` receives the warnings (nullptr: silent).
-  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, ContactBackend* backend, std::ostream* progress)
-      : enabled_(enabled), dt_(dt), mass_free_(mass_free), backend_(backend), progress_(progress) {}
+  // `progress` receives the warnings (nullptr: silent); `stationary`: the steps are stationary
+  // passes, which solve the steady Jacobian, not the tangent checked here (the advice differs).
+  StepMonitor(bool enabled, Real dt, const SparseMatrix* mass_free, ContactBackend* backend, std::ostream* progress,
+              bool stationary = false)
+      : enabled_(enabled),
+        dt_(dt),
+        mass_free_(mass_free),
+        backend_(backend),
+        progress_(progress),
+        stationary_(stationary) {}
 
   // `pointwise_loss_reported`: the run (its steps before, a resumed run's included) gave the
   // warning of operator A's pointwise loss already, which is given once a run (RunState holds it).
@@ -53,6 +60,7 @@ class StepMonitor {
   const SparseMatrix* mass_free_;
   ContactBackend* backend_;
   std::ostream* progress_;
+  bool stationary_;
   // The LDL^T of the assembled check: one MUMPS instance for the run, so that its analysis is
   // reused while the pattern stays, with the factors discarded as they are computed (only the
   // inertia is wanted: no factor memory beside the contact solve's).
