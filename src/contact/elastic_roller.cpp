@@ -1,0 +1,153 @@
+#include "roller/contact/elastic_roller.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "roller/assembly/strip_model.hpp"
+#include "roller/core/error.hpp"
+
+namespace roller {
+
+namespace {
+
+// Beyond the fine stretch the steps grow by this ratio (elements of at most 1:1.15 neighbours),
+// up to a largest step.
+constexpr Real kGrowth = 1.15;
+// A solid disc is held at a hub of this fraction of its radius (its axle).
+constexpr Real kHubFraction = 0.1;
+
+// Steps from `fine` growing by kGrowth (at most `largest`) that add up to `length` exactly: the
+// grown steps are scaled to fit.
+std::vector<Real> graded_steps(Real fine, Real length, Real largest) {
+  std::vector<Real> steps;
+  Real sum = 0.0, step = fine;
+  while (sum + step < length) {
+    steps.push_back(step);
+    sum += step;
+    step = std::min(step * kGrowth, largest);
+  }
+  if (steps.empty()) return {length};
+  // The remainder goes to the last step when it is large enough, else it is spread over all.
+  const Real rest = length - sum;
+  if (rest > 0.5 * steps.back()) {
+    steps.push_back(rest);
+  } else {
+    for (Real& s : steps) s *= length / sum;
+  }
+  return steps;
+}
+
+void check(const ElasticRollerSpec& r, const RimArc& arc) {
+  require(r.radius > 0.0 && std::isfinite(r.radius), fmt::format("elastic roller: radius {} must be > 0", r.radius));
+  require(r.inner_radius >= 0.0 && r.inner_radius < r.radius,
+          fmt::format("elastic roller: inner_radius {} must lie in [0, radius = {})", r.inner_radius, r.radius));
+  require(r.youngs_modulus > 0.0, fmt::format("elastic roller: E = {} must be > 0", r.youngs_modulus));
+  require(r.poisson_ratio > -1.0 && r.poisson_ratio < 0.5,
+          fmt::format("elastic roller: nu = {} must lie in (-1, 0.5)", r.poisson_ratio));
+  require(arc.spacing > 0.0 && arc.half_length >= arc.spacing,
+          fmt::format("elastic roller: the rim arc's half-length {} must be at least its spacing {} > 0", arc.half_length,
+                      arc.spacing));
+  require(arc.half_length < 0.5 * M_PI * r.radius,
+          fmt::format("elastic roller: the rim arc's half-length {} must be below a quarter of the rim ({})",
+                      arc.half_length, 0.5 * M_PI * r.radius));
+}
+
+}  // namespace
+
+RollerDiscMesh roller_disc_mesh(const ElasticRollerSpec& roller, const RimArc& arc) {
+  check(roller, arc);
+  const Real R = roller.radius;
+  // Angles from the bottom: the fine arc, then graded steps to the top (angle pi) on either side.
+  const Real fine_angle = arc.spacing / R;
+  const int n_fine = static_cast<int>(std::ceil(arc.half_length / arc.spacing - 1e-9));
+  std::vector<Real> side;  // 0 < angles <= pi
+  for (int k = 1; k <= n_fine; ++k) side.push_back(k * fine_angle);
+  Real at = side.back();
+  for (Real s : graded_steps(fine_angle, M_PI - at, M_PI / 16.0)) side.push_back(at += s);
+  side.back() = M_PI;
+  std::vector<Real> angles;  // increasing, -pi excluded (it is pi)
+  for (auto it = side.rbegin() + 1; it != side.rend(); ++it) angles.push_back(-*it);
+  angles.push_back(0.0);
+  angles.insert(angles.end(), side.begin(), side.end());
+  // Radii from the rim inwards: fine to the arc's depth, graded to the bore or hub.
+  const Real inner = roller.inner_radius > 0.0 ? roller.inner_radius : kHubFraction * R;
+  const Real fine_depth = std::min(arc.half_length, 0.5 * (R - inner));
+  std::vector<Real> radii{R};
+  const int n_deep = static_cast<int>(std::ceil(fine_depth / arc.spacing - 1e-9));
+  for (int k = 1; k <= n_deep; ++k) radii.push_back(R - k * fine_depth / n_deep);
+  for (Real s : graded_steps(fine_depth / n_deep, radii.back() - inner, 0.25 * (R - inner)))
+    radii.push_back(radii.back() - s);
+  radii.back() = inner;
+  std::reverse(radii.begin(), radii.end());  // ring 0: the bore
+
+  RollerDiscMesh out;
+  Mesh& m = out.mesh;
+  m.element_type = ElementType::Q4;
+  const Index n_angles = static_cast<Index>(angles.size());
+  for (Real r : radii)
+    for (Real a : angles) m.nodes.push_back(Vec2(r * std::sin(a), -r * std::cos(a)));
+  auto node = [&](Index ring, Index j) { return ring * n_angles + (j % n_angles); };
+  for (Index i = 0; i + 1 < static_cast<Index>(radii.size()); ++i)
+    for (Index j = 0; j < n_angles; ++j)
+      m.elements.push_back({node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+  for (Index j = 0; j < n_angles; ++j) out.bore.push_back(node(0, j));
+  const Index rim = static_cast<Index>(radii.size()) - 1;
+  for (Index j = 0; j < n_angles; ++j)
+    if (std::abs(angles[j]) <= n_fine * fine_angle * (1.0 + 1e-12)) out.arc.push_back(node(rim, j));
+  std::vector<Index> all(m.nodes.size());
+  for (Index a = 0; a < static_cast<Index>(all.size()); ++a) all[a] = a;
+  m.node_sets["all"] = all;
+  m.node_sets["contact"] = out.arc;
+  return out;
+}
+
+RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimArc& arc) {
+  RollerDiscMesh disc = roller_disc_mesh(roller, arc);
+  MaterialParams elastic;
+  elastic.youngs_modulus = roller.youngs_modulus;
+  elastic.poisson_ratio = roller.poisson_ratio;
+  StripModel model(disc.mesh, elastic, ElementOptions{Kinematics::Small, Q4Formulation::BBar});
+  std::vector<bool> held(model.n_dofs(), false);
+  for (Index a : disc.bore) held[2 * a] = held[2 * a + 1] = true;
+  model.set_dof_map(DofMap(held));
+  SparseMatrix k;
+  model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
+
+  // The free dofs split into the retained (the arc's, x then y by node) and the eliminated.
+  const DofMap& dofs = model.dof_map();
+  const Index n_free = dofs.n_free(), n_kept = 2 * static_cast<Index>(disc.arc.size());
+  std::vector<Index> kept_at(n_free, -1), dropped_at(n_free, -1);
+  for (Index i = 0; i < static_cast<Index>(disc.arc.size()); ++i)
+    for (int c = 0; c < 2; ++c) kept_at[dofs.free_index(2 * disc.arc[i] + c)] = 2 * i + c;
+  Index n_dropped = 0;
+  for (Index f = 0; f < n_free; ++f)
+    if (kept_at[f] < 0) dropped_at[f] = n_dropped++;
+  std::vector<Eigen::Triplet<Real>> ee;
+  MatX er = MatX::Zero(n_dropped, n_kept), rr = MatX::Zero(n_kept, n_kept);
+  for (int col = 0; col < k.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(k, col); it; ++it) {
+      const Index row = it.row();
+      if (kept_at[row] >= 0 && kept_at[col] >= 0)
+        rr(kept_at[row], kept_at[col]) = it.value();
+      else if (kept_at[col] >= 0)
+        er(dropped_at[row], kept_at[col]) = it.value();
+      else if (kept_at[row] < 0)
+        ee.emplace_back(dropped_at[row], dropped_at[col], it.value());
+    }
+  SparseMatrix k_ee(n_dropped, n_dropped);
+  k_ee.setFromTriplets(ee.begin(), ee.end());
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(k_ee);
+  if (ldlt.info() != Eigen::Success)
+    throw NumericalError("elastic roller: the disc's stiffness away from its rim arc is singular");
+  const MatX x = ldlt.solve(er);
+  RimStiffness out;
+  out.stiffness = rr - er.transpose() * x;
+  out.stiffness = 0.5 * (out.stiffness + out.stiffness.transpose());  // symmetric to round-off
+  for (Index a : disc.arc) out.positions.push_back(disc.mesh.nodes[a]);
+  return out;
+}
+
+}  // namespace roller
