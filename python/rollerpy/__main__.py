@@ -10,7 +10,7 @@ COMMANDS = {
     "study": ("rollerpy.study.cli", "run every point of a study file (docs/studies.md)"),
     "plot-scene": ("rollerpy.plots.scene", "thesis-style figures of an output folder (docs/figures.md)"),
     "plot-forces": ("rollerpy.plots.forces", "the roller's force and position against the step"),
-    "plot-passes": ("rollerpy.plots.passes", "figures of a multi-pass run: passes.png, residual_depth.png"),
+    "plot-passes": ("rollerpy.plots.passes", "a multi-pass run's figures: passes, residual_depth, fatigue .png"),
     "plot-node-history": ("rollerpy.plots.node_history", "one node's displacement increments over the steps"),
     "plot-monotonicity": ("rollerpy.plots.monotonicity", "maps of `roller monotonicity` (docs/monotonicity.md)"),
     "plot-shakedown-map": ("rollerpy.plots.shakedown_map", "the shakedown map of a study.csv"),
