@@ -1,7 +1,7 @@
 #include "roller/contact/elastic_roller.hpp"
 
-#include <Eigen/SparseCholesky>
 #include <fmt/format.h>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -48,8 +48,8 @@ void check(const ElasticRollerSpec& r, const RimArc& arc) {
   require(r.poisson_ratio > -1.0 && r.poisson_ratio < 0.5,
           fmt::format("elastic roller: nu = {} must lie in (-1, 0.5)", r.poisson_ratio));
   require(arc.spacing > 0.0 && arc.half_length >= arc.spacing,
-          fmt::format("elastic roller: the rim arc's half-length {} must be at least its spacing {} > 0", arc.half_length,
-                      arc.spacing));
+          fmt::format("elastic roller: the rim arc's half-length {} must be at least its spacing {} > 0",
+                      arc.half_length, arc.spacing));
   require(arc.half_length < 0.5 * M_PI * r.radius,
           fmt::format("elastic roller: the rim arc's half-length {} must be below a quarter of the rim ({})",
                       arc.half_length, 0.5 * M_PI * r.radius));
