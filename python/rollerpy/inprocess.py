@@ -104,6 +104,7 @@ class RunResult:
     fields: list
     warnings: list
     verdict: Optional[dict] = None  # multi-pass runs: {"verdict", "criterion"}
+    fatigue_answer: Optional[dict] = None  # with [fatigue]: summary.json's fatigue block (the last pass)
     summary: dict = field(default_factory=dict)
 
     @property
@@ -120,6 +121,7 @@ class RunResult:
     contact = property(lambda self: self.table("contact"))
     passes = property(lambda self: self.table("passes"))
     residual_depth = property(lambda self: self.table("residual_depth"))
+    fatigue = property(lambda self: self.table("fatigue"))
 
     @property
     def written_steps(self) -> list:
@@ -226,7 +228,7 @@ def _result(raw: dict) -> RunResult:
                      iterations=s["iterations"],
                      mesh=Mesh(m["points"], m["cells"], m["cell_type"]), tables=raw["tables"],
                      fields=fields, warnings=list(raw["warnings"]), verdict=raw.get("verdict"),
-                     summary=s)
+                     fatigue_answer=raw.get("fatigue"), summary=s)
 
 
 def version() -> dict:

@@ -160,12 +160,17 @@ def test_resume_needs_the_output_folder_and_the_names_are_in_dir():
 
 def test_a_multi_pass_run_gives_the_verdict_and_the_tables_of_the_files(tmp_path):
     out = tmp_path / "p45"
+    fatigue = {"fatigue.dang_van_a": 0.3, "fatigue.dang_van_limit": 300.0, "fatigue.shear_fatigue_limit": 300.0,
+               "fatigue.critical_shear_strain": 11.0}
     run = rollerpy.run(os.path.join(PROBLEMS, "shakedown_p45.toml"),
-                       set={"passes.method": "stationary", "passes.count": 3}, out=out)
+                       set={"passes.method": "stationary", "passes.count": 3, **fatigue}, out=out)
     summary = read_summary(str(out))
     assert run.verdict["verdict"] == summary["passes"]["verdict"]
     assert_table_equals_csv(run.passes, out / "passes.csv")
     assert_table_equals_csv(run.residual_depth, out / "residual_depth.csv")
+    # With [fatigue]: fatigue.csv's table and summary.json's fatigue block, as the files hold them.
+    assert_table_equals_csv(run.fatigue, out / "fatigue.csv")
+    assert run.fatigue_answer == summary["fatigue"] and run.fatigue_answer["pass"] == 3
     assert run.written_steps == available_steps(str(out)) and run.written_steps[-1] == 3
 
 

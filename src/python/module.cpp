@@ -3,6 +3,7 @@
 // numpy arrays, with or without the output folder's files. The package's rollerpy.inprocess wraps
 // this module in typed results; use that.
 #include <atomic>
+#include <cmath>
 #include <iostream>
 #include <mutex>
 #include <optional>
@@ -57,6 +58,17 @@ py::dict summary_dict(const RunSummary& s) {
 // global state, and two runs from two threads at once crashed the interpreter in MUMPS's
 // initialisation. A second thread waits (without the GIL) for the first run to end; a run started
 // from a run's own progress callback would wait for ever, so it is refused.
+// summary.json's fatigue block: the last pass's governing indices (an infinite life or index: None).
+py::dict fatigue_dict(const FatigueAnswer& a) {
+  auto finite = [](Real v) { return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none()); };
+  return py::dict(py::arg("pass") = a.pass, py::arg("dang_van_index") = a.dang_van_index,
+                  py::arg("dang_van_depth") = a.dang_van_depth, py::arg("subsurface_index") = a.subsurface_index,
+                  py::arg("subsurface_depth") = a.subsurface_depth, py::arg("surface_index") = finite(a.surface_index),
+                  py::arg("traction_coefficient") = a.traction_coefficient, py::arg("peak_pressure") = a.peak_pressure,
+                  py::arg("shear_yield") = a.shear_yield, py::arg("shear_strain_per_pass") = a.shear_strain_per_pass,
+                  py::arg("ratchetting_life") = finite(a.ratchetting_life));
+}
+
 std::mutex run_mutex;
 std::atomic<std::thread::id> run_owner{};
 
@@ -104,6 +116,7 @@ py::dict run(const Scene& scene, const std::optional<std::filesystem::path>& out
   result["fields"] = fields_list(sink);
   if (const std::optional<ShakedownClassification>& c = summary.verdict)
     result["verdict"] = py::dict(py::arg("verdict") = enum_name(c->verdict), py::arg("criterion") = c->criterion);
+  if (const std::optional<FatigueAnswer>& f = sim->state().fatigue) result["fatigue"] = fatigue_dict(*f);
   // What stopped the run early (Ctrl-C, or the progress callback's exception), for the wrapper
   // to raise with the results so far.
   result["error"] = sink.pending_error() ? sink.pending_error()->value() : py::none();
