@@ -150,4 +150,36 @@ RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimA
   return out;
 }
 
+RimGap rim_gap(const std::vector<Vec2>& positions, const VecX& w, const Vec2& x) {
+  const Index n = static_cast<Index>(positions.size());
+  ROLLER_ASSERT(n >= 2 && w.size() == 2 * n, "rim_gap: one displacement per arc node, at least two nodes");
+  // Angles from the contact's direction (straight down), positive towards +x.
+  auto angle = [](const Vec2& p) { return std::atan2(p.x(), -p.y()); };
+  auto radial = [](Real theta) { return Vec2(std::sin(theta), -std::cos(theta)); };
+  const Real theta = angle(x);
+  const Real first = angle(positions.front()), last = angle(positions.back());
+  if (!(theta >= first && theta <= last))
+    throw NumericalError(
+        fmt::format("elastic roller: a contact point at {:.4g} rad from the lowest point lies "
+                    "outside the rim arc [{:.4g}, {:.4g}] rad: the arc is too short for the contact",
+                    theta, first, last));
+  RimGap g;
+  g.segment = 0;
+  while (g.segment + 2 < n && angle(positions[g.segment + 1]) < theta) ++g.segment;
+  const Index i = g.segment;
+  const Real t0 = angle(positions[i]), t1 = angle(positions[i + 1]);
+  g.weight = (theta - t0) / (t1 - t0);
+  const Vec2 e0 = radial(t0), e1 = radial(t1);
+  const Real r0 = positions[i].norm() + e0.dot(w.segment<2>(2 * i));
+  const Real r1 = positions[i + 1].norm() + e1.dot(w.segment<2>(2 * i + 2));
+  const Real rho = (1.0 - g.weight) * r0 + g.weight * r1, slope = (r1 - r0) / (t1 - t0);
+  const Real distance = x.norm();
+  g.gap = distance - rho;
+  // d|x|/dx = e_r; d theta/dx = e_theta / |x|, with e_theta = (cos, sin) the direction of growing angle.
+  g.normal = radial(theta) - slope / distance * Vec2(std::cos(theta), std::sin(theta));
+  g.d_first = -(1.0 - g.weight) * e0;
+  g.d_second = -g.weight * e1;
+  return g;
+}
+
 }  // namespace roller

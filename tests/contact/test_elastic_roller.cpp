@@ -85,3 +85,42 @@ TEST_CASE("elastic roller: under a Hertz pressure the rim flattens as the half-p
   CHECK(fine < coarse);
   CHECK(fine < 0.005);
 }
+
+TEST_CASE("elastic roller: the gap to the deformed rim and its derivatives", "[contact][elastic_roller]") {
+  // A rim arc of nine nodes a millimetre apart on R = 100 (no stiffness needed: the geometry).
+  std::vector<Vec2> arc;
+  for (int i = -4; i <= 4; ++i) arc.push_back(100.0 * Vec2(std::sin(i * 0.01), -std::cos(i * 0.01)));
+  const Vec2 x(1.234, -100.05);  // below the rim, between nodes 5 and 6 (from 1)
+  // Undeformed: the circle's gap.
+  VecX w = VecX::Zero(18);
+  const RimGap rigid = rim_gap(arc, w, x);
+  CHECK(rigid.gap == Approx(x.norm() - 100.0).epsilon(1e-14));
+  CHECK(rigid.segment == 5);
+  CHECK((rigid.normal - x.normalized()).norm() < 1e-12);
+  // The whole arc pressed in by 0.01 mm along its radii: the gap grows by 0.01.
+  for (int i = 0; i < 9; ++i) w.segment<2>(2 * i) = -0.01 * arc[i].normalized();
+  CHECK(rim_gap(arc, w, x).gap == Approx(rigid.gap + 0.01).epsilon(1e-12));
+  // Derivatives against central differences at an uneven displacement.
+  for (int i = 0; i < 18; ++i) w(i) = 1e-3 * std::sin(1.7 * i + 0.3);
+  const RimGap g = rim_gap(arc, w, x);
+  // The gap is linear in w (no truncation error) and smooth in x: h = 1e-5 keeps round-off of
+  // the 100 mm radii (1e-14) at 1e-9 of the difference quotients.
+  const Real h = 1e-5;
+  for (int c = 0; c < 2; ++c) {
+    Vec2 dx = Vec2::Zero();
+    dx(c) = h;
+    const Real fd = (rim_gap(arc, w, x + dx).gap - rim_gap(arc, w, x - dx).gap) / (2 * h);
+    CHECK(g.normal(c) == Approx(fd).epsilon(1e-6));
+  }
+  for (int k = 0; k < 18; ++k) {
+    VecX dw = VecX::Zero(18);
+    dw(k) = h;
+    const Real fd = (rim_gap(arc, w + dw, x).gap - rim_gap(arc, w - dw, x).gap) / (2 * h);
+    const Index node = k / 2;
+    const Real exact = node == g.segment ? g.d_first(k % 2) : node == g.segment + 1 ? g.d_second(k % 2) : 0.0;
+    INFO("dof " << k);
+    CHECK(exact == Approx(fd).margin(1e-8));
+  }
+  // A point beyond the arc: the arc is too short for the contact.
+  CHECK_THROWS_WITH(rim_gap(arc, w, Vec2(10.0, -100.0)), Catch::Contains("outside the rim arc"));
+}
