@@ -7,6 +7,8 @@ import math
 import os
 import tomllib
 
+import pytest
+
 from rollerpy import inprocess
 from rollerpy.paths import PROBLEMS
 from rollerpy.plots import rcf_map
@@ -38,7 +40,7 @@ def test_johnsons_limits_and_the_initiation_lines():
     assert sliding["fi_sub_limit"] < free["fi_sub_limit"] and sliding["dang_van_limit"] < free["dang_van_limit"]
 
 
-def test_the_scene_point_and_the_files(tmp_path):
+def test_the_scene_point_and_the_files(tmp_path, capsys):
     resolved = tomllib.loads(inprocess.load_scene(SCENE).toml())
     k, nu, fatigue, point = rcf_map.scene_values(resolved)
     assert abs(k - 280.0 / math.sqrt(3.0)) < 1e-9       # the softened yield stress 320 - 40
@@ -50,3 +52,22 @@ def test_the_scene_point_and_the_files(tmp_path):
         rows = list(csv.DictReader(f))
     assert [float(r["mu"]) for r in rows] == [0.0, 0.1]
     assert os.path.getsize(os.path.join(out, rcf_map.PNG)) > 10000
+    # --set reaches the scene's keys as roller run's does: a scene without [fatigue] gets one.
+    tutorial = os.path.join(PROBLEMS, "..", "docs", "tutorial", "my_burnishing.toml")
+    sets = ["fatigue.dang_van_a=0.3", "fatigue.dang_van_limit=300.0", "fatigue.shear_fatigue_limit=300.0",
+            "fatigue.critical_shear_strain=11.0"]
+    assert rcf_map.main([tutorial, "--out", out, "--mu-max", "0.1", "--mu-step", "0.1"]
+                        + [a for s in sets for a in ("--set", s)]) == 0
+    with pytest.raises(SystemExit, match=r"no \[fatigue\] section"):
+        rcf_map.main([tutorial, "--out", out])
+    # --run marks the load a run measured: its summary.json's fatigue block.
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "summary.json").write_text('{"fatigue": {"peak_pressure": 692.82, "shear_yield": 173.2, '
+                                      '"traction_coefficient": 0.08}}')
+    assert rcf_map.main([tutorial, "--out", out, "--mu-max", "0.1", "--mu-step", "0.1", "--run", str(run)]
+                        + [a for s in sets for a in ("--set", s)]) == 0
+    assert "p0/k = 4 at mu = 0.08" in capsys.readouterr().out
+    row = {"first_yield": 3.3, "shakedown": 4.0, "plastic_shakedown": 4.0, "surface": math.inf}
+    assert rcf_map.region(4.02, 0.0, row) == "ratchetting (within 1 % of the boundary at p0/k = 4)"
+    assert rcf_map.region(3.7, 0.0, row) == "elastic shakedown"

@@ -4,7 +4,7 @@ shakedown regions beside Ekberg, Kabo & Andersson's initiation limits and Dang V
 scene's own load marked. Writes FOLDER/rcf_map.csv and FOLDER/rcf_map.png.
 
 usage: ./rollerpy rcf-map SCENE --out FOLDER [--mu-max 0.6] [--mu-step 0.05]
-       [--point P0_OVER_K,MU]
+       [--point P0_OVER_K,MU] [--set KEY=VALUE ...]   (--set as roller run's: e.g. fatigue.dang_van_a=0.3)
 
 From the half-plane's elastic fields (McEwen's closed forms under a Hertz pressure and q = mu p,
 plane strain, the out-of-plane stress nu (sigma_x + sigma_z)), not from the scene's strip:
@@ -19,7 +19,9 @@ plane strain, the out-of-plane stress nu (sigma_x + sigma_z)), not from the scen
     rollerpy._roller.fatigue_of_cycle).
 k is the surface material's lowest yield stress over sqrt(3) (a softening Voce term lowers it), a_DV,
 tau_w and tau_e the scene's [fatigue]. The point is the scene's largest roller force on its radius
-(Hertz, p0 = sqrt(P E'/(pi R)), E' = E/(1 - nu^2)) and its travel's traction: q_over_p, |fx|/fy, or 0.
+(Hertz, p0 = sqrt(P E'/(pi R)), E' = E/(1 - nu^2)) and its travel's prescribed traction: q_over_p,
+|fx|/fy, or 0 (free rolling, or a creep whose traction only a run finds: --run OUT_DIR marks the
+load a run measured, --point the one given).
 """
 import csv
 import math
@@ -31,6 +33,7 @@ import numpy as np
 
 from ..command import parser
 from ..line_contact_shakedown import kinematic_shakedown_limit, mcewen, shakedown_limit
+from ..outputs import read_summary
 from ..runner import atomic_file, save_figure
 from . import plt
 
@@ -93,13 +96,12 @@ def scene_values(resolved):
 
 
 def region(p0_over_k, mu, row):
-    if p0_over_k <= row["first_yield"]:
-        return "elastic"
-    if p0_over_k <= row["shakedown"]:
-        return "elastic shakedown"
-    if p0_over_k <= row["plastic_shakedown"]:
-        return "plastic shakedown (cyclic plasticity)"
-    return "ratchetting"
+    """Johnson's region of the load, and the boundary it lies within 1 % of, if any."""
+    bounds = [("elastic", row["first_yield"]), ("elastic shakedown", row["shakedown"]),
+              ("plastic shakedown (cyclic plasticity)", min(row["plastic_shakedown"], row["surface"]))]
+    name = next((n for n, b in bounds if p0_over_k <= b), "ratchetting")
+    near = [b for _, b in bounds if abs(p0_over_k - b) <= 0.01 * b]
+    return name + (" (within 1 %% of the boundary at p0/k = %.3g)" % near[0] if near else "")
 
 
 def rcf_rows(mus, nu, k, fatigue, fatigue_of_cycle):
@@ -160,12 +162,25 @@ def main(argv=None):
     ap.add_argument("--mu-max", type=float, default=0.6)
     ap.add_argument("--mu-step", type=float, default=0.05)
     ap.add_argument("--point", default=None, help="P0_OVER_K,MU to mark instead of the scene's load")
+    ap.add_argument("--run", default=None, metavar="OUT_DIR",
+                    help="mark the load a run of the scene measured (its summary.json's fatigue block: Hertz's p0 "
+                         "of its largest force over k, and its traction coefficient)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a scene key as roller run's --set (a TOML value), e.g. fatigue.dang_van_limit=300.0")
     args = ap.parse_args(argv)
     if not (0.0 < args.mu_step <= args.mu_max <= 2.0):
         raise SystemExit("rcf-map: --mu-step %g, --mu-max %g: expected 0 < step <= max <= 2" % (
             args.mu_step, args.mu_max))
     from .. import inprocess  # the native module, only when the command runs
-    scene = inprocess.load_scene(args.scene)
+    overrides = {}
+    for item in args.set:
+        key, _, value = item.partition("=")
+        try:
+            overrides[key.strip()] = tomllib.loads("v = " + value)["v"]
+        except tomllib.TOMLDecodeError:
+            raise SystemExit("rcf-map: --set %r: expected KEY=VALUE with a TOML value (a number, a string in "
+                             "double quotes, a list)" % item)
+    scene = inprocess.load_scene(args.scene, set=overrides)
     k, nu, fatigue, point = scene_values(tomllib.loads(scene.toml()))
     if args.point:
         try:
@@ -174,6 +189,13 @@ def main(argv=None):
             point = ()
         if len(point) != 2 or not all(math.isfinite(v) and v >= 0.0 for v in point):
             raise SystemExit("rcf-map: --point %r: expected P0_OVER_K,MU, two numbers >= 0" % args.point)
+    if args.run:
+        measured = read_summary(args.run).get("fatigue") if os.path.exists(os.path.join(args.run, "summary.json")) \
+            else None
+        if not measured or not measured.get("shear_yield"):
+            raise SystemExit("rcf-map: --run %s: no summary.json with a fatigue block (a run with [fatigue] and a "
+                             "plastic surface writes it)" % args.run)
+        point = (measured["peak_pressure"] / measured["shear_yield"], measured["traction_coefficient"])
     mus = np.round(np.arange(0.0, args.mu_max + 1e-9, args.mu_step), 10)
     rows = rcf_rows(mus, nu, k, fatigue, inprocess._roller.fatigue_of_cycle)
     os.makedirs(args.out, exist_ok=True)
