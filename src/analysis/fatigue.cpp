@@ -32,10 +32,16 @@ Vec4 deviator_at(const Vec3& y) {
   return {0.5 * (sum + difference), 0.5 * (sum - difference), zz, y(2) / std::sqrt(2.0)};
 }
 
-void require_cycle(const std::vector<Vec4>& cycle, const char* who) {
+// The cycle's deviators as points of R^3 (coordinates above), after checking it has finite samples.
+std::vector<Vec3> deviatoric_path(const std::vector<Vec4>& cycle, const char* who) {
   require(!cycle.empty(), fmt::format("{}: the stress cycle has no sample", who));
-  for (const Vec4& s : cycle)
+  std::vector<Vec3> path;
+  path.reserve(cycle.size());
+  for (const Vec4& s : cycle) {
     if (!s.allFinite()) throw NumericalError(fmt::format("{}: a stress of the cycle is not finite", who));
+    path.push_back(coordinates(deviator(s)));
+  }
+  return path;
 }
 
 }  // namespace
@@ -66,11 +72,7 @@ Real tresca_shear(const Vec4& t) {
 }
 
 DangVan dang_van(const std::vector<Vec4>& cycle, Real a) {
-  require_cycle(cycle, "dang_van");
-  std::vector<Vec3> path;
-  path.reserve(cycle.size());
-  for (const Vec4& s : cycle) path.push_back(coordinates(deviator(s)));
-  const Ball ball = smallest_enclosing_ball(path);
+  const Ball ball = smallest_enclosing_ball(deviatoric_path(cycle, "dang_van"));
   DangVan out;
   out.centre = deviator_at(ball.centre);
   out.radius = ball.radius / std::sqrt(2.0);  // sqrt(J2) = |s| / sqrt2
@@ -84,9 +86,7 @@ DangVan dang_van(const std::vector<Vec4>& cycle, Real a) {
 }
 
 EkbergSubsurface ekberg_subsurface(const std::vector<Vec4>& cycle, Real a) {
-  require_cycle(cycle, "ekberg_subsurface");
-  std::vector<Vec3> path;
-  for (const Vec4& s : cycle) path.push_back(coordinates(deviator(s)));
+  const std::vector<Vec3> path = deviatoric_path(cycle, "ekberg_subsurface");
   Real chord = 0.0;  // the longest, in |s|
   for (std::size_t i = 0; i < path.size(); ++i)
     for (std::size_t j = i + 1; j < path.size(); ++j) chord = std::max(chord, (path[i] - path[j]).squaredNorm());

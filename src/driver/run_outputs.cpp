@@ -128,13 +128,14 @@ void RunOutputs::write_step(const Simulation::StepRecord& step) {
   }
   const bool mid_pass = mid_pass_step_ > 0 && (step.step - 1) % scene_.steps.n_steps + 1 == mid_pass_step_;
   if (step.loaded_fields) write_loaded_fields(step);
-  std::vector<VtuField> fatigue;
-  if (step.pass_end && step.pass_end->fatigue)
-    fatigue = fatigue_cell_fields(model_.mesh(), scene_.mesh.height, *step.pass_end->fatigue,
-                                  step.pass_end->record.track_start, step.pass_end->record.track_end);
-  if (fields_written(scene_, step.step) || mid_pass)
+  if (fields_written(scene_, step.step) || mid_pass) {
+    std::vector<VtuField> fatigue;  // only where the fields are written
+    if (scene_.output.vtu && step.pass_end && step.pass_end->fatigue)
+      fatigue = fatigue_cell_fields(model_.mesh(), scene_.mesh.height, *step.pass_end->fatigue,
+                                    step.pass_end->record.track_start, step.pass_end->record.track_end);
     write_fields(step.step, step.pass, step.contact,
                  step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt, std::move(fatigue));
+  }
   step_start_displacement_ = model_.total_displacement();
 }
 

@@ -5,6 +5,7 @@
 
 #include "pass_fatigue.hpp"
 #include "roller/analysis/pass_metrics.hpp"
+#include "roller/contact/contact_records.hpp"
 #include "roller/io/field_output.hpp"
 #include "roller/steady/stationary_passes.hpp"
 #include "roller/steady/steady_load.hpp"
@@ -85,11 +86,10 @@ class StationarySteps final : public StepMethod {
     end.profile_x = passes.extraction_x();
     end.profile = depth_profile(*run_.strip, run_.scene.mesh.height, end.profile_x);
     if (run_.scene.fatigue) {  // the cycle every point of a row takes through the steady pass
-      Vec2 on_strip = Vec2::Zero();
-      for (const NodeContactRecord& c : passes.contact()) on_strip += c.force;
-      end.fatigue = fatigue_of_pass(
-          run_.scene, end.record, end.profile_x,
-          framed(passes.cycles(pass.solve.states, run_.scene.mesh.height), at_start, end.profile), on_strip);
+      end.fatigue =
+          fatigue_of_pass(run_.scene, end.record, end.profile_x,
+                          framed(passes.cycles(pass.solve.states, run_.scene.mesh.height), at_start, end.profile),
+                          -force_on_roller(passes.contact()));
       run_.state.fatigue = answer_of(*end.fatigue);
     }
     run_.state.pass_records.push_back(end.record);

@@ -8,6 +8,7 @@
 
 #include "pass_fatigue.hpp"
 #include "roller/analysis/hertz.hpp"
+#include "roller/contact/contact_records.hpp"
 #include "step_method.hpp"
 #include "transient_increments.hpp"
 
@@ -127,9 +128,7 @@ class TransientSteps final : public StepMethod {
     const Real load_half_width =
         force > 0.0 ? hertz_line_contact(force, run_.scene.roller->radius, e_star).half_width : 0.0;
     run_.state.pass_track.observe(run_.state.pose.centre.x(), x, p, load_half_width);
-    Vec2 on_strip = Vec2::Zero();  // the roller's force on the strip
-    for (const auto& c : run_.state.contact) on_strip += c.force;
-    run_.state.pass_track.observe_force(on_strip);
+    run_.state.pass_track.observe_force(-force_on_roller(run_.state.contact));  // the roller's on the strip
     const int pass = run_.program.pass_of_step(step);
     if (run_.scene.fatigue) run_.state.pass_cycles.observe(*run_.strip, run_.scene.mesh.height);
     if (!run_.program.ends_pass(step)) return std::nullopt;

@@ -17,8 +17,9 @@ plane strain, the out-of-plane stress nu (sigma_x + sigma_z)), not from the scen
     tau_w. Both are linear in p0 on the elastic cycle, so each limit is a line p0/k = limit / (k phi(mu))
     with phi the largest value over depth of the unit load's cycle (the run's own criteria, through
     rollerpy._roller.fatigue_of_cycle).
-k is the surface material's lowest yield stress over sqrt(3) (a softening Voce term lowers it), a_DV,
-tau_w and tau_e the scene's [fatigue]. The point is the scene's largest roller force on its radius
+k is [material]'s lowest yield stress over sqrt(3) (a softening Voce term lowers it; a [[layer]] or
+yield profile at the surface is not read, where a run takes its surface's), a_DV, tau_w and tau_e
+the scene's [fatigue]. The point is the scene's largest roller force on its radius
 (Hertz, p0 = sqrt(P E'/(pi R)), E' = E/(1 - nu^2)) and its travel's prescribed traction: q_over_p,
 |fx|/fy, or 0 (free rolling, or a creep whose traction only a run finds: --run OUT_DIR marks the
 load a run measured, --point the one given).
