@@ -125,7 +125,7 @@ RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimA
   Index n_dropped = 0;
   for (Index f = 0; f < n_free; ++f)
     if (kept_at[f] < 0) dropped_at[f] = n_dropped++;
-  std::vector<Eigen::Triplet<Real>> ee;
+  std::vector<Triplet> ee;
   MatX er = MatX::Zero(n_dropped, n_kept), rr = MatX::Zero(n_kept, n_kept);
   for (int col = 0; col < k.outerSize(); ++col)
     for (SparseMatrix::InnerIterator it(k, col); it; ++it) {

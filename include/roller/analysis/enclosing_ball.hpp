@@ -9,8 +9,6 @@
 
 namespace roller {
 
-using Vec3 = Eigen::Matrix<Real, 3, 1>;
-
 struct Ball {
   Vec3 centre = Vec3::Zero();
   Real radius = 0.0;

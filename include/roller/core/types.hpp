@@ -13,6 +13,7 @@ using Index = std::int64_t;
 
 using Vec2 = Eigen::Matrix<Real, 2, 1>;
 using Mat2 = Eigen::Matrix<Real, 2, 2>;
+using Vec3 = Eigen::Matrix<Real, 3, 1>;
 using VecX = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
 using MatX = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
 using SparseMatrix = Eigen::SparseMatrix<Real, Eigen::ColMajor, int>;
