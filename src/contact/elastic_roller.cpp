@@ -1,13 +1,13 @@
 #include "roller/contact/elastic_roller.hpp"
 
 #include <fmt/format.h>
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
 
 #include "roller/assembly/strip_model.hpp"
 #include "roller/core/error.hpp"
+#include "roller/solver/schur_condenser.hpp"
 
 namespace roller {
 
@@ -116,36 +116,17 @@ RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimA
   SparseMatrix k;
   model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
 
-  // The free dofs split into the retained (the arc's, x then y by node) and the eliminated.
-  const DofMap& dofs = model.dof_map();
-  const Index n_free = dofs.n_free(), n_kept = 2 * static_cast<Index>(disc.arc.size());
-  std::vector<Index> kept_at(n_free, -1), dropped_at(n_free, -1);
-  for (Index i = 0; i < static_cast<Index>(disc.arc.size()); ++i)
-    for (int c = 0; c < 2; ++c) kept_at[dofs.free_index(2 * disc.arc[i] + c)] = 2 * i + c;
-  Index n_dropped = 0;
-  for (Index f = 0; f < n_free; ++f)
-    if (kept_at[f] < 0) dropped_at[f] = n_dropped++;
-  std::vector<Triplet> ee;
-  MatX er = MatX::Zero(n_dropped, n_kept), rr = MatX::Zero(n_kept, n_kept);
-  for (int col = 0; col < k.outerSize(); ++col)
-    for (SparseMatrix::InnerIterator it(k, col); it; ++it) {
-      const Index row = it.row();
-      if (kept_at[row] >= 0 && kept_at[col] >= 0)
-        rr(kept_at[row], kept_at[col]) = it.value();
-      else if (kept_at[col] >= 0)
-        er(dropped_at[row], kept_at[col]) = it.value();
-      else if (kept_at[row] < 0)
-        ee.emplace_back(dropped_at[row], dropped_at[col], it.value());
-    }
-  SparseMatrix k_ee(n_dropped, n_dropped);
-  k_ee.setFromTriplets(ee.begin(), ee.end());
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt(k_ee);
-  if (ldlt.info() != Eigen::Success)
-    throw NumericalError("elastic roller: the disc's stiffness away from its rim arc is singular");
-  const MatX x = ldlt.solve(er);
+  // The retained dofs (the arc's, x then y by node, as free indices) and the rest condensed out.
+  std::vector<Index> kept;
+  for (Index a : disc.arc)
+    for (int c = 0; c < 2; ++c) kept.push_back(model.dof_map().free_index(2 * a + c));
+  MatX schur;
+  SchurCondenser condenser;
+  if (condenser.condense(k, kept, kept, &schur) == SchurCondenser::Outcome::Failed)
+    throw NumericalError("elastic roller: the disc's stiffness away from its rim arc is singular: " +
+                         condenser.message());
   RimStiffness out;
-  out.stiffness = rr - er.transpose() * x;
-  out.stiffness = 0.5 * (out.stiffness + out.stiffness.transpose());  // symmetric to round-off
+  out.stiffness = 0.5 * (schur + schur.transpose());  // symmetric to round-off
   for (Index a : disc.arc) out.positions.push_back(disc.mesh.nodes[a]);
   return out;
 }
