@@ -77,6 +77,10 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
   for (const auto& c : r.contact)
     finite = finite && std::isfinite(c.normal_force) && std::isfinite(c.tangential_force) && std::isfinite(c.gap) &&
              std::isfinite(c.slip);
+  if (problem.rim() && r.converged() && r.rim.size() != problem.n_rim())
+    throw std::logic_error(
+        fmt::format("{} backend: an elastic roller's rim displacements are not among its unknowns", name()));
+  finite = finite && r.rim.allFinite();
   if (!finite && r.converged()) {
     r.status = Termination::Failed;
     r.message = fmt::format(
@@ -84,6 +88,20 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
   }
   r.max_penetration = 0.0;
   for (const auto& c : r.contact) r.max_penetration = std::max(r.max_penetration, -c.gap);
+  if (problem.rim() && r.converged()) {
+    // The rim's compliance is known on its arc only: a contact beyond it would be a rigid roller's.
+    const auto& cands = problem.candidates();
+    for (std::size_t i = 0; i < cands.size() && i < r.contact.size(); ++i)
+      if (r.contact[i].normal_force > 0.0 && !cands[i].rim.on_rim()) {
+        r.status = Termination::Failed;
+        r.message = fmt::format(
+            "elastic roller: node {} touches the roller outside its rim arc ({:.4g} mm either side of the lowest "
+            "point): the contact is wider than the arc taken from the scene's largest force; check the load and "
+            "the roller's E (a soft roller's contact is wide)",
+            cands[i].node, problem.rim()->arc_half_length());
+        break;
+      }
+  }
   return r;
 }
 

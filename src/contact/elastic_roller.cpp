@@ -131,33 +131,68 @@ RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimA
   return out;
 }
 
-RimGap rim_gap(const std::vector<Vec2>& positions, const VecX& w, const Vec2& x) {
+Real rim_angle(const Vec2& from_centre) { return std::atan2(from_centre.x(), -from_centre.y()); }
+
+Vec2 rim_radial(Real angle) { return Vec2(std::sin(angle), -std::cos(angle)); }
+
+RimPoint rim_point(const std::vector<Vec2>& positions, Real angle) {
   const Index n = static_cast<Index>(positions.size());
-  ROLLER_ASSERT(n >= 2 && w.size() == 2 * n, "rim_gap: one displacement per arc node, at least two nodes");
-  // Angles from the contact's direction (straight down), positive towards +x.
-  auto angle = [](const Vec2& p) { return std::atan2(p.x(), -p.y()); };
-  auto radial = [](Real theta) { return Vec2(std::sin(theta), -std::cos(theta)); };
-  const Real theta = angle(x);
-  const Real first = angle(positions.front()), last = angle(positions.back());
-  if (!(theta >= first && theta <= last))
+  ROLLER_ASSERT(n >= 2, "rim_point: an arc of at least two nodes");
+  const Real first = rim_angle(positions.front()), last = rim_angle(positions.back());
+  if (!(angle >= first && angle <= last))
     throw NumericalError(
         fmt::format("elastic roller: a contact point at {:.4g} rad from the lowest point lies "
                     "outside the rim arc [{:.4g}, {:.4g}] rad: the arc is too short for the contact",
-                    theta, first, last));
+                    angle, first, last));
+  RimPoint p;
+  p.segment = 0;
+  while (p.segment + 2 < n && rim_angle(positions[p.segment + 1]) < angle) ++p.segment;
+  const Real t0 = rim_angle(positions[p.segment]), t1 = rim_angle(positions[p.segment + 1]);
+  p.weight = (angle - t0) / (t1 - t0);
+  return p;
+}
+
+std::vector<RimWeight> rim_average(const std::vector<Vec2>& positions, Real from, Real to) {
+  const Index n = static_cast<Index>(positions.size());
+  const Real first = rim_angle(positions.front()), last = rim_angle(positions.back());
+  from = std::clamp(from, first, last);
+  to = std::clamp(to, first, last);
+  if (!(to > from)) {
+    const RimPoint p = rim_point(positions, from);
+    return {{p.segment, 1.0 - p.weight}, {p.segment + 1, p.weight}};
+  }
+  std::vector<RimWeight> out;
+  for (Index s = 0; s + 1 < n; ++s) {
+    const Real t0 = rim_angle(positions[s]), t1 = rim_angle(positions[s + 1]);
+    const Real a = std::max(from, t0), b = std::min(to, t1);
+    if (!(b > a)) continue;
+    // The mean of the second node's hat over [a, b] (linear: its value at the midpoint).
+    const Real second = ((a + b) / 2 - t0) / (t1 - t0), share = (b - a) / (to - from);
+    if (out.empty() || out.back().node != s) out.push_back({s, 0.0});
+    out.back().weight += share * (1.0 - second);
+    out.push_back({s + 1, share * second});
+  }
+  return out;
+}
+
+RimGap rim_gap(const std::vector<Vec2>& positions, const VecX& w, const Vec2& x) {
+  [[maybe_unused]] const Index n = static_cast<Index>(positions.size());
+  ROLLER_ASSERT(n >= 2 && w.size() == 2 * n, "rim_gap: one displacement per arc node, at least two nodes");
+  const Real theta = rim_angle(x);
+  const RimPoint p = rim_point(positions, theta);
   RimGap g;
-  g.segment = 0;
-  while (g.segment + 2 < n && angle(positions[g.segment + 1]) < theta) ++g.segment;
+  g.segment = p.segment;
+  g.weight = p.weight;
   const Index i = g.segment;
-  const Real t0 = angle(positions[i]), t1 = angle(positions[i + 1]);
-  g.weight = (theta - t0) / (t1 - t0);
-  const Vec2 e0 = radial(t0), e1 = radial(t1);
+  const Real t0 = rim_angle(positions[i]), t1 = rim_angle(positions[i + 1]);
+  const Vec2 e0 = rim_radial(t0), e1 = rim_radial(t1);
   const Real r0 = positions[i].norm() + e0.dot(w.segment<2>(2 * i));
   const Real r1 = positions[i + 1].norm() + e1.dot(w.segment<2>(2 * i + 2));
   const Real rho = (1.0 - g.weight) * r0 + g.weight * r1, slope = (r1 - r0) / (t1 - t0);
   const Real distance = x.norm();
   g.gap = distance - rho;
   // d|x|/dx = e_r; d theta/dx = e_theta / |x|, with e_theta = (cos, sin) the direction of growing angle.
-  g.normal = radial(theta) - slope / distance * Vec2(std::cos(theta), std::sin(theta));
+  g.normal = rim_radial(theta) - slope / distance * Vec2(std::cos(theta), std::sin(theta));
   g.d_first = -(1.0 - g.weight) * e0;
   g.d_second = -g.weight * e1;
   return g;

@@ -1,5 +1,9 @@
 #include "roller/contact/increment_problem.hpp"
 
+#include <algorithm>
+
+#include "roller/core/error.hpp"
+
 namespace roller {
 
 IncrementProblem::IncrementProblem(IncrementEnergy& strip, std::vector<ContactCandidate> candidates,
@@ -13,6 +17,51 @@ IncrementProblem::IncrementProblem(IncrementEnergy& strip, std::vector<ContactCa
 
 Real IncrementProblem::plane_strain_modulus() const {
   return youngs_modulus_ / (1.0 - poisson_ratio_ * poisson_ratio_);
+}
+
+void IncrementProblem::attach_rim(const RimStiffness& rim, const VecX& start) {
+  [[maybe_unused]] const Index n = 2 * static_cast<Index>(rim.positions.size());
+  ROLLER_ASSERT(start.size() == n, "attach_rim: one start displacement per rim dof");
+  rim_ = &rim;
+  rim_w_ = rim_start_ = start;
+  const Real first = rim_angle(rim.positions.front()), last = rim_angle(rim.positions.back());
+  const Real radius = rim.positions.front().norm();
+  for (ContactCandidate& c : candidates_) {
+    c.rim = RimSample{};
+    const Real angle = rim_angle(c.position - roller_.end.centre);
+    if (!(angle >= first && angle <= last)) continue;
+    const Real half = 0.5 * c.tributary_length / radius;
+    for (const RimWeight& k : rim_average(rim.positions, angle - half, angle + half)) {
+      c.rim.node.push_back(k.node);
+      c.rim.gap_weight.push_back(-k.weight * rim_radial(rim_angle(rim.positions[k.node])));
+      c.rim.slip_weight.push_back(-k.weight * c.tangent);
+    }
+    // The material now there lay dphi behind (counter-clockwise positive); beyond the arc its
+    // displacement is taken as the arc end's.
+    const Real back = roller_.dphi();
+    for (const RimWeight& k : rim_average(rim.positions, angle - half - back, angle + half - back))
+      c.rim.slip_start += k.weight * c.tangent.dot(start.segment<2>(2 * k.node));
+  }
+}
+
+Real IncrementProblem::rim_gap_shift(const ContactCandidate& c, const Real* w) const {
+  if (!rim_) return 0.0;
+  Real shift = 0.0;
+  for (std::size_t k = 0; k < c.rim.node.size(); ++k) {
+    const Index i = 2 * c.rim.node[k];
+    shift += c.rim.gap_weight[k].dot(Vec2(w[i], w[i + 1]));
+  }
+  return shift;
+}
+
+Real IncrementProblem::rim_slip_shift(const ContactCandidate& c, const Real* w) const {
+  if (!rim_ || !c.rim.on_rim()) return 0.0;
+  Real shift = c.rim.slip_start;
+  for (std::size_t k = 0; k < c.rim.node.size(); ++k) {
+    const Index i = 2 * c.rim.node[k];
+    shift += c.rim.slip_weight[k].dot(Vec2(w[i], w[i + 1]));
+  }
+  return shift;
 }
 
 Vec2 IncrementProblem::increment(const ContactCandidate& c, const VecX& x) const {

@@ -38,6 +38,11 @@ bool IncrementSolve::solve_contact(const std::optional<RollerPotential>& potenti
   IncrementProblem problem(energy_, candidates, motion, settings_.surface_youngs_modulus,
                            settings_.surface_poisson_ratio);
   if (potential) problem.free_roller(*potential, 0.0);  // w measured from where `motion` puts the centre
+  if (settings_.rim) {
+    const Index n_rim = 2 * static_cast<Index>(settings_.rim->positions.size());
+    problem.attach_rim(*settings_.rim, start_.rim ? *start_.rim : VecX::Zero(n_rim));
+    candidates = problem.candidates();  // with their rim samples
+  }
   BackendResult result = backend_.solve(problem, x_);
   // The extrapolated predictor misleads when the roller path turns (press -> roll, the
   // harmonic's crests): retry once from the start-of-step configuration before giving up.

@@ -13,6 +13,16 @@ bool RollerSpec::is_valid(std::string* why) const {
     return false;
   };
   if (!(radius > 0.0)) return bad(fmt::format("roller.radius = {}: must be > 0", radius));
+  if (elastic()) {
+    if (!(poisson_ratio > -1.0 && poisson_ratio < 0.5))
+      return bad(
+          fmt::format("roller.nu = {}: an elastic roller's Poisson's ratio must lie in (-1, 0.5)", poisson_ratio));
+    if (!(inner_radius >= 0.0 && inner_radius < radius))
+      return bad(
+          fmt::format("roller.inner_radius = {}: the bore must lie in [0, radius = {}) mm", inner_radius, radius));
+  } else if (inner_radius != 0.0) {
+    return bad(fmt::format("roller.inner_radius = {}: a bore needs an elastic roller (roller.E)", inner_radius));
+  }
   if (suspension) {
     const SuspensionSpec& q = *suspension;
     for (auto [name, v] : {std::pair{"mass", q.mass}, {"damping", q.damping}, {"stiffness", q.stiffness}})

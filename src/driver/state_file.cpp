@@ -81,6 +81,7 @@ void save_run_state(const RunState& s, bool multi_pass, nlohmann::json& j) {
   j["totals"] = {
       {"iterations", s.totals.iterations}, {"cuts", s.totals.cuts}, {"max_penetration", s.totals.max_penetration}};
   j["friction_history"] = s.friction.save();
+  if (s.rim.size() > 0) j["roller_rim"] = to_list(s.rim);
   j["warnings"] = s.warnings;
   j["pointwise_loss_reported"] = s.pointwise_loss_reported;
 }
@@ -110,6 +111,7 @@ void load_run_state(const nlohmann::json& j, bool multi_pass, RunState& s) {
     s.totals = RunTotals{t.at("iterations").get<int>(), t.at("cuts").get<int>(), t.at("max_penetration").get<Real>()};
   }
   s.friction.load(j.at("friction_history"));
+  if (j.contains("roller_rim")) s.rim = to_vec(j.at("roller_rim"));
   if (j.contains("warnings")) {  // files of roller before 2026-12-02 hold none
     s.warnings = j.at("warnings").get<std::vector<std::string>>();
     s.pointwise_loss_reported = j.at("pointwise_loss_reported").get<bool>();

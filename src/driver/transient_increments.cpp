@@ -13,7 +13,7 @@ namespace roller {
 TransientIncrements::TransientIncrements(RunModel& run)
     : run_(run),
       loads_(run.scene, run.strip->mesh()),
-      session_(contact_session_settings(run.scene), *run.backend,
+      session_(contact_session_settings(run.scene, run.strip->mesh()), *run.backend,
                contact_candidate_nodes(run.scene, run.strip->mesh())) {
   run.strip->set_dof_map(loads_.dof_map());
 }
@@ -21,6 +21,7 @@ TransientIncrements::TransientIncrements(RunModel& run)
 IncrementStart TransientIncrements::increment_start(Real s_to) const {
   IncrementStart start;
   start.friction = &run_.state.friction;
+  if (run_.state.rim.size() > 0) start.rim = &run_.state.rim;
   start.suspension = run_.dynamics.suspension();
   start.load_offset = run_.state.load_offset;
   start.load_stiffness = run_.state.load_stiffness;
@@ -75,6 +76,7 @@ void TransientIncrements::commit(const IncrementSolution& solution, const Roller
     run_.state.pose = motion.end;
     run_.state.contact = contact_records(solution, run_.state.pose.centre);
     run_.state.friction.record(solution.candidates, solution.contact.contact);
+    if (solution.contact.rim.size() > 0) run_.state.rim = solution.contact.rim;
   }
 }
 

@@ -2,10 +2,42 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "roller/analysis/hertz.hpp"
+#include "roller/core/error.hpp"
+#include "roller/io/scene_strip.hpp"
 
 namespace roller {
 
-ContactSessionSettings contact_session_settings(const Scene& scene) {
+RimArc elastic_rim_arc(const Scene& scene, const Mesh& mesh) {
+  const RollerSpec& r = *scene.roller;
+  std::vector<Real> xs;
+  for (Index a : contact_candidate_nodes(scene, mesh)) xs.push_back(mesh.nodes[a].x());
+  std::sort(xs.begin(), xs.end());
+  Real spacing = std::numeric_limits<Real>::infinity();
+  for (std::size_t i = 1; i < xs.size(); ++i)
+    if (xs[i] - xs[i - 1] > 1e-9 * scene.mesh.length) spacing = std::min(spacing, xs[i] - xs[i - 1]);
+  if (!std::isfinite(spacing)) spacing = scene.mesh.length / std::max(scene.mesh.nx, 1);
+  Real largest_fy = 0.0, depth = 0.0, down = 0.0;
+  for (const PathSegment& seg : r.path) {
+    if (seg.fy) largest_fy = std::max(largest_fy, *seg.fy);
+    down += seg.dy;
+    depth = std::max(depth, -down);
+  }
+  const Real half_width =
+      std::max(largest_fy > 0.0 ? hertz_line_contact(largest_fy, r.radius, scene.contact_modulus()).half_width : 0.0,
+               std::sqrt(2.0 * r.radius * depth));
+  RimArc arc;
+  arc.spacing = spacing;
+  arc.half_length = std::min(std::max(4.0 * half_width, 10.0 * spacing), 0.45 * M_PI * r.radius);
+  return arc;
+}
+
+ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& mesh) {
   ContactSessionSettings s;
   s.roller = scene.roller.has_value();
   const MaterialParams surface = scene.strip_material().surface();  // what the roller touches
@@ -20,6 +52,16 @@ ContactSessionSettings contact_session_settings(const Scene& scene) {
         s.largest_force.x() = std::max(s.largest_force.x(), std::abs(*fx));
       if (seg.fy) s.largest_force.y() = std::max(s.largest_force.y(), *seg.fy);
     }
+  if (scene.roller && scene.roller->elastic()) {
+    if (scene.contact.backend != ContactBackendKind::Penalty)
+      throw InputError(
+          fmt::format("{}: roller.E = {:g}: an elastic roller is solved by the penalty backend so far; "
+                      "set contact.backend = \"penalty\" (docs/limitations.md)",
+                      scene.file.string(), scene.roller->youngs_modulus));
+    const RollerSpec& r = *scene.roller;
+    const ElasticRollerSpec spec{r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
+    s.rim = std::make_shared<const RimStiffness>(condensed_rim_stiffness(spec, elastic_rim_arc(scene, mesh)));
+  }
   return s;
 }
 

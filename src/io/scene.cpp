@@ -6,6 +6,12 @@ int Scene::total_steps() const {
   return passes.method == PassMethod::Stationary ? passes.count : steps.n_steps * passes.count;
 }
 
+Real Scene::contact_modulus() const {
+  const Real strip = strip_material().surface().plane_strain_modulus();
+  if (!roller || !roller->elastic()) return strip;
+  return 1.0 / (1.0 / strip + 1.0 / roller->plane_strain_modulus());
+}
+
 StripMeshSpec Scene::strip_mesh_spec() const {
   StripMeshSpec spec = mesh;
   if (mesh_follows_layers)

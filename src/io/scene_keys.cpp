@@ -916,6 +916,21 @@ std::vector<SceneKey> make_keys() {
       // [roller]
       key(
           "roller.radius", [](auto& s) -> auto& { return s.roller->radius; }, "R [mm]", closed(kMinLength, kMaxLength)),
+      key(
+          "roller.E", [](auto& s) -> auto& { return s.roller->youngs_modulus; },
+          "an elastic roller's Young's modulus [MPa] (docs/model.md, Elastic roller)",
+          with_hint(closed(kMinModulus, kMaxModulus), "E in Pa? roller works in MPa (steel: E = 2.1e5)"))
+          .shown_default("absent: rigid")
+          .written_if([](const Scene& s) { return s.roller->elastic(); }),
+      key(
+          "roller.nu", [](auto& s) -> auto& { return s.roller->poisson_ratio; }, "an elastic roller's Poisson's ratio",
+          open(-1.0, 0.5))
+          .written_if([](const Scene& s) { return s.roller->elastic(); }),
+      key(
+          "roller.inner_radius", [](auto& s) -> auto& { return s.roller->inner_radius; },
+          "an elastic roller's bore [mm]: a ring or sleeve held there (0: a solid disc, held at its axle)",
+          closed(0.0, kMaxLength))
+          .written_if([](const Scene& s) { return s.roller->elastic(); }),
       custom(
           "roller.centre", "[x, y]", "[length/2, height + radius] (touching)", "", "centre at the start [mm]",
           [](TomlSection& s, Scene& scene, Ref) {
@@ -1165,6 +1180,10 @@ std::vector<SceneTable> make_tables() {
       s.fail("passes", "repeated passes need a [roller] whose [[roller.path]] describes one pass");
     if (scene.passes.method == PassMethod::Stationary && !scene.roller)
       s.fail("passes", "the stationary method needs a [roller] and its [[roller.path]]");
+    if (scene.passes.method == PassMethod::Stationary && scene.roller && scene.roller->elastic())
+      s.fail("passes",
+             "the stationary method takes a rigid roller so far: remove roller.E, or set passes.method = "
+             "\"transient\" (docs/limitations.md)");
   };
 
   SceneTable& material = add("material");
@@ -1272,6 +1291,9 @@ std::vector<SceneTable> make_tables() {
   roller.check = [](TomlSection& s, Scene& scene, Ref) {
     std::string why;
     if (!scene.roller->is_valid(&why)) s.fail_invalid(why, {});
+    if (!scene.roller->elastic())
+      for (const char* k : {"nu", "inner_radius"})
+        if (s.has(k)) s.fail(k, "belongs to an elastic roller: give roller.E too (absent: a rigid roller)");
     check_roller_scale(s, scene);
   };
   roller.count = [](const Scene& s) -> std::size_t { return s.roller.has_value(); };

@@ -19,7 +19,7 @@ ElasticPress::ElasticPress(Scene elastic, const Mesh& mesh)
       strip_(std::make_unique<StripModel>(mesh, assign_materials(mesh, scene_.strip_material()), scene_.element)),
       loads_(scene_, mesh),
       backend_(make_increment_backend(true, scene_.contact, scene_.newton)),
-      session_(contact_session_settings(scene_), *backend_, contact_candidate_nodes(scene_, mesh)) {
+      session_(contact_session_settings(scene_, mesh), *backend_, contact_candidate_nodes(scene_, mesh)) {
   strip_->set_dof_map(loads_.dof_map());
   const Vec2 start = start_centre_on(scene_, *strip_, session_.candidate_nodes());
   pose_ = roller_pose(*scene_.roller, start, 0.0);

@@ -111,6 +111,9 @@ fy = { value = -2.0, ramp = [1, 5] }
 radius = 150.0
 centre = [25.0, 160.0]
 angle = 0.1
+E = 7.0e4
+nu = 0.33
+inner_radius = 50.0
 [roller.suspension]
 mass = 1e-3
 damping = 2e-3

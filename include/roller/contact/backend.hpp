@@ -35,6 +35,7 @@ struct BackendResult {
   std::string message;
   VecX x;                             // free-dof increment
   std::optional<Real> roller_offset;  // a suspended roller's offset w at the solution (IncrementProblem::free_roller)
+  VecX rim;                           // an elastic roller's rim displacements at the solution (empty: rigid)
   std::vector<NodeContact> contact;
   SolveCounters counters;      // Newton or interior-point iterations (all passes), factorisations
   Real residual = 0.0;         // relative equilibrium residual at the solution

@@ -8,11 +8,13 @@
 // transient step and shakedown-limit's elastic press solve their contact through it; a strip of
 // constant tangent condensed under the roller has the contact floor's other door
 // (condensed_contact.hpp).
+#include <memory>
 #include <vector>
 
 #include "roller/assembly/increment_energy.hpp"
 #include "roller/contact/backend.hpp"
 #include "roller/contact/contact_options.hpp"
+#include "roller/contact/elastic_roller.hpp"
 #include "roller/contact/increment_types.hpp"
 
 namespace roller {
@@ -32,6 +34,8 @@ struct ContactSessionSettings {
   // The largest force the roller's path prescribes per axis (|fx|, fy) [N per mm]: the scale of
   // force control's tolerances.
   Vec2 largest_force = Vec2::Zero();
+  // An elastic roller's rim, condensed (contact/elastic_roller.hpp); null: the roller is rigid.
+  std::shared_ptr<const RimStiffness> rim;
 };
 
 class ContactSession {

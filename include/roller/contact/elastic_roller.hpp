@@ -5,6 +5,7 @@
 // statically condensed onto the rim nodes of an arc around the contact. In the roller's frame
 // the contact does not move, so this is computed once a run: the superelement of the Abaqus
 // rollover models' elastic wheel (docs/elastic-roller-design.md), on the contact arc only.
+#include <cmath>
 #include <vector>
 
 #include "roller/core/types.hpp"
@@ -41,8 +42,36 @@ RollerDiscMesh roller_disc_mesh(const ElasticRollerSpec& roller, const RimArc& a
 struct RimStiffness {
   std::vector<Vec2> positions;  // the arc's rim nodes relative to the centre, undeformed [mm]
   MatX stiffness;               // 2n x 2n [N/mm per mm of roller length]
+  // The arc's half-length along the rim [mm].
+  Real arc_half_length() const {
+    return positions.empty()
+               ? 0.0
+               : positions.back().norm() * std::abs(std::atan2(positions.back().x(), -positions.back().y()));
+  }
 };
 RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimArc& arc);
+
+// Where on the rim arc a direction from the centre points: the arc nodes `segment` and
+// `segment + 1` around it and its place between them, linear in the angle (measured from straight
+// down, positive towards +x). Throws NumericalError when the angle lies outside the arc (the
+// contact left it).
+struct RimPoint {
+  Index segment = -1;
+  Real weight = 0.0;  // 0 at the first node, 1 at the second
+};
+Real rim_angle(const Vec2& from_centre);
+Vec2 rim_radial(Real angle);  // the outward unit vector at that angle
+RimPoint rim_point(const std::vector<Vec2>& positions, Real angle);
+
+// The rim's displacement averaged over the angles [from, to] (clamped to the arc) as weights of
+// the arc nodes, summing to 1: the integral of their hat functions over the interval over its
+// length (the value at `from` when the interval is empty). A strip node's force spread evenly over
+// its tributary length loads the rim with the same weights.
+struct RimWeight {
+  Index node = 0;
+  Real weight = 0.0;
+};
+std::vector<RimWeight> rim_average(const std::vector<Vec2>& positions, Real from, Real to);
 
 // A point's gap to the deformed rim arc: the circle through the arc's nodes moved radially by
 // their displacements' radial parts, interpolated linearly in the angle between two nodes

@@ -11,13 +11,34 @@
 //   slip     s_i(u) = t_i . (u_i - dc) - R dphi   (relative tangential motion of the node against
 //            the roller's surface material point; the roller surface moves R dphi along t)
 // Forces on the strip node: F_N n_i + F_T t_i with F_N >= 0 (compression) and |F_T| <= mu F_N.
+//
+// An elastic roller (attach_rim) adds the displacements w of its rim arc as unknowns with the
+// energy 1/2 w^T K w (contact/elastic_roller.hpp). Each candidate touches the rim at a point
+// sampled, like its tangent, once an increment (RimSample): the gap drops by the rim's radial
+// displacement there and the slip by the rim material's tangential displacement increment, both
+// affine in w (docs/model.md, Elastic roller).
 #include <optional>
 #include <vector>
 
 #include "roller/assembly/increment_energy.hpp"
+#include "roller/contact/elastic_roller.hpp"
 #include "roller/contact/roller.hpp"
 
 namespace roller {
+
+// Where a candidate touches an elastic roller's rim, fixed within the increment: the rim's
+// displacements averaged over the node's tributary length (rim_average; empty: no rim there, the
+// roller rigid), as the coefficients that make
+//   gap  += sum_k gap_weight[k] . w_node[k]       (the rim moved radially)
+//   slip += sum_k slip_weight[k] . w_node[k] + slip_start
+// slip_start: the tangential displacement at the start of the increment of the rim material that
+// now lies there (it came from an angle dphi behind as the roller turned).
+struct RimSample {
+  std::vector<Index> node;
+  std::vector<Vec2> gap_weight, slip_weight;
+  Real slip_start = 0.0;
+  bool on_rim() const { return !node.empty(); }
+};
 
 struct ContactCandidate {
   Index node = 0;
@@ -30,6 +51,7 @@ struct ContactCandidate {
   Real tangential_force = 0.0;     // committed F_T^n of the previous increment (penalty history)
   Real normal_force_guess = 0.0;   // F_N of the previous increment / fixed-point pass (friction
                                    // threshold mu F_N for Tresca-type inner problems)
+  RimSample rim;                   // where it touches an elastic roller's rim (attach_rim)
 };
 
 struct RollerMotion {
@@ -94,6 +116,22 @@ class IncrementProblem {
     roller_.end.centre.y() += w - w_;
     w_ = w;
   }
+  // An elastic roller: its rim's condensed stiffness (kept by the caller) and the rim displacements
+  // the increment starts from; samples every candidate's point on the rim (RimSample) from its
+  // start position relative to the end centre. Candidates beyond the arc keep no sample.
+  void attach_rim(const RimStiffness& rim, const VecX& start);
+  const RimStiffness* rim() const { return rim_; }
+  Index n_rim() const { return rim_ ? 2 * static_cast<Index>(rim_->positions.size()) : 0; }
+  // The rim displacements every kinematic function below uses (a backend sets its iterate's).
+  const VecX& rim_displacement() const { return rim_w_; }
+  const VecX& rim_start() const { return rim_start_; }  // where the increment's rim starts
+  void set_rim_displacement(const VecX& w) { rim_w_ = w; }
+  // The rim's shares of a candidate's gap and slip at rim displacements w (2 n_rim values).
+  Real rim_gap_shift(const ContactCandidate& c, const Real* w) const;
+  Real rim_slip_shift(const ContactCandidate& c, const Real* w) const;
+  // The rim's elastic energy 1/2 w^T K w.
+  Real rim_energy(const VecX& w) const { return rim_ ? 0.5 * w.dot(rim_->stiffness * w) : 0.0; }
+
   Real youngs_modulus() const { return youngs_modulus_; }
   Real plane_strain_modulus() const;  // E* = E / (1 - nu^2)
 
@@ -101,10 +139,13 @@ class IncrementProblem {
   // where gap, normal, slip and the gap's curvature are computed, and so the one place that knows
   // the roller is a rigid circle (docs/architecture.md); the NLP formulations map their variables to u.
   Vec2 from_centre(const ContactCandidate& c, const Vec2& u) const { return (c.position + u) - roller_.end.centre; }
-  Real gap_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).norm() - roller_.radius; }
+  // With an elastic roller: at the rim displacements set (set_rim_displacement).
+  Real gap_for(const ContactCandidate& c, const Vec2& u) const {
+    return from_centre(c, u).norm() - roller_.radius + rim_gap_shift(c, rim_w_.data());
+  }
   Vec2 normal_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).normalized(); }
   Real slip_for(const ContactCandidate& c, const Vec2& u) const {
-    return c.tangent.dot(u - roller_.dc()) - roller_.radius * roller_.dphi();
+    return c.tangent.dot(u - roller_.dc()) - roller_.radius * roller_.dphi() + rim_slip_shift(c, rim_w_.data());
   }
   // `weight` times the gap's curvature d2g/du2, (I - n n^T) / |x - c| for the circle: the Hessian
   // a contact force of that size adds (penalty, the NLP's contact rows).
@@ -128,6 +169,8 @@ class IncrementProblem {
   RollerMotion roller_;
   std::optional<RollerPotential> potential_;
   Real w_ = 0.0;  // the suspended roller's offset w (its centre: roller_.end.centre)
+  const RimStiffness* rim_ = nullptr;
+  VecX rim_w_, rim_start_;
   Real youngs_modulus_;
   Real poisson_ratio_;
   Index n_free_;

@@ -47,6 +47,7 @@ struct IncrementStart {
   Vec2 load_offset = Vec2::Zero();
   Vec2 load_stiffness = Vec2::Zero();
   Vec2 roller_force = Vec2::Zero();  // of the strip on the roller at the start [N per mm]
+  const VecX* rim = nullptr;         // an elastic roller's rim displacements at the start (null: none yet)
 };
 
 }  // namespace roller

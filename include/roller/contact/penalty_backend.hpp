@@ -40,6 +40,8 @@ class PenaltyBackend : public ContactBackend {
                              const std::vector<NodeContact>* frozen = nullptr);
   static constexpr int kMaxActiveSetPasses = 20;
   BackendResult do_solve(IncrementProblem& problem, const VecX& x0) override;
+  // The solve over all unknowns z = [x, w] (w: an elastic roller's rim, when there is one).
+  BackendResult solve_unknowns(IncrementProblem& problem, const VecX& z0);
   ContactOptions options_;
   NewtonOptions newton_;
   // Kept between solves, with its linear solvers: MUMPS's analysis is redone only for a new pattern.

@@ -72,6 +72,14 @@ struct RollerSpec {
   bool touch_strip = false;
   std::vector<PathSegment> path;             // steps not covered by a segment keep the roller still
   std::optional<SuspensionSpec> suspension;  // absent: the centre follows the path exactly
+  // An elastic roller (contact/elastic_roller.hpp): Young's modulus [MPa] (0: rigid), Poisson's
+  // ratio, and the bore of a ring or sleeve [mm] (0: a solid disc).
+  Real youngs_modulus = 0.0;
+  Real poisson_ratio = 0.3;
+  Real inner_radius = 0.0;
+  bool elastic() const { return youngs_modulus > 0.0; }
+  // E/(1 - nu^2) of an elastic roller.
+  Real plane_strain_modulus() const { return youngs_modulus / (1.0 - poisson_ratio * poisson_ratio); }
   bool is_valid(std::string* why) const;
 };
 

@@ -46,6 +46,8 @@ struct RunState {
   // The contact of the last increment, and the friction history it leaves.
   std::vector<NodeContactRecord> contact;
   FrictionHistory friction;
+  // An elastic roller's rim displacements at the end of the last increment (empty: none yet).
+  VecX rim;
   // Multi-pass runs: the contact seen in the current pass, the strip at its start, the records
   // of the passes done.
   PassTrack pass_track;

@@ -2,10 +2,17 @@
 // A scene's words for its contact solves, typed: what a ContactSession (contact/contact_session.hpp)
 // takes of the scene, so that the session itself knows no scene.
 #include "roller/contact/contact_session.hpp"
+#include "roller/contact/elastic_roller.hpp"
 #include "roller/io/scene.hpp"
 
 namespace roller {
 
-ContactSessionSettings contact_session_settings(const Scene& scene);
+// `mesh`: the strip's, whose surface spacing sets an elastic roller's rim mesh.
+ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& mesh);
+
+// An elastic roller's rim arc: 4 two-body Hertz half-widths either side of the lowest point for
+// the path's largest force (or the geometric half-width of its deepest press), at least ten of the
+// strip's surface spacings, the spacing the strip's finest along its top.
+RimArc elastic_rim_arc(const Scene& scene, const Mesh& mesh);
 
 }  // namespace roller

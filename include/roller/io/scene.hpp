@@ -160,9 +160,9 @@ struct Scene {
   int total_steps() const;
   // The strip's material by depth: [material], the layers and the profile.
   LayeredMaterial strip_material() const { return LayeredMaterial{material, layers, yield_profile}; }
-  // E/(1 - nu^2) of the top surface's material: what the roller's contact sees (Hertz's half-width,
-  // the penalty stiffness).
-  Real contact_modulus() const { return strip_material().surface().plane_strain_modulus(); }
+  // E/(1 - nu^2) of the top surface's material: what the roller's contact sees (Hertz's half-width).
+  // With an elastic roller, the two bodies' 1/E* = 1/E*_strip + 1/E*_roller.
+  Real contact_modulus() const;
   // [mesh] with the layers' boundaries pinned as grid lines when follow_layers is on.
   StripMeshSpec strip_mesh_spec() const;
 };

@@ -18,90 +18,140 @@ using Stiffness = PenaltyBackend::Stiffness;
 // Largest |r|/F accepted because the round-off floor forbids a smaller one (newton_stage).
 constexpr Real kMaxRoundoffResidual = 1e-3;
 
-// Contact forces of candidate c at x and, optionally, the 2x2 tangent block d(-f)/du of the
-// force f = F_N n + F_T t acting on the node. With `frozen`, the node keeps that status (and slip
-// direction) whatever x: open nodes carry no force, closed ones a bilateral normal penalty (also
-// in tension), so the system is smooth for Newton; the caller updates the statuses between solves.
+// A candidate's contact as a function of its local unknowns among z = [x, w] (w: an elastic
+// roller's rim displacements after the strip's free dofs): the node's free x and y, then those of
+// the rim nodes it touches; -1 where there is none. The gap and the slip are linear in the rim's.
+struct LocalDofs {
+  std::vector<Index> index;
+  VecX gap;   // d gap / d z_local
+  VecX slip;  // d slip / d z_local
+};
+
+LocalDofs local_dofs(const IncrementProblem& p, const ContactCandidate& c, const Vec2& normal) {
+  const Index n_rim = p.rim() ? static_cast<Index>(c.rim.node.size()) : 0;
+  LocalDofs d;
+  d.index.assign(2 + 2 * n_rim, -1);
+  d.gap.resize(2 + 2 * n_rim);
+  d.slip.resize(2 + 2 * n_rim);
+  for (int a = 0; a < 2; ++a) {
+    d.index[a] = c.free_dof[a];
+    d.gap(a) = normal(a);
+    d.slip(a) = c.tangent(a);
+  }
+  for (Index k = 0; k < n_rim; ++k)
+    for (int a = 0; a < 2; ++a) {
+      d.index[2 + 2 * k + a] = p.n_free() + 2 * c.rim.node[k] + a;
+      d.gap(2 + 2 * k + a) = c.rim.gap_weight[k](a);
+      d.slip(2 + 2 * k + a) = c.rim.slip_weight[k](a);
+    }
+  return d;
+}
+
+// Contact forces of candidate c at x (the rim at the problem's rim displacements) and,
+// optionally, the tangent block d(-f)/dz_local of the forces on its local unknowns (LocalDofs),
+// f = F_N dgap + F_T dslip: on the node F_N n + F_T t. With `frozen`, the node keeps that status
+// (and slip direction) whatever x: open nodes carry no force, closed ones a bilateral normal
+// penalty (also in tension), so the system is smooth for Newton; the caller updates the statuses
+// between solves.
 NodeContact contact_state(const IncrementProblem& p, const ContactCandidate& c, const Stiffness& k, const VecX& x,
-                          Mat2* block, const NodeContact* frozen = nullptr) {
+                          const LocalDofs& d, MatX* block, const NodeContact* frozen = nullptr) {
   NodeContact s;
   const Vec2 u = p.increment(c, x);
-  const Vec2 n = p.normal_for(c, u);
   s.gap = p.gap_for(c, u);
   s.slip = p.slip_for(c, u);
-  if (block) block->setZero();
+  if (block) block->setZero(d.gap.size(), d.gap.size());
   if (frozen ? frozen->status == ContactStatus::Open : s.gap >= 0.0) return s;  // open: no force
   s.normal_force = -k.normal * s.gap;
   const Real mu = p.roller().friction;
-  const Vec2& t = c.tangent;
-  if (block) *block += k.normal * n * n.transpose() - p.gap_curvature(c, u, s.normal_force);
+  if (block) {
+    *block += k.normal * d.gap * d.gap.transpose();
+    block->topLeftCorner<2, 2>() -= p.gap_curvature(c, u, s.normal_force);
+  }
   if (mu == 0.0) {
     s.status = ContactStatus::Slip;
     return s;
   }
   const Real trial = c.tangential_force - k.tangential * s.slip;
   const Real bound = mu * s.normal_force;
-  if (frozen) {
-    if (frozen->status == ContactStatus::Stick) {
-      s.tangential_force = trial;
-      s.status = ContactStatus::Stick;
-      if (block) *block += k.tangential * t * t.transpose();
-    } else {
-      const Real sign = frozen->tangential_force >= 0.0 ? 1.0 : -1.0;
-      s.tangential_force = sign * bound;
-      s.status = ContactStatus::Slip;
-      if (block) *block += mu * k.normal * sign * t * n.transpose();
-    }
-    return s;
-  }
-  if (std::abs(trial) <= bound) {
+  const bool stick = frozen ? frozen->status == ContactStatus::Stick : std::abs(trial) <= bound;
+  if (stick) {
     s.tangential_force = trial;
     s.status = ContactStatus::Stick;
-    if (block) *block += k.tangential * t * t.transpose();
+    if (block) *block += k.tangential * d.slip * d.slip.transpose();
   } else {
-    const Real sign = trial > 0.0 ? 1.0 : -1.0;
+    const Real sign = (frozen ? frozen->tangential_force : trial) >= 0.0 ? 1.0 : -1.0;
     s.tangential_force = sign * bound;
     s.status = ContactStatus::Slip;
-    if (block) *block += mu * k.normal * sign * t * n.transpose();  // unsymmetric
+    if (block) *block += mu * k.normal * sign * d.slip * d.gap.transpose();  // unsymmetric
   }
   return s;
 }
 
-// Residual r = dPi/dx - (contact forces) on the free dofs and, when asked, its Jacobian, with the
-// contact of every candidate at x; or why the strip cannot take x. The value's force scale is the
-// larger of the strip's and the contact forces'; its round-off floor is the residual that round-off
-// alone produces: the gap |x - c| - R of a node at distance rho from the centre carries an absolute
-// error ~ eps rho, which the penalty turns into a force error ~ eps rho kN. Tolerances below it
-// cannot be met.
-Expected<ObjectiveValue> evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& x, VecX& r,
+// Residual r = dPi/dz - (contact forces) on z = [x, w] and, when asked, its Jacobian, with the
+// contact of every candidate at z; or why the strip cannot take x. The elastic roller's rim adds
+// K w to its rows. The value's force scale is the larger of the strip's and the contact forces';
+// its round-off floor is the residual that round-off alone produces: the gap |x - c| - R of a node
+// at distance rho from the centre carries an absolute error ~ eps rho, which the penalty turns
+// into a force error ~ eps rho kN. Tolerances below it cannot be met.
+Expected<ObjectiveValue> evaluate(IncrementProblem& p, const std::vector<Stiffness>& k, const VecX& z, VecX& r,
                                   SparseMatrix* jacobian, std::vector<NodeContact>& contact,
                                   const std::vector<NodeContact>* frozen = nullptr) {
-  const Expected<ObjectiveValue> strip = p.strip_energy(x, &r, jacobian);
+  const Index n = p.n_free(), n_rim = p.n_rim();
+  const VecX x = z.head(n);
+  if (n_rim > 0) p.set_rim_displacement(z.tail(n_rim));
+  VecX strip_r;
+  const Expected<ObjectiveValue> strip = p.strip_energy(x, &strip_r, jacobian);
   if (!strip) return strip;
+  r.resize(n + n_rim);
+  r.head(n) = strip_r;
+  std::vector<Triplet> rim_entries;
+  if (n_rim > 0) {
+    const MatX& kr = p.rim()->stiffness;
+    r.tail(n_rim) = kr * z.tail(n_rim);
+    if (jacobian) {
+      jacobian->conservativeResize(n + n_rim, n + n_rim);
+      for (Index j = 0; j < n_rim; ++j)
+        for (Index i = 0; i < n_rim; ++i) rim_entries.emplace_back(n + i, n + j, kr(i, j));
+    }
+  }
   contact.assign(p.candidates().size(), NodeContact{});
   ObjectiveValue value;
   // Armstrong-Frederick's consistent tangent is unsymmetric (docs/model.md, Hardening laws).
   value.symmetric = !p.strip_model().has_recovery();
   Real contact_norm2 = 0.0, floor2 = 0.0;
-  Mat2 block;
+  MatX block;
   for (std::size_t i = 0; i < p.candidates().size(); ++i) {
     const ContactCandidate& c = p.candidates()[i];
+    const LocalDofs d = local_dofs(p, c, p.normal(c, x));
     NodeContact& s = contact[i];
-    s = contact_state(p, c, k[i], x, jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
+    s = contact_state(p, c, k[i], x, d, jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
+    const bool rim = d.index.size() > 2;
+    if (s.status == ContactStatus::Open && !rim) continue;
+    // A rim's entries stay in the pattern while open (as zeros): Newton's pattern is fixed within a solve.
+    const int n_local = static_cast<int>(d.index.size());
+    for (int a = 0; a < n_local; ++a) {
+      if (d.index[a] < 0) continue;
+      r(d.index[a]) -= s.normal_force * d.gap(a) + s.tangential_force * d.slip(a);
+      if (!jacobian) continue;
+      for (int b = 0; b < n_local; ++b) {
+        if (d.index[b] < 0) continue;
+        if (a < 2 && b < 2)
+          jacobian->coeffRef(d.index[a], d.index[b]) += block(a, b);
+        else
+          rim_entries.emplace_back(d.index[a], d.index[b], block(a, b));
+      }
+    }
     if (s.status == ContactStatus::Open) continue;
     const Real floor_i =
         10.0 * std::numeric_limits<Real>::epsilon() * k[i].normal * (p.position(c, x) - p.roller().end.centre).norm();
     floor2 += floor_i * floor_i;
-    const Vec2 f = contact_force(s.normal_force, s.tangential_force, p.normal(c, x), c.tangent);
-    contact_norm2 += f.squaredNorm();
+    contact_norm2 += (s.normal_force * d.gap.head(2) + s.tangential_force * d.slip.head(2)).squaredNorm();
     if (s.status == ContactStatus::Slip && p.roller().friction > 0.0) value.symmetric = false;
-    for (int a = 0; a < 2; ++a) {
-      if (c.free_dof[a] < 0) continue;
-      r(c.free_dof[a]) -= f(a);
-      if (!jacobian) continue;
-      for (int b = 0; b < 2; ++b)
-        if (c.free_dof[b] >= 0) jacobian->coeffRef(c.free_dof[a], c.free_dof[b]) += block(a, b);
-    }
+  }
+  if (jacobian && !rim_entries.empty()) {
+    SparseMatrix extra(n + n_rim, n + n_rim);
+    extra.setFromTriplets(rim_entries.begin(), rim_entries.end());
+    *jacobian += extra;
   }
   value.force_scale = std::max(strip->force_scale, std::sqrt(contact_norm2));
   value.roundoff_floor = std::sqrt(floor2);
@@ -190,6 +240,19 @@ BackendResult PenaltyBackend::newton_stage(IncrementProblem& problem, const std:
 }
 
 BackendResult PenaltyBackend::do_solve(IncrementProblem& problem, const VecX& x0) {
+  // An elastic roller's rim displacements are unknowns after the strip's, from the start's.
+  const Index n = problem.n_free(), n_rim = problem.n_rim();
+  VecX z0(n + n_rim);
+  z0 << x0, problem.rim_start();
+  BackendResult result = solve_unknowns(problem, z0);
+  if (n_rim == 0) return result;
+  result.rim = result.x.tail(n_rim);
+  result.x.conservativeResize(n);
+  problem.set_rim_displacement(result.rim);
+  return result;
+}
+
+BackendResult PenaltyBackend::solve_unknowns(IncrementProblem& problem, const VecX& x0) {
   // First a Newton at the target penalty from the predictor: the previous increment ended in
   // equilibrium at this penalty, so on a smooth path this converges at once. If it fails,
   // penalty staging (measured: a Newton at a high penalty chatters between contact/stick/slip
