@@ -1,11 +1,13 @@
 // Two elastic bodies in Hertz's line contact: a steel, an aluminium and a soft roller pressed into
 // a steel strip (problems/hertz.toml with roller.E), against the two-body Hertz solution (the
-// composite modulus 1/E* = 1/E*_strip + 1/E*_roller); a very stiff roller against the rigid one.
+// composite modulus 1/E* = 1/E*_strip + 1/E*_roller); a very stiff roller against the rigid one;
+// Cattaneo-Mindlin with identical materials (no normal-tangential coupling at any nu).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
 #include "../support/run_scene.hpp"
+#include "roller/analysis/contact_zones.hpp"
 #include "roller/analysis/hertz.hpp"
 
 using namespace roller;
@@ -60,4 +62,36 @@ TEST_CASE("elastic roller (penalty): a roller of E = 1e9 MPa carries the rigid r
   CHECK(stiff.load < rigid.load);
   CHECK(std::abs(stiff.load / rigid.load - 1.0) < 1e-3);
   CHECK(std::abs(stiff.hertz.half_width / rigid.hertz.half_width - 1.0) < 1e-3);
+}
+
+// problems/cattaneo_mindlin.toml (P = 10000 N/mm, then Q = mu P / 2 with the rotation blocked) with
+// strip and roller both steel of nu = 0.3: identical bodies do not couple the normal and the
+// tangential problems, so Cattaneo's c/a = sqrt(1 - Q/(mu P)) holds without nu = 0.5 (which the
+// rigid roller needs). Measured (refine 1): c/a = 0.730 against 0.707, a = 3.408 against 3.322 mm.
+TEST_CASE("elastic roller (penalty): Cattaneo's stick zone with identical materials", "[contact][elastic_roller]") {
+  const Simulation sim =
+      test::run_scene("cattaneo_mindlin", {{"contact.backend", "\"penalty\""},
+                                           {"material.nu", "0.3"},
+                                           {"roller.E", "2.1e5"},
+                                           {"roller.nu", "0.3"}});
+  const Real mu = sim.scene().contact.friction;
+  std::vector<Real> x;
+  std::vector<bool> in_contact, stick;
+  for (const auto& c : sim.state().contact) {
+    x.push_back(c.position.x());
+    in_contact.push_back(c.contact.status != ContactStatus::Open);
+    stick.push_back(c.contact.status == ContactStatus::Stick);
+  }
+  const Vec2 f = force_on_roller(sim.state().contact);
+  const Real q_ratio = std::abs(f.x()) / (mu * f.y());
+  const ZoneExtent a = zone_extent(x, in_contact);
+  const ZoneExtent c = zone_extent(x, stick);
+  const Real expected = std::sqrt(1.0 - q_ratio);
+  const HertzSolution hertz = hertz_line_contact(f.y(), sim.scene().roller->radius, sim.scene().contact_modulus());
+  INFO("Q/(mu P) = " << q_ratio << ", a = " << a.half_width() << " (two-body Hertz " << hertz.half_width
+                     << "), c/a = " << c.half_width() / a.half_width() << " (Cattaneo " << expected << ")");
+  CHECK(q_ratio == Approx(0.5).epsilon(1e-4));
+  // Zone boundaries are resolved to half a node spacing on each side (contact_zones.hpp).
+  CHECK(std::abs(a.half_width() / hertz.half_width - 1.0) < 0.08);
+  CHECK(std::abs(c.half_width() / a.half_width() - expected) < 0.08);
 }
