@@ -69,11 +69,9 @@ TEST_CASE("elastic roller (penalty): a roller of E = 1e9 MPa carries the rigid r
 // tangential problems, so Cattaneo's c/a = sqrt(1 - Q/(mu P)) holds without nu = 0.5 (which the
 // rigid roller needs). Measured (refine 1): c/a = 0.730 against 0.707, a = 3.408 against 3.322 mm.
 TEST_CASE("elastic roller (penalty): Cattaneo's stick zone with identical materials", "[contact][elastic_roller]") {
-  const Simulation sim =
-      test::run_scene("cattaneo_mindlin", {{"contact.backend", "\"penalty\""},
-                                           {"material.nu", "0.3"},
-                                           {"roller.E", "2.1e5"},
-                                           {"roller.nu", "0.3"}});
+  const Simulation sim = test::run_scene(
+      "cattaneo_mindlin",
+      {{"contact.backend", "\"penalty\""}, {"material.nu", "0.3"}, {"roller.E", "2.1e5"}, {"roller.nu", "0.3"}});
   const Real mu = sim.scene().contact.friction;
   std::vector<Real> x;
   std::vector<bool> in_contact, stick;
