@@ -92,7 +92,7 @@ BackendResult ContactBackend::solve(IncrementProblem& problem, const VecX& x0) {
     // The rim's compliance is known on its arc only: a contact beyond it would be a rigid roller's.
     const auto& cands = problem.candidates();
     for (std::size_t i = 0; i < cands.size() && i < r.contact.size(); ++i)
-      if (r.contact[i].normal_force > 0.0 && !cands[i].rim.on_rim()) {
+      if (r.contact[i].status != ContactStatus::Open && !cands[i].rim.on_rim()) {
         r.status = Termination::Failed;
         r.message = fmt::format(
             "elastic roller: node {} touches the roller outside its rim arc ({:.4g} mm either side of the lowest "

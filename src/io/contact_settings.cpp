@@ -5,10 +5,7 @@
 #include <limits>
 #include <memory>
 
-#include <fmt/format.h>
-
 #include "roller/analysis/hertz.hpp"
-#include "roller/core/error.hpp"
 #include "roller/io/scene_strip.hpp"
 
 namespace roller {
@@ -53,11 +50,6 @@ ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& 
       if (seg.fy) s.largest_force.y() = std::max(s.largest_force.y(), *seg.fy);
     }
   if (scene.roller && scene.roller->elastic()) {
-    if (scene.contact.backend != ContactBackendKind::Penalty)
-      throw InputError(
-          fmt::format("{}: roller.E = {:g}: an elastic roller is solved by the penalty backend so far; "
-                      "set contact.backend = \"penalty\" (docs/limitations.md)",
-                      scene.file.string(), scene.roller->youngs_modulus));
     const RollerSpec& r = *scene.roller;
     const ElasticRollerSpec spec{r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
     s.rim = std::make_shared<const RimStiffness>(condensed_rim_stiffness(spec, elastic_rim_arc(scene, mesh)));

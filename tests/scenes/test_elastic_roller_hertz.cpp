@@ -93,3 +93,15 @@ TEST_CASE("elastic roller (penalty): Cattaneo's stick zone with identical materi
   CHECK(std::abs(a.half_width() / hertz.half_width - 1.0) < 0.08);
   CHECK(std::abs(c.half_width() / a.half_width() - expected) < 0.08);
 }
+
+// The interior-point backend (its full formulation, which takes the rim's displacements as variables)
+// against the penalty backend on the same press: the load and the half-width within 0.5 %.
+TEST_CASE("elastic roller: both backends carry the same load over the same contact", "[contact][elastic_roller]") {
+  const TwoBody penalty = press("penalty", 7.0e4, 0.33, 1);
+  const TwoBody ipopt = press("ipopt", 7.0e4, 0.33, 1);
+  INFO("P penalty " << penalty.load << ", ipopt " << ipopt.load << "; a " << penalty.hertz.half_width << ", "
+                    << ipopt.hertz.half_width << "; p0 " << penalty.hertz.peak << ", " << ipopt.hertz.peak);
+  CHECK(std::abs(ipopt.load / penalty.load - 1.0) < 0.005);
+  CHECK(std::abs(ipopt.hertz.half_width / penalty.hertz.half_width - 1.0) < 0.005);
+  CHECK(std::abs(ipopt.hertz.peak / penalty.hertz.peak - 1.0) < 0.005);
+}

@@ -139,14 +139,17 @@ class IncrementProblem {
   // where gap, normal, slip and the gap's curvature are computed, and so the one place that knows
   // the roller is a rigid circle (docs/architecture.md); the NLP formulations map their variables to u.
   Vec2 from_centre(const ContactCandidate& c, const Vec2& u) const { return (c.position + u) - roller_.end.centre; }
-  // With an elastic roller: at the rim displacements set (set_rim_displacement).
-  Real gap_for(const ContactCandidate& c, const Vec2& u) const {
-    return from_centre(c, u).norm() - roller_.radius + rim_gap_shift(c, rim_w_.data());
+  // With an elastic roller: at the rim displacements w (gap_at, slip_at) or at those set
+  // (set_rim_displacement).
+  Real gap_at(const ContactCandidate& c, const Vec2& u, const Real* w) const {
+    return from_centre(c, u).norm() - roller_.radius + rim_gap_shift(c, w);
   }
+  Real slip_at(const ContactCandidate& c, const Vec2& u, const Real* w) const {
+    return c.tangent.dot(u - roller_.dc()) - roller_.radius * roller_.dphi() + rim_slip_shift(c, w);
+  }
+  Real gap_for(const ContactCandidate& c, const Vec2& u) const { return gap_at(c, u, rim_w_.data()); }
   Vec2 normal_for(const ContactCandidate& c, const Vec2& u) const { return from_centre(c, u).normalized(); }
-  Real slip_for(const ContactCandidate& c, const Vec2& u) const {
-    return c.tangent.dot(u - roller_.dc()) - roller_.radius * roller_.dphi() + rim_slip_shift(c, rim_w_.data());
-  }
+  Real slip_for(const ContactCandidate& c, const Vec2& u) const { return slip_at(c, u, rim_w_.data()); }
   // `weight` times the gap's curvature d2g/du2, (I - n n^T) / |x - c| for the circle: the Hessian
   // a contact force of that size adds (penalty, the NLP's contact rows).
   Mat2 gap_curvature(const ContactCandidate& c, const Vec2& u, Real weight) const {

@@ -98,4 +98,50 @@ void ContactTnlp::finalize_solution(Ipopt::SolverReturn /*status*/, IIndex n, co
   solution_.forces = rows_.forces(x, lambda);
 }
 
+bool RimObjective::value(const Real* d, Real& f) {
+  if (!base_.value(d, f)) return false;
+  const Eigen::Map<const VecX> w(d + base_.n(), k_.rows());
+  f += 0.5 * w.dot(k_ * w);
+  return true;
+}
+
+bool RimObjective::gradient(const Real* d, Real* g) {
+  if (!base_.gradient(d, g)) return false;
+  Eigen::Map<VecX>(g + base_.n(), k_.rows()) = k_ * Eigen::Map<const VecX>(d + base_.n(), k_.rows());
+  return true;
+}
+
+int RimObjective::hessian_nnz() const {
+  const int m = static_cast<int>(k_.rows());
+  return base_.hessian_nnz() + m * (m + 1) / 2;
+}
+
+void RimObjective::hessian_structure(int* row, int* col) const {
+  base_.hessian_structure(row, col);
+  int e = base_.hessian_nnz();
+  const int nb = base_.n(), m = static_cast<int>(k_.rows());
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j <= i; ++j) {
+      row[e] = nb + i;
+      col[e++] = nb + j;
+    }
+}
+
+bool RimObjective::hessian_values(const Real* d, Real obj_factor, Real* values) {
+  if (!base_.hessian_values(d, obj_factor, values)) return false;
+  int e = base_.hessian_nnz();
+  const int m = static_cast<int>(k_.rows());
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j <= i; ++j) values[e++] = obj_factor * k_(i, j);
+  return true;
+}
+
+int RimObjective::hessian_position(int r, int c) const {
+  const int nb = base_.n();
+  if (r < nb && c < nb) return base_.hessian_position(r, c);
+  if (r < nb || c < nb) return -1;
+  const int i = std::max(r, c) - nb, j = std::min(r, c) - nb;
+  return base_.hessian_nnz() + i * (i + 1) / 2 + j;
+}
+
 }  // namespace roller::ipopt_detail

@@ -33,6 +33,30 @@ class NlpObjective {
   virtual std::string evaluation_error() const { return ""; }
   // The variable of the suspended roller's vertical step among d, -1 when the roller is given.
   virtual int roller_slot() const { return -1; }
+  // The first of an elastic roller's rim displacements among d, -1 when the roller is rigid.
+  virtual int rim_slot() const { return -1; }
+};
+
+// An objective with an elastic roller's rim displacements w appended to the base's variables:
+// f = base(d) + 1/2 w^T K w (docs/model.md, Elastic roller); K's lower triangle is a dense block
+// of the Hessian.
+class RimObjective final : public NlpObjective {
+ public:
+  RimObjective(NlpObjective& base, const MatX& stiffness) : base_(base), k_(stiffness) {}
+  int n() const override { return base_.n() + static_cast<int>(k_.rows()); }
+  bool value(const Real* d, Real& f) override;
+  bool gradient(const Real* d, Real* g) override;
+  int hessian_nnz() const override;
+  void hessian_structure(int* row, int* col) const override;
+  bool hessian_values(const Real* d, Real obj_factor, Real* values) override;
+  int hessian_position(int r, int c) const override;
+  std::string evaluation_error() const override { return base_.evaluation_error(); }
+  int roller_slot() const override { return base_.roller_slot(); }
+  int rim_slot() const override { return base_.n(); }
+
+ private:
+  NlpObjective& base_;
+  const MatX& k_;
 };
 
 // Start values of one NLP solve.

@@ -74,7 +74,7 @@ FrictionPasses solve_friction_passes(Ipopt::IpoptApplication& app, NlpObjective&
   FrictionPasses out;
   for (int pass = 1; pass <= max_passes; ++pass) {
     const ContactRows contact(problem, rows, friction_terms(rows, fixed_point.fbar(), mu, fixed_point.force_tol(), o),
-                              objective.n(), objective.roller_slot());
+                              objective.n(), objective.roller_slot(), objective.rim_slot());
     // Pass 1 warm-starts only on request (its guesses may be poor); later passes always start
     // from the previous pass's primal-dual solution, which is close. A warm start that fails
     // (a poor guess can send Ipopt into restoration) is repeated once from a cold start.

@@ -54,7 +54,8 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
     r.message = "no free dofs: nothing to solve";
     return r;
   }
-  if (options_.ipopt.formulation == IpoptFormulation::Full) return solve_full(problem, x0, options_);
+  // The condensed formulation does not take an elastic roller's rim: the full one does.
+  if (options_.ipopt.formulation == IpoptFormulation::Full || problem.rim()) return solve_full(problem, x0, options_);
   CondensedOutcome condensed = CondensedSolve(problem, options_, condenser_).run(x0);
   // Factors are kept only for the next increment's same tangent, and never beside the full formulation's.
   if (!problem.strip_tangent_is_constant() || condensed.formulation_failed) condenser_.release();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -129,7 +130,20 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
     return result;
   }
   const Scales scales = increment_scales(problem, x0, start->force_scale);
-  StripObjective objective(problem, std::move(h));
+  StripObjective strip(problem, std::move(h));
+  // An elastic roller's rim displacements follow the strip's free dofs (docs/model.md, Elastic roller).
+  std::optional<RimObjective> with_rim;
+  if (problem.rim()) {
+    if (o.friction == IpoptFriction::Regularized && problem.roller().friction > 0.0) {
+      result.status = Termination::Failed;
+      result.message =
+          "ipopt backend: an elastic roller takes contact.ipopt.friction = \"split\" (the regularized law's "
+          "curvature in the rim's displacements is not built)";
+      return result;
+    }
+    with_rim.emplace(strip, problem.rim()->stiffness);
+  }
+  NlpObjective& objective = with_rim ? static_cast<NlpObjective&>(*with_rim) : strip;
 
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = make_application(o, scales);
   if (app->Initialize("") != Ipopt::Solve_Succeeded) {  // "": never read ./ipopt.opt
@@ -141,8 +155,13 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   NormalForceFixedPoint fixed_point(problem, o, scales.force);
   const std::vector<RowMap> rows = full_rows(problem);
   const int max_passes = fixed_point.iterated() ? o.fixed_point_max : 1;
-  const FrictionPasses passes = solve_friction_passes(*app, objective, problem, rows, fixed_point,
-                                                      full_start(problem, rows, x0), max_passes, o.warm_start, o);
+  NlpStart first = full_start(problem, rows, x0);
+  if (problem.rim()) {
+    first.primal.conservativeResize(problem.n_free() + problem.n_rim());
+    first.primal.tail(problem.n_rim()) = problem.rim_start();
+  }
+  const FrictionPasses passes =
+      solve_friction_passes(*app, objective, problem, rows, fixed_point, std::move(first), max_passes, o.warm_start, o);
   result.counters.iterations = passes.iterations;
   IpoptDetails& details = result.details.fill<IpoptDetails>();
   details.fixed_point_iterations = passes.passes;
@@ -152,7 +171,13 @@ BackendResult solve_full(IncrementProblem& problem, const VecX& x0, const Contac
   details.nlp_constraints = passes.nlp_constraints;
   details.ipopt_time_s = passes.ipopt_time_s;
   details.acceptable_level = passes.acceptable_level;
-  if (passes.last.finalized) result.x = passes.last.z.head(problem.n_free());
+  if (passes.last.finalized) {
+    result.x = passes.last.z.head(problem.n_free());
+    if (problem.rim()) {
+      result.rim = passes.last.z.segment(problem.n_free(), problem.n_rim());
+      problem.set_rim_displacement(result.rim);
+    }
+  }
   if (passes.status != Termination::Converged) {
     result.status = passes.status;
     result.message = passes.message;

@@ -21,12 +21,13 @@ FrictionTerms friction_terms(const std::vector<RowMap>& rows, const std::vector<
 }
 
 ContactRows::ContactRows(const IncrementProblem& problem, std::vector<RowMap> rows, FrictionTerms friction,
-                         int n_primal, int roller_slot)
+                         int n_primal, int roller_slot, int rim_slot)
     : problem_(problem),
       rows_(std::move(rows)),
       friction_(std::move(friction)),
       n_primal_(n_primal),
       roller_slot_(roller_slot),
+      rim_slot_(rim_slot),
       n_slack_(friction_.split() ? static_cast<int>(friction_.rows.size()) : 0) {
   friction_of_.assign(rows_.size(), -1);
   for (std::size_t j = 0; j < friction_.rows.size(); ++j) friction_of_[friction_.rows[j]] = static_cast<int>(j);
@@ -50,7 +51,7 @@ Vec2 ContactRows::increment(int k, const Real* z) const {
 }
 
 Real ContactRows::slip(int k, const Real* z) const {
-  return problem_.slip_for(problem_.candidates()[rows_[k].candidate], increment(k, z));
+  return problem_.slip_at(problem_.candidates()[rows_[k].candidate], increment(k, z), rim(z));
 }
 
 Real ContactRows::regularized_force(int j, const Real* z) const {
@@ -62,8 +63,9 @@ int ContactRows::jacobian_nnz() const {
   auto n_free = [this](int k) { return (rows_[k].slot[0] >= 0 ? 1 : 0) + (rows_[k].slot[1] >= 0 ? 1 : 0); };
   const int roller = roller_slot_ >= 0 ? 1 : 0;
   int nnz = 0;
-  for (std::size_t k = 0; k < rows_.size(); ++k) nnz += n_free(static_cast<int>(k)) + roller;
-  for (int j = 0; j < n_slack_; ++j) nnz += n_free(friction_.rows[j]) + roller + 2;
+  for (std::size_t k = 0; k < rows_.size(); ++k)
+    nnz += n_free(static_cast<int>(k)) + roller + n_rim_entries(static_cast<int>(k));
+  for (int j = 0; j < n_slack_; ++j) nnz += n_free(friction_.rows[j]) + roller + n_rim_entries(friction_.rows[j]) + 2;
   return nnz;
 }
 
@@ -129,6 +131,12 @@ void ContactRows::add_friction_gradient(const Real* z, Real* gradient) const {
       for (int a = 0; a < 2; ++a)
         if (rows_[k].slot[a] >= 0) gradient[rows_[k].slot[a]] += v(a);
       if (roller_slot_ >= 0) gradient[roller_slot_] -= v.y();
+      if (n_rim_entries(k) > 0) {
+        const RimSample& r = rim_sample(k);
+        const Real force = regularized_force(static_cast<int>(j), z);
+        for (std::size_t q = 0; q < r.node.size(); ++q)
+          for (int a = 0; a < 2; ++a) gradient[rim_slot_ + 2 * r.node[q] + a] += force * r.slip_weight[q](a);
+      }
     }
   }
 }
@@ -136,7 +144,7 @@ void ContactRows::add_friction_gradient(const Real* z, Real* gradient) const {
 void ContactRows::constraints(const Real* z, Real* g) const {
   const auto& cands = problem_.candidates();
   const int n_rows = static_cast<int>(rows_.size());
-  for (int k = 0; k < n_rows; ++k) g[k] = problem_.gap_for(cands[rows_[k].candidate], increment(k, z));
+  for (int k = 0; k < n_rows; ++k) g[k] = problem_.gap_at(cands[rows_[k].candidate], increment(k, z), rim(z));
   for (int j = 0; j < n_slack_; ++j)
     g[n_rows + j] = slip(friction_.rows[j], z) - z[n_primal_ + j] + z[n_primal_ + n_slack_ + j];
 }
@@ -154,6 +162,12 @@ void ContactRows::jacobian_structure(int* row, int* col) const {
       row[e] = k;
       col[e++] = roller_slot_;
     }
+    if (n_rim_entries(k) > 0)
+      for (Index node : rim_sample(k).node)
+        for (int a = 0; a < 2; ++a) {
+          row[e] = k;
+          col[e++] = rim_slot_ + 2 * static_cast<int>(node) + a;
+        }
   }
   for (int j = 0; j < n_slack_; ++j) {
     const RowMap& m = rows_[friction_.rows[j]];
@@ -166,6 +180,12 @@ void ContactRows::jacobian_structure(int* row, int* col) const {
       row[e] = n_rows + j;
       col[e++] = roller_slot_;
     }
+    if (n_rim_entries(friction_.rows[j]) > 0)
+      for (Index node : rim_sample(friction_.rows[j]).node)
+        for (int a = 0; a < 2; ++a) {
+          row[e] = n_rows + j;
+          col[e++] = rim_slot_ + 2 * static_cast<int>(node) + a;
+        }
     row[e] = n_rows + j;
     col[e++] = n_primal_ + j;
     row[e] = n_rows + j;
@@ -181,6 +201,9 @@ void ContactRows::jacobian_values(const Real* z, Real* values) const {
     for (int a = 0; a < 2; ++a)
       if (rows_[k].slot[a] >= 0) values[e++] = n(a);
     if (roller_slot_ >= 0) values[e++] = -n.y();
+    if (n_rim_entries(static_cast<int>(k)) > 0)
+      for (const Vec2& weight : rim_sample(static_cast<int>(k)).gap_weight)
+        for (int a = 0; a < 2; ++a) values[e++] = weight(a);
   }
   for (int j = 0; j < n_slack_; ++j) {
     const RowMap& m = rows_[friction_.rows[j]];
@@ -188,6 +211,9 @@ void ContactRows::jacobian_values(const Real* z, Real* values) const {
     for (int a = 0; a < 2; ++a)
       if (m.slot[a] >= 0) values[e++] = t(a);
     if (roller_slot_ >= 0) values[e++] = -t.y();
+    if (n_rim_entries(friction_.rows[j]) > 0)
+      for (const Vec2& weight : rim_sample(friction_.rows[j]).slip_weight)
+        for (int a = 0; a < 2; ++a) values[e++] = weight(a);
     values[e++] = -1.0;
     values[e++] = 1.0;
   }

@@ -56,9 +56,11 @@ struct RowForces {
 
 class ContactRows {
  public:
-  // roller_slot: the primal variable of the suspended roller's step, -1: the roller is given.
+  // roller_slot: the primal variable of the suspended roller's step, -1: the roller is given;
+  // rim_slot: the first of an elastic roller's rim displacements, -1: the roller is rigid (each
+  // row's gap and slip are affine in them: constant Jacobian entries, no curvature).
   ContactRows(const IncrementProblem& problem, std::vector<RowMap> rows, FrictionTerms friction, int n_primal,
-              int roller_slot = -1);
+              int roller_slot = -1, int rim_slot = -1);
 
   const std::vector<RowMap>& rows() const { return rows_; }
   const FrictionTerms& friction() const { return friction_; }
@@ -99,6 +101,10 @@ class ContactRows {
   };
   int slot_of(int k, int component) const { return component == 2 ? roller_slot_ : rows_[k].slot[component]; }
   Vec2 increment(int k, const Real* z) const;
+  // The rim displacements at z (the problem's own when the rim is not among the variables).
+  const Real* rim(const Real* z) const { return rim_slot_ >= 0 ? z + rim_slot_ : problem_.rim_displacement().data(); }
+  const RimSample& rim_sample(int k) const { return problem_.candidates()[rows_[k].candidate].rim; }
+  int n_rim_entries(int k) const { return rim_slot_ >= 0 ? 2 * static_cast<int>(rim_sample(k).node.size()) : 0; }
   Real slip(int k, const Real* z) const;
   Real regularized_force(int j, const Real* z) const;  // w slip / sqrt(slip^2 + eps^2)
 
@@ -107,6 +113,7 @@ class ContactRows {
   FrictionTerms friction_;
   int n_primal_;
   int roller_slot_;
+  int rim_slot_;
   int n_slack_;
   std::vector<int> friction_of_;  // per row: friction index or -1
   std::vector<HessianEntry> hessian_entries_;
