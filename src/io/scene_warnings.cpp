@@ -64,11 +64,15 @@ void check_load_fits_strip(const Scene& scene) {
     const Real a = hertz_line_contact(*fy, scene.roller->radius, e_star).half_width;
     if (!(2.0 * a >= length)) continue;
     const MaterialParams surface = scene.strip_material().surface();
+    const std::string roller_modulus = scene.roller->elastic()
+                                           ? fmt::format(" and the roller's E = {:g} MPa (nu = {:g})",
+                                                         scene.roller->youngs_modulus, scene.roller->poisson_ratio)
+                                           : std::string();
     throw InputError(fmt::format(
-        "{}: roller.path[{}].fy = {:g} N/mm on the top surface's E = {:g} MPa (nu = {:g}) makes a Hertz contact "
+        "{}: roller.path[{}].fy = {:g} N/mm on the top surface's E = {:g} MPa (nu = {:g}){} makes a Hertz contact "
         "2a = {:.4g} mm wide, wider than the strip (mesh.length = {:g} mm): the load would not fit on it. A modulus "
         "in Pa or GPa, or a force in N rather than N/mm? roller works in mm, N/mm and MPa (steel: E = 2.1e5 MPa)",
-        scene.file.string(), i, *fy, surface.youngs_modulus, surface.poisson_ratio, 2.0 * a, length));
+        scene.file.string(), i, *fy, surface.youngs_modulus, surface.poisson_ratio, roller_modulus, 2.0 * a, length));
   }
 }
 

@@ -105,3 +105,15 @@ TEST_CASE("elastic roller: both backends carry the same load over the same conta
   CHECK(std::abs(ipopt.hertz.half_width / penalty.hertz.half_width - 1.0) < 0.005);
   CHECK(std::abs(ipopt.hertz.peak / penalty.hertz.peak - 1.0) < 0.005);
 }
+
+TEST_CASE(
+    "elastic roller: a roller so soft that the load's contact is wider than the strip is refused before computing",
+    "[contact][elastic_roller]") {
+  // E = 10 MPa on the steel strip: the two-body Hertz contact of 3000 N/mm is 2a = 373 mm, the strip 200 mm.
+  const std::vector<SceneOverride> soft{{"roller.E", "10.0"}, {"roller.path", "[{steps = [1, 4], fy = 3000.0}]"}};
+  CHECK_THROWS_WITH(Simulation(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml", soft)),
+                    Catch::Contains("the roller's E = 10 MPa") && Catch::Contains("wider than the strip"));
+  // The same load on the rigid roller fits (2a = 2.6 mm).
+  const std::vector<SceneOverride> rigid{{"roller.path", "[{steps = [1, 4], fy = 3000.0}]"}};
+  CHECK_NOTHROW(load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/hertz.toml", rigid));
+}
