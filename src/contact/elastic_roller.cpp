@@ -135,6 +135,10 @@ Real rim_angle(const Vec2& from_centre) { return std::atan2(from_centre.x(), -fr
 
 Vec2 rim_radial(Real angle) { return Vec2(std::sin(angle), -std::cos(angle)); }
 
+Real RimStiffness::arc_half_length() const {
+  return positions.empty() ? 0.0 : positions.back().norm() * std::abs(rim_angle(positions.back()));
+}
+
 RimPoint rim_point(const std::vector<Vec2>& positions, Real angle) {
   const Index n = static_cast<Index>(positions.size());
   ROLLER_ASSERT(n >= 2, "rim_point: an arc of at least two nodes");

@@ -19,11 +19,11 @@ Real IncrementProblem::plane_strain_modulus() const {
   return youngs_modulus_ / (1.0 - poisson_ratio_ * poisson_ratio_);
 }
 
-void IncrementProblem::attach_rim(const RimStiffness& rim, const VecX& start) {
-  [[maybe_unused]] const Index n = 2 * static_cast<Index>(rim.positions.size());
-  ROLLER_ASSERT(start.size() == n, "attach_rim: one start displacement per rim dof");
+void IncrementProblem::attach_rim(const RimStiffness& rim, const VecX* start) {
   rim_ = &rim;
-  rim_w_ = rim_start_ = start;
+  rim_start_ = start ? *start : VecX::Zero(n_rim());
+  ROLLER_ASSERT(rim_start_.size() == n_rim(), "attach_rim: one start displacement per rim dof");
+  rim_w_ = rim_start_;
   const Real first = rim_angle(rim.positions.front()), last = rim_angle(rim.positions.back());
   const Real radius = rim.positions.front().norm();
   for (ContactCandidate& c : candidates_) {
@@ -40,28 +40,27 @@ void IncrementProblem::attach_rim(const RimStiffness& rim, const VecX& start) {
     // displacement is taken as the arc end's.
     const Real back = roller_.dphi();
     for (const RimWeight& k : rim_average(rim.positions, angle - half - back, angle + half - back))
-      c.rim.slip_start += k.weight * c.tangent.dot(start.segment<2>(2 * k.node));
+      c.rim.slip_start += k.weight * c.tangent.dot(rim_start_.segment<2>(2 * k.node));
   }
 }
 
+namespace {
+
+// sum_k weight[k] . w_node[k]: a sample's share of the rim displacements w.
+Real weighted_rim(const RimSample& s, const std::vector<Vec2>& weight, const Real* w) {
+  Real sum = 0.0;
+  for (std::size_t k = 0; k < s.node.size(); ++k) sum += weight[k].dot(Vec2(w[2 * s.node[k]], w[2 * s.node[k] + 1]));
+  return sum;
+}
+
+}  // namespace
+
 Real IncrementProblem::rim_gap_shift(const ContactCandidate& c, const Real* w) const {
-  if (!rim_) return 0.0;
-  Real shift = 0.0;
-  for (std::size_t k = 0; k < c.rim.node.size(); ++k) {
-    const Index i = 2 * c.rim.node[k];
-    shift += c.rim.gap_weight[k].dot(Vec2(w[i], w[i + 1]));
-  }
-  return shift;
+  return rim_ ? weighted_rim(c.rim, c.rim.gap_weight, w) : 0.0;
 }
 
 Real IncrementProblem::rim_slip_shift(const ContactCandidate& c, const Real* w) const {
-  if (!rim_ || !c.rim.on_rim()) return 0.0;
-  Real shift = c.rim.slip_start;
-  for (std::size_t k = 0; k < c.rim.node.size(); ++k) {
-    const Index i = 2 * c.rim.node[k];
-    shift += c.rim.slip_weight[k].dot(Vec2(w[i], w[i + 1]));
-  }
-  return shift;
+  return rim_ ? c.rim.slip_start + weighted_rim(c.rim, c.rim.slip_weight, w) : 0.0;
 }
 
 Vec2 IncrementProblem::increment(const ContactCandidate& c, const VecX& x) const {

@@ -39,8 +39,7 @@ bool IncrementSolve::solve_contact(const std::optional<RollerPotential>& potenti
                            settings_.surface_poisson_ratio);
   if (potential) problem.free_roller(*potential, 0.0);  // w measured from where `motion` puts the centre
   if (settings_.rim) {
-    const Index n_rim = 2 * static_cast<Index>(settings_.rim->positions.size());
-    problem.attach_rim(*settings_.rim, start_.rim ? *start_.rim : VecX::Zero(n_rim));
+    problem.attach_rim(*settings_.rim, start_.rim);
     candidates = problem.candidates();  // with their rim samples
   }
   BackendResult result = backend_.solve(problem, x_);

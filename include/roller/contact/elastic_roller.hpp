@@ -5,7 +5,6 @@
 // statically condensed onto the rim nodes of an arc around the contact. In the roller's frame
 // the contact does not move, so this is computed once a run: the superelement of the Abaqus
 // rollover models' elastic wheel (docs/elastic-roller-design.md), on the contact arc only.
-#include <cmath>
 #include <vector>
 
 #include "roller/core/types.hpp"
@@ -40,14 +39,9 @@ RollerDiscMesh roller_disc_mesh(const ElasticRollerSpec& roller, const RimArc& a
 // x along the strip, y up; [w_x0, w_y0, w_x1, ...] by increasing angle) need with the bore held:
 // f = K w. Symmetric positive definite.
 struct RimStiffness {
-  std::vector<Vec2> positions;  // the arc's rim nodes relative to the centre, undeformed [mm]
-  MatX stiffness;               // 2n x 2n [N/mm per mm of roller length]
-  // The arc's half-length along the rim [mm].
-  Real arc_half_length() const {
-    return positions.empty()
-               ? 0.0
-               : positions.back().norm() * std::abs(std::atan2(positions.back().x(), -positions.back().y()));
-  }
+  std::vector<Vec2> positions;   // the arc's rim nodes relative to the centre, undeformed [mm]
+  MatX stiffness;                // 2n x 2n [N/mm per mm of roller length]
+  Real arc_half_length() const;  // along the rim [mm]
 };
 RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimArc& arc);
 

@@ -119,7 +119,8 @@ class IncrementProblem {
   // An elastic roller: its rim's condensed stiffness (kept by the caller) and the rim displacements
   // the increment starts from; samples every candidate's point on the rim (RimSample) from its
   // start position relative to the end centre. Candidates beyond the arc keep no sample.
-  void attach_rim(const RimStiffness& rim, const VecX& start);
+  // `start` null: the rim at rest.
+  void attach_rim(const RimStiffness& rim, const VecX* start);
   const RimStiffness* rim() const { return rim_; }
   Index n_rim() const { return rim_ ? 2 * static_cast<Index>(rim_->positions.size()) : 0; }
   // The rim displacements every kinematic function below uses (a backend sets its iterate's).
@@ -129,8 +130,6 @@ class IncrementProblem {
   // The rim's shares of a candidate's gap and slip at rim displacements w (2 n_rim values).
   Real rim_gap_shift(const ContactCandidate& c, const Real* w) const;
   Real rim_slip_shift(const ContactCandidate& c, const Real* w) const;
-  // The rim's elastic energy 1/2 w^T K w.
-  Real rim_energy(const VecX& w) const { return rim_ ? 0.5 * w.dot(rim_->stiffness * w) : 0.0; }
 
   Real youngs_modulus() const { return youngs_modulus_; }
   Real plane_strain_modulus() const;  // E* = E / (1 - nu^2)

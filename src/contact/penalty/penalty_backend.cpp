@@ -27,9 +27,9 @@ struct LocalDofs {
   VecX slip;  // d slip / d z_local
 };
 
-LocalDofs local_dofs(const IncrementProblem& p, const ContactCandidate& c, const Vec2& normal) {
+// Fills `d` (reused from candidate to candidate: no allocation once it is large enough).
+void fill_local_dofs(const IncrementProblem& p, const ContactCandidate& c, const Vec2& normal, LocalDofs& d) {
   const Index n_rim = p.rim() ? static_cast<Index>(c.rim.node.size()) : 0;
-  LocalDofs d;
   d.index.assign(2 + 2 * n_rim, -1);
   d.gap.resize(2 + 2 * n_rim);
   d.slip.resize(2 + 2 * n_rim);
@@ -44,7 +44,6 @@ LocalDofs local_dofs(const IncrementProblem& p, const ContactCandidate& c, const
       d.gap(2 + 2 * k + a) = c.rim.gap_weight[k](a);
       d.slip(2 + 2 * k + a) = c.rim.slip_weight[k](a);
     }
-  return d;
 }
 
 // Contact forces of candidate c at x (the rim at the problem's rim displacements) and,
@@ -97,8 +96,12 @@ Expected<ObjectiveValue> evaluate(IncrementProblem& p, const std::vector<Stiffne
                                   SparseMatrix* jacobian, std::vector<NodeContact>& contact,
                                   const std::vector<NodeContact>* frozen = nullptr) {
   const Index n = p.n_free(), n_rim = p.n_rim();
-  const VecX x = z.head(n);
-  if (n_rim > 0) p.set_rim_displacement(z.tail(n_rim));
+  VecX strip_part;  // the strip's free dofs of z, copied only when the rim follows them
+  if (n_rim > 0) {
+    strip_part = z.head(n);
+    p.set_rim_displacement(z.tail(n_rim));
+  }
+  const VecX& x = n_rim > 0 ? strip_part : z;
   VecX strip_r;
   const Expected<ObjectiveValue> strip = p.strip_energy(x, &strip_r, jacobian);
   if (!strip) return strip;
@@ -120,9 +123,10 @@ Expected<ObjectiveValue> evaluate(IncrementProblem& p, const std::vector<Stiffne
   value.symmetric = !p.strip_model().has_recovery();
   Real contact_norm2 = 0.0, floor2 = 0.0;
   MatX block;
+  LocalDofs d;
   for (std::size_t i = 0; i < p.candidates().size(); ++i) {
     const ContactCandidate& c = p.candidates()[i];
-    const LocalDofs d = local_dofs(p, c, p.normal(c, x));
+    fill_local_dofs(p, c, p.normal(c, x), d);
     NodeContact& s = contact[i];
     s = contact_state(p, c, k[i], x, d, jacobian ? &block : nullptr, frozen ? &(*frozen)[i] : nullptr);
     const bool rim = d.index.size() > 2;
