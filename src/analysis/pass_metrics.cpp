@@ -74,6 +74,11 @@ void PassTrack::observe_force(const Vec2& force_on_strip) {
   largest_force = force_on_strip;
 }
 
+void PassTrack::observe_motion(Real centre_x, Real angle, Real radius, bool in_contact) {
+  if (has_pose && in_contact) rolled += centre_x - last_x, turned += radius * (angle - last_angle);
+  has_pose = true, last_x = centre_x, last_angle = angle;
+}
+
 nlohmann::json PassTrack::save() const {
   return {{"touched", touched},
           {"x_min", x_min},
@@ -81,7 +86,12 @@ nlohmann::json PassTrack::save() const {
           {"half_width", half_width},
           {"load_half_width", load_half_width},
           {"peak_pressure", peak_pressure},
-          {"largest_force", {largest_force.x(), largest_force.y()}}};
+          {"largest_force", {largest_force.x(), largest_force.y()}},
+          {"rolled", rolled},
+          {"turned", turned},
+          {"has_pose", has_pose},
+          {"last_x", last_x},
+          {"last_angle", last_angle}};
 }
 
 PassTrack PassTrack::load(const nlohmann::json& j) {
@@ -94,6 +104,13 @@ PassTrack PassTrack::load(const nlohmann::json& j) {
   t.peak_pressure = j.at("peak_pressure").get<Real>();
   if (j.contains("largest_force"))  // absent in a state file written before it was kept
     t.largest_force = Vec2(j.at("largest_force").at(0).get<Real>(), j.at("largest_force").at(1).get<Real>());
+  if (j.contains("rolled")) {  // absent in a state file written before the creep was kept
+    t.rolled = j.at("rolled").get<Real>();
+    t.turned = j.at("turned").get<Real>();
+    t.has_pose = j.at("has_pose").get<bool>();
+    t.last_x = j.at("last_x").get<Real>();
+    t.last_angle = j.at("last_angle").get<Real>();
+  }
   return t;
 }
 
@@ -130,6 +147,7 @@ PassRecord measure_pass(int pass, const StripModel& strip, Real strip_height, co
   r.pass = pass;
   r.peak_pressure = track.peak_pressure;
   r.contact_half_width = track.half_width;
+  r.creep = track.creep();
   const Mesh& mesh = strip.mesh();
   const Real a = track.load_half_width;
   // The window: the middle half of the rolled stretch, or all of it when that is short.

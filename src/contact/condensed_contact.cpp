@@ -51,22 +51,38 @@ CondensedContact::CondensedContact(const SparseMatrix& tangent, const DofMap& do
   if (!solver_.factorize_with_schur(tangent, schur_, &s))
     throw NumericalError(fmt::format("the roller's contact: the strip's tangent is singular: {}", solver_.message()));
   compliance_ = Eigen::LLT<MatX>(s).solve(MatX::Identity(s.rows(), s.cols()));
-  active_.assign(nodes_.size(), false);
+  sets_.zone.assign(nodes_.size(), Zone::Open);
+  sets_.slip_sign.assign(nodes_.size(), 1.0);
 }
 
 CondensedContact::~CondensedContact() = default;
 
+bool CondensedContact::Sets::any_contact() const {
+  return std::any_of(zone.begin(), zone.end(), [](Zone z) { return z != Zone::Open; });
+}
+
+Index CondensedContact::upstream(Index i, Real travel_sign) const {
+  const Index j = i + (travel_sign > 0.0 ? 1 : -1);  // the nodes by x; the material comes from ahead
+  return j >= 0 && j < static_cast<Index>(nodes_.size()) ? j : -1;
+}
+
 CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& base, const VecX& reduced,
-                                                      Real force) const {
+                                                      const CondensedLoad& load) const {
   const auto n = static_cast<Index>(nodes_.size());
   const Real tolerance = 1e-12 * radius_;
+  const Real mu = load.friction;
+  const Real travel = load.travel_sign;
+  const bool carries_q = mu > 0.0 && load.horizontal_force.has_value();  // the creep an unknown that carries Q
   Small out;
   const VecX v0 = compliance_ * reduced;  // the nodes' displacement without contact
   out.v = v0;
-  out.lambda = VecX::Zero(n);
-  out.active = active_;
+  out.lambda_n = VecX::Zero(n);
+  out.lambda_t = VecX::Zero(n);
+  out.slip = VecX::Zero(n);
+  out.sets = sets_;
   out.height = height_;
-  if (std::none_of(active_.begin(), active_.end(), [](bool a) { return a; })) {
+  out.creep = carries_q ? creep_ : load.creep;
+  if (!out.sets.any_contact()) {
     // The roller touching the strip's highest point under it, that node in contact.
     Index top = 0;
     out.height = -std::numeric_limits<Real>::infinity();
@@ -76,115 +92,233 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
       const Real y = base[static_cast<std::size_t>(i)].y() + v0(2 * i + 1) + std::sqrt(radius_ * radius_ - dx * dx);
       if (y > out.height) out.height = y, top = i;
     }
-    out.active[static_cast<std::size_t>(top)] = true;
+    out.sets.zone[static_cast<std::size_t>(top)] = carries_q ? Zone::Stick : Zone::Slip;
   }
-  for (int step = 0; step < kNewtonSteps; ++step) {
-    // The gaps, their normals and their slopes in the roller's height at the nodes' present v.
-    std::vector<Vec2> normal(nodes_.size());
-    VecX gap(n), slope(n);
+  // The reference's step from each node's upstream neighbour: the roller's travel while the
+  // material walks it.
+  VecX step = VecX::Zero(n);
+  for (Index i = 0; i < n; ++i)
+    if (const Index j = upstream(i, travel); j >= 0)
+      step(i) = std::abs(reference_[static_cast<std::size_t>(j)].x() - reference_[static_cast<std::size_t>(i)].x());
+  VecX last_v = out.v;
+  for (int newton = 0; newton < kNewtonSteps; ++newton) {
+    // The gaps, normals, tangents and slips at the nodes' present v; the slip of node i is its
+    // material's tangential displacement against the roller's rim over the step from upstream,
+    // t . (x_i - x_up) + travel (1 - creep) step (the transient's t . (du - dc) - R dphi).
+    std::vector<Vec2> normal(nodes_.size()), tangent(nodes_.size());
+    VecX gap(n), slope(n), slip = VecX::Zero(n);
     const Vec2 centre(centre_x_, out.height);
+    auto at = [&](Index i) { return base[static_cast<std::size_t>(i)] + out.v.segment<2>(2 * i); };
     for (Index i = 0; i < n; ++i) {
-      const Vec2 d = base[static_cast<std::size_t>(i)] + out.v.segment<2>(2 * i) - centre;
+      const Vec2 d = at(i) - centre;
       const Real rho = d.norm();
       normal[static_cast<std::size_t>(i)] = d / rho;
+      tangent[static_cast<std::size_t>(i)] = Vec2(-d.y(), d.x()) / rho;
       gap(i) = rho - radius_;
-      slope(i) = -d.y() / rho;  // dg/dc_y: the force's share that carries the roller
+      slope(i) = -d.y() / rho;  // dg/dc_y: the normal force's share that carries the roller
     }
-    bool settled_gaps = step > 0;
-    for (Index i = 0; i < n && settled_gaps; ++i)
-      settled_gaps = out.active[static_cast<std::size_t>(i)] ? std::abs(gap(i)) <= tolerance : gap(i) >= -tolerance;
-    if (settled_gaps) return out;
-    // The linear complementarity problem of the step: g = q + M lambda + slope dy >= 0, lambda >= 0,
-    // lambda g = 0, slope . lambda = P, by the primal-dual active set.
-    // C N and N^T C N, N the normals as columns (two entries each).
-    MatX cn(2 * n, n), m(n, n);
-    for (Index i = 0; i < n; ++i) {
-      const Vec2& ni = normal[static_cast<std::size_t>(i)];
-      cn.col(i) = compliance_.col(2 * i) * ni.x() + compliance_.col(2 * i + 1) * ni.y();
-    }
-    for (Index i = 0; i < n; ++i) {
-      const Vec2& ni = normal[static_cast<std::size_t>(i)];
-      m.row(i) = ni.x() * cn.row(2 * i) + ni.y() * cn.row(2 * i + 1);
-    }
-    VecX q = gap;
-    for (Index i = 0; i < n; ++i) q(i) += normal[static_cast<std::size_t>(i)].dot((v0 - out.v).segment<2>(2 * i));
-    std::vector<bool> active = out.active;
-    VecX lambda = VecX::Zero(n);
-    Real dy = 0.0;
-    bool settled = false;
-    for (int pass = 0; pass < kActiveSetPasses && !settled; ++pass) {
-      std::vector<Index> on;
-      for (Index i = 0; i < n; ++i)
-        if (active[static_cast<std::size_t>(i)]) on.push_back(i);
-      const auto k = static_cast<Index>(on.size());
-      MatX a = MatX::Zero(k + 1, k + 1);
-      VecX rhs(k + 1);
-      for (Index r = 0; r < k; ++r) {
-        for (Index c = 0; c < k; ++c) a(r, c) = m(on[r], on[c]);
-        a(r, k) = slope(on[r]);
-        a(k, r) = slope(on[r]);
-        rhs(r) = -q(on[r]);
+    for (Index i = 0; i < n; ++i)
+      if (const Index j = upstream(i, travel); j >= 0)
+        slip(i) = tangent[static_cast<std::size_t>(i)].dot(at(i) - at(j)) + travel * (1.0 - out.creep) * step(i);
+    out.slip = slip;
+    // Settled: the last step moved no node by more than the tolerance (the normals, and so the
+    // forces' directions, are the step's), and every node meets its zone's conditions.
+    bool settled = newton > 0 && (out.v - last_v).cwiseAbs().maxCoeff() <= tolerance;
+    for (Index i = 0; i < n && settled; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      switch (out.sets.zone[k]) {
+        case Zone::Open: settled = gap(i) >= -tolerance; break;
+        case Zone::Stick: settled = std::abs(gap(i)) <= tolerance && std::abs(slip(i)) <= tolerance; break;
+        case Zone::Slip:
+          settled = std::abs(gap(i)) <= tolerance && (mu == 0.0 || out.sets.slip_sign[k] * slip(i) <= tolerance);
       }
-      rhs(k) = force;
+    }
+    if (settled) return out;
+    // The step's linear problem in the forces: C N and C T (N, T the normals and tangents as
+    // columns), the gaps' and slips' responses, linear in the forces, with normals and tangents held.
+    MatX cn(2 * n, n), ct(2 * n, n);
+    for (Index i = 0; i < n; ++i) {
+      const Vec2& ni = normal[static_cast<std::size_t>(i)];
+      const Vec2& ti = tangent[static_cast<std::size_t>(i)];
+      cn.col(i) = compliance_.col(2 * i) * ni.x() + compliance_.col(2 * i + 1) * ni.y();
+      ct.col(i) = compliance_.col(2 * i) * ti.x() + compliance_.col(2 * i + 1) * ti.y();
+    }
+    // Rows of the gaps (n . v at the node) and the slips (t . (v_i - v_up)) of a matrix over v.
+    auto gap_rows = [&](const MatX& x) {
+      MatX out_rows(n, x.cols());
+      for (Index i = 0; i < n; ++i) {
+        const Vec2& ni = normal[static_cast<std::size_t>(i)];
+        out_rows.row(i) = ni.x() * x.row(2 * i) + ni.y() * x.row(2 * i + 1);
+      }
+      return out_rows;
+    };
+    auto slip_rows = [&](const MatX& x) {
+      MatX out_rows = MatX::Zero(n, x.cols());
+      for (Index i = 0; i < n; ++i) {
+        const Index j = upstream(i, travel);
+        if (j < 0) continue;
+        const Vec2& ti = tangent[static_cast<std::size_t>(i)];
+        out_rows.row(i) = ti.x() * (x.row(2 * i) - x.row(2 * j)) + ti.y() * (x.row(2 * i + 1) - x.row(2 * j + 1));
+      }
+      return out_rows;
+    };
+    const MatX m_nn = gap_rows(cn), m_nt = gap_rows(ct), m_sn = slip_rows(cn), m_st = slip_rows(ct);
+    const VecX dv = v0 - out.v;
+    const VecX q_n = gap + gap_rows(dv), q_s = slip + slip_rows(dv);
+    Sets sets = out.sets;
+    VecX lambda_n, lambda_t;
+    Real dh = 0.0, dcreep = 0.0;
+    bool stable = false;
+    for (int pass = 0; pass < kActiveSetPasses && !stable; ++pass) {
+      // Unknowns: lambda_n of the nodes in contact, lambda_t of the sticking ones, the height's
+      // and (carrying Q) the creep's change. Rows: their gaps, their slips, P and Q.
+      std::vector<Index> on, stick;
+      for (Index i = 0; i < n; ++i) {
+        const Zone z = sets.zone[static_cast<std::size_t>(i)];
+        if (z != Zone::Open) on.push_back(i);
+        if (z == Zone::Stick) stick.push_back(i);
+      }
+      const auto kn = static_cast<Index>(on.size()), ks = static_cast<Index>(stick.size());
+      const Index size = kn + ks + 1 + (carries_q ? 1 : 0);
+      MatX a = MatX::Zero(size, size);
+      VecX rhs = VecX::Zero(size);
+      // A slipping node's lambda_t = slip_sign mu lambda_n rides on its lambda_n's column.
+      auto tangential_share = [&](Index i) {
+        const auto k = static_cast<std::size_t>(i);
+        return sets.zone[k] == Zone::Slip ? sets.slip_sign[k] * mu : 0.0;
+      };
+      for (Index c = 0; c < kn; ++c) {
+        const Index i = on[c];
+        const Real share = tangential_share(i);
+        for (Index r = 0; r < kn; ++r) a(r, c) = m_nn(on[r], i) + share * m_nt(on[r], i);
+        for (Index r = 0; r < ks; ++r) a(kn + r, c) = m_sn(stick[r], i) + share * m_st(stick[r], i);
+        const Vec2& ni = normal[static_cast<std::size_t>(i)];
+        const Vec2& ti = tangent[static_cast<std::size_t>(i)];
+        a(kn + ks, c) = -ni.y() - share * ti.y();
+        if (carries_q) a(kn + ks + 1, c) = ni.x() + share * ti.x();
+      }
+      for (Index c = 0; c < ks; ++c) {
+        const Index i = stick[c];
+        for (Index r = 0; r < kn; ++r) a(r, kn + c) = m_nt(on[r], i);
+        for (Index r = 0; r < ks; ++r) a(kn + r, kn + c) = m_st(stick[r], i);
+        const Vec2& ti = tangent[static_cast<std::size_t>(i)];
+        a(kn + ks, kn + c) = -ti.y();
+        if (carries_q) a(kn + ks + 1, kn + c) = ti.x();
+      }
+      for (Index r = 0; r < kn; ++r) a(r, kn + ks) = slope(on[r]), rhs(r) = -q_n(on[r]);
+      for (Index r = 0; r < ks; ++r) {
+        rhs(kn + r) = -q_s(stick[r]);
+        if (carries_q) a(kn + r, kn + ks + 1) = -travel * step(stick[r]);  // ds/dcreep
+      }
+      rhs(kn + ks) = load.force;
+      // The strip's horizontal force on the roller is minus the sum of the nodes' forces.
+      if (carries_q) rhs(kn + ks + 1) = -*load.horizontal_force;
       const VecX x = Eigen::FullPivLU<MatX>(a).solve(rhs);
-      lambda.setZero();
-      for (Index r = 0; r < k; ++r) lambda(on[r]) = x(r);
-      dy = x(k);
-      const VecX g = q + m * lambda + slope * dy;
-      std::vector<bool> next(active.size());
-      for (Index i = 0; i < n; ++i) next[static_cast<std::size_t>(i)] = lambda(i) - g(i) / m(i, i) > 0.0;
-      settled = next == active;
-      active = std::move(next);
-      if (std::none_of(active.begin(), active.end(), [](bool b) { return b; })) {
+      lambda_n = VecX::Zero(n);
+      lambda_t = VecX::Zero(n);
+      for (Index r = 0; r < kn; ++r) lambda_n(on[r]) = x(r), lambda_t(on[r]) = tangential_share(on[r]) * x(r);
+      for (Index r = 0; r < ks; ++r) lambda_t(stick[r]) = x(kn + r);
+      dh = x(kn + ks);
+      dcreep = carries_q ? x(kn + ks + 1) : 0.0;
+      const VecX g = q_n + m_nn * lambda_n + m_nt * lambda_t + slope * dh;
+      VecX s = q_s + m_sn * lambda_n + m_st * lambda_t;
+      for (Index i = 0; i < n; ++i) s(i) -= travel * step(i) * dcreep;
+      // The next sets: in contact where lambda_n - g / m_nn > 0; of those, sticking where
+      // |lambda_t - s / m_st| <= mu (lambda_n - g / m_nn), slipping against the slip otherwise.
+      Sets next = sets;
+      for (Index i = 0; i < n; ++i) {
+        const auto k = static_cast<std::size_t>(i);
+        const Real normal_trial = lambda_n(i) - g(i) / m_nn(i, i);
+        if (normal_trial <= 0.0) {
+          next.zone[k] = Zone::Open;
+          continue;
+        }
+        if (mu == 0.0) {
+          next.zone[k] = Zone::Slip;
+          continue;
+        }
+        const Real c_t = m_st(i, i) > 0.0 ? 1.0 / m_st(i, i) : 1.0 / m_nn(i, i);
+        const Real tangential_trial = lambda_t(i) - c_t * s(i);
+        if (std::abs(tangential_trial) <= mu * normal_trial) {
+          next.zone[k] = Zone::Stick;
+        } else {
+          next.zone[k] = Zone::Slip;
+          next.slip_sign[k] = tangential_trial > 0.0 ? 1.0 : -1.0;
+        }
+      }
+      if (carries_q && std::none_of(next.zone.begin(), next.zone.end(), [](Zone z) { return z == Zone::Stick; })) {
+        // Q below mu P needs a stick zone: the leading node in contact sticks.
+        for (Index k = 0; k < n; ++k) {
+          const Index i = travel > 0.0 ? n - 1 - k : k;
+          if (next.zone[static_cast<std::size_t>(i)] == Zone::Open) continue;
+          next.zone[static_cast<std::size_t>(i)] = Zone::Stick;
+          break;
+        }
+      }
+      stable = next == sets;
+      sets = std::move(next);
+      if (!sets.any_contact()) {
         out.message = "the roller's contact: no node carries the load";
         return out;
       }
     }
-    if (!settled) {
-      out.message =
-          fmt::format("the roller's contact: its nodes in contact do not settle in {} passes", kActiveSetPasses);
+    if (!stable) {
+      out.message = fmt::format("the roller's contact: its nodes in contact and sticking do not settle in {} passes",
+                                kActiveSetPasses);
       return out;
     }
-    out.v = v0 + cn * lambda;
-    out.lambda = lambda;
-    out.height += dy;
-    out.active = active;
+    last_v = out.v;
+    out.v = v0 + cn * lambda_n + ct * lambda_t;
+    out.lambda_n = lambda_n;
+    out.lambda_t = lambda_t;
+    out.height += dh;
+    out.creep += dcreep;
+    out.sets = sets;
   }
-  out.message = fmt::format("the roller's contact: its gaps do not close in {} Newton steps", kNewtonSteps);
+  out.message = fmt::format("the roller's contact: its gaps and slips do not settle in {} Newton steps", kNewtonSteps);
   return out;
 }
 
-CondensedContact::Press CondensedContact::solve(const VecX& u, const VecX& b, Real force) {
+CondensedContact::Press CondensedContact::solve(const VecX& u, const VecX& b, const CondensedLoad& load) {
   std::vector<Vec2> base;
   for (std::size_t i = 0; i < nodes_.size(); ++i) base.push_back(reference_[i] + u.segment<2>(2 * nodes_[i]));
   Small small;
   Press out;
   out.du = solver_.solve_with_schur(b, [&](const VecX& reduced) {
-    small = solve_small(base, reduced, force);
+    small = solve_small(base, reduced, load);
     return small.message.empty() ? small.v : VecX::Zero(reduced.size());
   });
-  if (!small.message.empty()) return {VecX(), {}, {}, small.message};
+  if (!small.message.empty()) return {VecX(), {}, {}, 0.0, small.message};
   const auto n = static_cast<Index>(nodes_.size());
-  if (small.lambda(0) > 0.0 || small.lambda(n - 1) > 0.0)
+  if (small.lambda_n(0) > 0.0 || small.lambda_n(n - 1) > 0.0)
     return {VecX(),
             {},
             {},
+            0.0,
             fmt::format("the roller's contact reaches the end of the nodes condensed under it ({:.6g} to {:.6g} mm)",
                         reference_.front().x(), reference_.back().x())};
-  active_ = small.active;
+  sets_ = small.sets;
   height_ = small.height;
+  creep_ = small.creep;
   out.pose.centre = Vec2(centre_x_, small.height);
+  out.creep = small.creep;
   for (Index i = 0; i < n; ++i) {
     NodeContactRecord c;
     c.node = nodes_[static_cast<std::size_t>(i)];
     c.position = base[static_cast<std::size_t>(i)] + small.v.segment<2>(2 * i);
     const Vec2 d = c.position - out.pose.centre;
-    const bool touches = small.active[static_cast<std::size_t>(i)];
-    c.contact.normal_force = touches ? small.lambda(i) : 0.0;
+    const Zone zone = small.sets.zone[static_cast<std::size_t>(i)];
+    c.contact.normal_force = zone != Zone::Open ? small.lambda_n(i) : 0.0;
+    c.contact.tangential_force = zone != Zone::Open ? small.lambda_t(i) : 0.0;
     c.contact.gap = d.norm() - radius_;
-    c.contact.status = touches ? ContactStatus::Slip : ContactStatus::Open;  // frictionless
+    c.contact.slip = small.slip(i);
+    // Frictionless contact slips wherever it touches.
+    c.contact.status = zone == Zone::Open    ? ContactStatus::Open
+                       : zone == Zone::Stick ? ContactStatus::Stick
+                                             : ContactStatus::Slip;
     c.tributary_length = tributary_[static_cast<std::size_t>(i)];
-    c.force = c.contact.normal_force * d.normalized();
+    const Vec2 normal = d.normalized();
+    c.force = c.contact.normal_force * normal + c.contact.tangential_force * Vec2(-normal.y(), normal.x());
     out.contact.push_back(c);
   }
   return out;

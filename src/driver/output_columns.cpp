@@ -117,7 +117,8 @@ Row pass_row(int step, const PassRecord& r) {
           {"peak_pressure", "MPa", r.peak_pressure},
           {"contact_half_width", "mm", r.contact_half_width},
           {"track_start", "mm", r.track_start},
-          {"track_end", "mm", r.track_end}};
+          {"track_end", "mm", r.track_end},
+          {"creep", "1", r.creep}};
 }
 
 Row depth_row(int step, int pass, Real x, const DepthSample& d) {

@@ -24,7 +24,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE_WITH_DEFAULT(PassRecord, pass, max_plastic_in
                                                 band_plastic_increment, surface_ux, surface_uy, surface_dux,
                                                 surface_duy, shear_depth, residual_shear_strain,
                                                 residual_shear_increment, surface_shear_increment, peak_pressure,
-                                                contact_half_width, track_start, track_end)
+                                                contact_half_width, track_start, track_end, creep)
 
 namespace {
 

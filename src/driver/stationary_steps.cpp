@@ -81,6 +81,7 @@ class StationarySteps final : public StepMethod {
       for (const PressureSample& s : pressure_profile(passes.contact(), passes.roller_pose()))
         track.peak_pressure = std::max(track.peak_pressure, s.p);
     }
+    if (passes.creep()) track.set_creep(*passes.creep());
     StepRecord::PassEnd end;
     end.record = measure_pass(step, *run_.strip, run_.scene.mesh.height, track, baseline);
     end.profile_x = passes.extraction_x();

@@ -129,6 +129,8 @@ class TransientSteps final : public StepMethod {
         force > 0.0 ? hertz_line_contact(force, run_.scene.roller->radius, e_star).half_width : 0.0;
     run_.state.pass_track.observe(run_.state.pose.centre.x(), x, p, load_half_width);
     run_.state.pass_track.observe_force(-force_on_roller(run_.state.contact));  // the roller's on the strip
+    run_.state.pass_track.observe_motion(run_.state.pose.centre.x(), run_.state.pose.angle, run_.scene.roller->radius,
+                                         !x.empty());
     const int pass = run_.program.pass_of_step(step);
     if (run_.scene.fatigue) run_.state.pass_cycles.observe(*run_.strip, run_.scene.mesh.height);
     if (!run_.program.ends_pass(step)) return std::nullopt;

@@ -18,6 +18,7 @@ class PhasedRollerCorrection final : public RollerCorrection {
   Result correct(const VecX& u, const std::vector<MaterialState>& states, const VecX& r) override;
   const std::vector<NodeContactRecord>& contact() const override { return copies_.front()->contact(); }
   RollerPose pose() const override { return copies_.front()->pose(); }
+  Real creep() const override { return copies_.front()->creep(); }
 
  private:
   std::vector<std::unique_ptr<RollerCorrection>> copies_;

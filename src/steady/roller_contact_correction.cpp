@@ -42,63 +42,66 @@ CondensedContact condensed_contact(const Scene& scene, const Mesh& mesh, const D
                           scene.newton.linear);
 }
 
+// The roller's load in the steady pass: its force, and its creep or, rolling under a horizontal
+// force, the force that sets the creep; InputError for a force the contact cannot carry rolling.
+CondensedLoad condensed_load(const SteadyLoad& steady, Real force) {
+  CondensedLoad load;
+  load.force = force;
+  load.friction = steady.friction;
+  load.travel_sign = steady.travel_sign;
+  load.creep = steady.creep;
+  if (steady.shape == TractionShape::Carter && steady.friction > 0.0) {
+    if (std::abs(steady.traction) >= steady.friction)
+      throw InputError(fmt::format(
+          "{}: |q/p| = |fx|/fy = {:.6g} is mu = {}: on the roller's contact no creep carries it rolling; give the "
+          "segment slip = 1 (the roller slides) instead of the force",
+          steady.segment, std::abs(steady.traction), steady.friction));
+    load.creep = 0.0;  // the start of the unknown creep
+    load.horizontal_force = -steady.travel_sign * steady.traction * force;
+  }
+  return load;
+}
+
 // The roller's contact solved with the elastic stiffness: K_e du = r + f_c with the gaps to the
-// roller closed at u + du and the roller carrying the travel force, its height an unknown, by the
-// contact condensed onto the top nodes under the roller (contact/condensed_contact.hpp). K_e is
-// factorised once a pass. A traction (q = mu p when the travel slides, Carter's under fx) rides on
-// the contact's normal forces of the iteration before as a load beside r: the contact stays
-// frictionless, and at the fixed point the traction is the converged contact's.
+// roller closed at u + du, Coulomb's law between them on the steady slip, the roller carrying the
+// travel force (its height an unknown) and, under a horizontal force, that force (its creep an
+// unknown), by the contact condensed onto the top nodes under the roller
+// (contact/condensed_contact.hpp). K_e is factorised once a pass.
 class RollerContactCorrection final : public RollerCorrection {
  public:
   RollerContactCorrection(const Scene& scene, const Mesh& mesh, const SteadyLoad& steady, Real centre_x, Real force)
-      : steady_(steady),
-        hertz_(hertz_line_contact(force, scene.roller->radius, scene.contact_modulus())),
-        centre_x_(centre_x),
+      : load_(condensed_load(steady, force)),
         dofs_(LoadProgram(scene, mesh).dof_map()),
-        contact_(condensed_contact(scene, mesh, dofs_, centre_x, kWindow * hertz_.half_width)) {}
+        contact_(condensed_contact(scene, mesh, dofs_, centre_x, window(scene, force))) {}
   Result correct(const VecX& u, const std::vector<MaterialState>& /*states*/, const VecX& r) override {
-    if (traction_.size() != u.size()) traction_ = VecX::Zero(u.size());
-    CondensedContact::Press pressed = contact_.solve(u, r + dofs_.gather_free(traction_), hertz_.load);
+    CondensedContact::Press pressed = contact_.solve(u, r, load_);
     if (pressed.du.size() == 0) return {VecX(), VecX(), pressed.message};
     Result out;
     out.du = std::move(pressed.du);
-    out.load = traction_;
+    out.load = VecX::Zero(u.size());
     for (const NodeContactRecord& c : pressed.contact) out.load.segment<2>(2 * c.node) += c.force;
     records_ = std::move(pressed.contact);
     pose_ = pressed.pose;
-    if (steady_.traction != 0.0) {  // the next iteration's traction, from this contact
-      traction_.setZero();
-      const std::vector<Real> fx = traction_forces(steady_, records_, hertz_, centre_x_);
-      for (std::size_t i = 0; i < records_.size(); ++i) {
-        traction_[2 * records_[i].node] += fx[i];
-        records_[i].force.x() += fx[i];
-        records_[i].contact.tangential_force = steady_.travel_sign * fx[i];
-        if (records_[i].contact.status != ContactStatus::Open)
-          records_[i].contact.status =
-              traction_slips(steady_, hertz_, steady_.travel_sign * (records_[i].position.x() - centre_x_))
-                  ? ContactStatus::Slip
-                  : ContactStatus::Stick;
-      }
-    }
+    creep_ = pressed.creep;
     return out;
   }
-  // With the traction on its normal forces.
   const std::vector<NodeContactRecord>& contact() const override { return records_; }
   RollerPose pose() const override { return pose_; }
+  Real creep() const override { return creep_; }
 
  private:
   // The nodes condensed reach this many Hertz half-widths either side of the contact's centre:
   // the contact's own half-width stays near a (0.996 a at p0/k = 4.5, docs/benchmarks-log.md), and
   // one that reaches the last node stops the pass with a message.
-  static constexpr Real kWindow = 4.0;
-  SteadyLoad steady_;
-  HertzSolution hertz_;
-  Real centre_x_ = 0.0;
+  static Real window(const Scene& scene, Real force) {
+    return 4.0 * hertz_line_contact(force, scene.roller->radius, scene.contact_modulus()).half_width;
+  }
+  CondensedLoad load_;
   DofMap dofs_;
   CondensedContact contact_;
-  VecX traction_;                           // all dofs: the traction of the last contact
-  std::vector<NodeContactRecord> records_;  // the last contact, its traction added
+  std::vector<NodeContactRecord> records_;  // the last contact
   RollerPose pose_;
+  Real creep_ = 0.0;
 };
 
 }  // namespace

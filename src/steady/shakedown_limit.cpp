@@ -211,6 +211,7 @@ class PressedStrip {
  public:
   PressedStrip(const Scene& scene, const ShakedownLimitSettings& settings)
       : steady_(steady_load(roller_scene(scene), settings.traction)) {
+    require_given_traction(steady_);
     if (!scene.strip_material().any_plastic())
       throw InputError(fmt::format("{}: [material]: the strip is elastic (no yield_stress): it has no shakedown limit",
                                    scene.file.string()));

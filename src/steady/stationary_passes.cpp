@@ -140,6 +140,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model, 
       elastic_materials_(linear_elastic(phased_.materials)),
       linear_solver_(scene.newton.linear) {
   require_held_base(scene, model);
+  if (scene.passes.stationary_contact == StationaryContact::Hertz) require_given_traction(steady);
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
   // Half-way between the contact's trailing edge and the strip's downstream end.
@@ -291,6 +292,7 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
   if (roller_correction) {
     contact_ = roller_correction->contact();
     pose_ = roller_correction->pose();
+    creep_ = roller_correction->creep();
   }
   const VecX& elastic = elastic_displacement(dofs, out.solve.load);
   const std::vector<LongTrackState> track = leaving(out.solve.displacement, out.solve.states, elastic);

@@ -31,8 +31,10 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
   load.force = it->fy;
   load.travel_sign = it->dx > 0.0 ? 1.0 : -1.0;
   load.friction = friction_in_step(*scene.roller, it->first_step, scene.contact.friction);
-  const std::string where =
+  load.segment =
       fmt::format("{}: roller.path: the segment over steps {}-{}", scene.file.string(), it->first_step, it->last_step);
+  load.creep = it->slip_end;
+  const std::string& where = load.segment;
   if (traction) {
     load.traction = *traction;
   } else if (const std::optional<Real> fx = segment_end_fx(*it)) {
@@ -51,14 +53,20 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction) {
   } else if (std::min(it->slip_start, it->slip_end) >= 1.0) {
     load.traction = load.friction;
   } else {
-    throw InputError(fmt::format(
-        "{} rolls with creep (slip {}..{}); the traction a creep carries depends on the strip's plastic flow and on "
-        "nu (Carter's law holds for an elastic strip with nu = 0.5), so a steady pass takes the force instead: give "
-        "the segment fx, the strip's horizontal force on the roller (Carter's traction; the creep is then an "
-        "outcome), or the traction q/p (shakedown-limit --traction)",
-        where, it->slip_start, it->slip_end));
+    load.shape = TractionShape::Creep;  // the traction an outcome: the roller's contact alone carries it
   }
   return load;
+}
+
+void require_given_traction(const SteadyLoad& load) {
+  if (load.shape != TractionShape::Creep) return;
+  throw InputError(fmt::format(
+      "{} rolls with creep (slip {}..{}); the traction a creep carries depends on the strip's plastic flow and on "
+      "nu (Carter's law holds for an elastic strip with nu = 0.5), so a load laid on the strip takes the force "
+      "instead: give the segment fx, the strip's horizontal force on the roller (Carter's traction; the creep is then "
+      "an outcome), or the traction q/p (shakedown-limit --traction); the stationary pass on the roller's contact "
+      "(passes.stationary_contact = \"roller\") rolls with the creep itself",
+      load.segment, load.travel->slip_start, load.travel->slip_end));
 }
 
 std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<NodeContactRecord>& contact,

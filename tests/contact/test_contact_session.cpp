@@ -97,8 +97,10 @@ TEST_CASE("condensed contact: Hertz's press solved on the strip's condensed stif
   SparseMatrix k;
   elastic.evaluate(VecX::Zero(strip.n_dofs()), nullptr, &k);
   CondensedContact condensed(k, strip.dof_map(), nodes, positions, 100.0, 100.0, scene.newton.linear);
+  CondensedLoad frictionless;
+  frictionless.force = load;
   const CondensedContact::Press pressed =
-      condensed.solve(VecX::Zero(strip.n_dofs()), VecX::Zero(strip.dof_map().n_free()), load);
+      condensed.solve(VecX::Zero(strip.n_dofs()), VecX::Zero(strip.dof_map().n_free()), frictionless);
   REQUIRE(pressed.message.empty());
   // The roller's height and every node's force agree within force control's tolerance (1e-6 of
   // the load; the session's interior point solves to it).

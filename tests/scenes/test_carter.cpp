@@ -15,86 +15,12 @@
 #include <fmt/format.h>
 
 #include "../support/run_scene.hpp"
+#include "../support/stick_zone.hpp"
 
 using namespace roller;
-
-namespace {
-
-struct Parabola {  // y = amp (1 - (x - centre)^2 / half_width^2)
-  Real centre = 0.0, half_width = 0.0, amp = 0.0;
-  bool ok = false;
-};
-
-// Least-squares y = c0 + c1 x + c2 x^2 (x shifted by its mean for conditioning).
-Parabola fit_parabola(const std::vector<Real>& x, const std::vector<Real>& y) {
-  Parabola out;
-  const std::size_t n = x.size();
-  if (n < 3) return out;
-  Real xm = 0.0;
-  for (Real v : x) xm += v / static_cast<Real>(n);
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Real s = x[i] - xm;
-    const Eigen::Vector3d phi(1.0, s, s * s);
-    A += phi * phi.transpose();
-    b += phi * y[i];
-  }
-  const Eigen::Vector3d c = A.ldlt().solve(b);
-  const Real curv = -c(2);
-  if (!(curv > 0.0)) return out;
-  const Real s0 = c(1) / (2.0 * curv);
-  out.amp = c(0) + curv * s0 * s0;
-  if (!(out.amp > 0.0)) return out;
-  out.centre = xm + s0;
-  out.half_width = std::sqrt(out.amp / curv);
-  out.ok = true;
-  return out;
-}
-
-// The contact of the last step: a from a parabola through p_n^2, the stick zone's centre d and
-// half-width c from the moments of the traction deficit, the sticking nodes' extent.
-struct StickZone {
-  Parabola contact;
-  Real a = 0.0, d_abs = 0.0, c = 0.0;
-  Real x_stick_min = 1e300, x_stick_max = -1e300;
-  int n_stick = 0, n_slip = 0;
-};
-
-StickZone measure_stick_zone(const Simulation& sim, Real mu) {
-  StickZone z;
-  Real p_max = 0.0;
-  for (const auto& c : sim.state().contact) p_max = std::max(p_max, c.contact.normal_force / c.tributary_length);
-  REQUIRE(p_max > 0.0);
-  std::vector<Real> xa, p2;
-  Real w0 = 0.0, w1 = 0.0, w2 = 0.0;
-  for (const auto& c : sim.state().contact) {
-    const Real p = c.contact.normal_force / c.tributary_length;
-    if (p <= 1e-3 * p_max) continue;
-    const Real x = c.position.x();
-    xa.push_back(x);
-    p2.push_back(p * p);
-    const Real w = std::max(mu * c.contact.normal_force - std::abs(c.contact.tangential_force), 0.0);
-    w0 += w;
-    w1 += w * x;
-    w2 += w * x * x;
-    if (c.contact.status == ContactStatus::Stick) {
-      ++z.n_stick;
-      z.x_stick_min = std::min(z.x_stick_min, x);
-      z.x_stick_max = std::max(z.x_stick_max, x);
-    }
-    z.n_slip += c.contact.status == ContactStatus::Slip;
-  }
-  z.contact = fit_parabola(xa, p2);
-  REQUIRE(z.contact.ok);
-  REQUIRE(w0 > 0.0);
-  z.a = z.contact.half_width;
-  z.d_abs = w1 / w0;                                                  // centre of the stick zone
-  z.c = 2.0 * std::sqrt(std::max(w2 / w0 - z.d_abs * z.d_abs, 0.0));  // its half-width
-  return z;
-}
-
-}  // namespace
+using roller::test::measure_stick_zone;
+using roller::test::Parabola;
+using roller::test::StickZone;
 
 TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of width 2a sqrt(1 - Q/(mu P))",
           "[contact][friction][scenes][slow]") {
@@ -103,7 +29,7 @@ TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of 
   const Vec2 f = force_on_roller(sim.state().contact);
   const Real q_ratio = std::abs(f.x()) / (mu * f.y());
 
-  const StickZone z = measure_stick_zone(sim, mu);
+  const StickZone z = measure_stick_zone(sim.state().contact, mu);
   const Parabola& contact = z.contact;
   const Real a = z.a, d_abs = z.d_abs, c = z.c, x_stick_min = z.x_stick_min, x_stick_max = z.x_stick_max;
   const int n_stick = z.n_stick, n_slip = z.n_slip;
@@ -152,7 +78,7 @@ TEST_CASE("Carter under a prescribed traction: the creep is an outcome and meets
   CHECK(std::abs(f.x() - q) <= 1e-6 * f.y());
   CHECK(sim.state().pose.angle ==
         Approx(-34.0 / sim.scene().roller->radius).epsilon(1e-12));  // turned at the rolling rate
-  const StickZone z = measure_stick_zone(sim, mu);
+  const StickZone z = measure_stick_zone(sim.state().contact, mu);
   // The creep over the last 2a rolled (22 steps of 0.2 mm), and over the 2a before (steadiness).
   const int k = n - 22, j = n - 44;
   const Real creep = (offset[n] - offset[k]) / (xc[n] - xc[k]);

@@ -20,6 +20,11 @@ struct PassTrack {
   Real load_half_width = 0.0;         // Hertz's half-width of the largest normal contact force [mm]
   Real peak_pressure = 0.0;           // largest nodal contact pressure [MPa]
   Vec2 largest_force = Vec2::Zero();  // the roller's force on the strip at the step it pressed hardest [N/mm]
+  // The roller's travel and rim travel R dphi over the steps in contact: its creep 1 + turned / rolled
+  // (the transient's slip: 0 rolls, 1 slides), with the last step's centre x and angle.
+  Real rolled = 0.0, turned = 0.0;
+  bool has_pose = false;
+  Real last_x = 0.0, last_angle = 0.0;
 
   // One step: the centre's x, the x of the nodes in contact with their pressures, and Hertz's
   // half-width of the step's normal contact force.
@@ -27,6 +32,12 @@ struct PassTrack {
                Real step_load_half_width);
   // One step's force of the roller on the strip: kept when it presses harder than any before.
   void observe_force(const Vec2& force_on_strip);
+  // One step's pose of the roller of `radius`; its motion from the step before counts towards the
+  // creep when the roller touches the strip.
+  void observe_motion(Real centre_x, Real angle, Real radius, bool in_contact);
+  // A steady pass's creep, as one unit of travel.
+  void set_creep(Real creep) { rolled = 1.0, turned = creep - 1.0; }
+  Real creep() const { return rolled != 0.0 ? 1.0 + turned / rolled : 0.0; }
   nlohmann::json save() const;
   static PassTrack load(const nlohmann::json& j);
 };

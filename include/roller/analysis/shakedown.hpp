@@ -31,6 +31,7 @@ struct PassRecord {
   Real peak_pressure = 0.0;                 // largest nodal contact pressure of the pass [MPa]
   Real contact_half_width = 0.0;            // largest a of the pass [mm]
   Real track_start = 0.0, track_end = 0.0;  // x of the window [mm]
+  Real creep = 0.0;                         // the roller's creep 1 - omega R / V over the pass's travel
 };
 
 enum class ShakedownVerdict { Undetermined, ElasticShakedown, PlasticShakedown, Ratchetting };

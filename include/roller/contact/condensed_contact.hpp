@@ -1,13 +1,19 @@
 #pragma once
-// The rigid roller's frictionless contact with a strip of constant tangent K, condensed onto the
-// surface nodes under the roller (docs/model.md, Stationary pass; the stationary pass's correction
-// on the roller's contact): K du = b + f_c with the gaps closed at u + du. K is factorised once with
-// its Schur complement S on those nodes' dofs (MUMPS); each solve reduces b onto them, solves the small dense
-// problem there, S v = b_s + sum_i lambda_i n_i with the exact gaps g_i = |x_i + u_i + v_i - c| - R
-// >= 0 complementary to lambda_i >= 0 and sum_i lambda_i (-n_i,y) = P (the roller's height c_y an
-// unknown), and expands v to every dof. The small problem is solved by Newton's method on the gaps
-// (normals of the last iterate) whose steps are linear complementarity problems, each by a
-// primal-dual active set (Hintermüller, Ito & Kunisch 2002), warm-started from the last solve.
+// The rigid roller's contact with a strip of constant tangent K, condensed onto the surface nodes
+// under the roller (docs/model.md, Stationary pass; the stationary pass's correction on the
+// roller's contact): K du = b + f_c with the gaps closed at u + du and Coulomb's law between the
+// roller and the strip. K is factorised once with its Schur complement S on those nodes' dofs
+// (MUMPS); each solve reduces b onto them, solves the small dense problem there, S v = b_s +
+// sum_i (lambda_n,i n_i + lambda_t,i t_i) with the exact gaps g_i = |x_i + u_i + v_i - c| - R >= 0
+// complementary to lambda_n,i >= 0, the steady slip (Kalker's: the creep plus the material
+// derivative of the tangential displacement, upwind along the surface) zero where |lambda_t| <
+// mu lambda_n and opposed by lambda_t = mu lambda_n where it slips, the roller carrying P (its
+// height an unknown) and, under a horizontal force, Q (its creep an unknown). The small problem is
+// solved by Newton's method on the gaps and slips (normals of the last iterate) whose steps are
+// linear complementarity problems, each by a primal-dual active set on the contact and stick sets
+// (Hintermüller, Ito & Kunisch 2002; Hüeber, Stadler & Wohlmuth 2008), warm-started from the last
+// solve.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +25,18 @@
 #include "roller/solver/mumps_factorization.hpp"
 
 namespace roller {
+
+// What the roller carries and how it turns in the steady pass.
+struct CondensedLoad {
+  Real force = 0.0;        // P: the strip's vertical force on the roller [N/mm]
+  Real friction = 0.0;     // mu; 0: frictionless
+  Real travel_sign = 1.0;  // +1: the roller moves towards +x (the material enters the contact from +x)
+  // The roller's creep, 1 - omega R / V (0 rolls freely, 1 slides; the transient's `slip`), or with
+  // a horizontal force (the strip's on the roller) the creep's start: it is then an unknown that
+  // carries the force.
+  Real creep = 0.0;
+  std::optional<Real> horizontal_force;
+};
 
 class CondensedContact {
  public:
@@ -33,22 +51,33 @@ class CondensedContact {
     VecX du;                                 // free dofs; empty when the press failed
     std::vector<NodeContactRecord> contact;  // every condensed node, by x (open ones at zero force)
     RollerPose pose;                         // the roller's centre at (centre_x, c_y)
+    Real creep = 0.0;                        // the roller's creep: the load's, or the one that carries Q
     std::string message;                     // why it failed
   };
-  // From the strip at `u` (all dofs) under the free-dof load `b`, the roller carrying `force`.
-  Press solve(const VecX& u, const VecX& b, Real force);
+  // From the strip at `u` (all dofs) under the free-dof load `b`, the roller carrying `load`.
+  Press solve(const VecX& u, const VecX& b, const CondensedLoad& load);
 
  private:
-  // The condensed problem's solution: the nodes' displacement v, their normal forces, the
-  // roller's height and the nodes in contact; a message when it failed.
+  // A node's place in the contact; a slipping node's traction is slip_sign mu lambda_n.
+  enum class Zone : unsigned char { Open, Stick, Slip };
+  struct Sets {
+    std::vector<Zone> zone;
+    std::vector<Real> slip_sign;
+    bool operator==(const Sets& o) const { return zone == o.zone && slip_sign == o.slip_sign; }
+    bool any_contact() const;
+  };
+  // The condensed problem's solution: the nodes' displacement v, their normal and tangential
+  // forces and slips, the roller's height and creep and the nodes' zones; a message when it failed.
   struct Small {
-    VecX v, lambda;
-    Real height = 0.0;
-    std::vector<bool> active;
+    VecX v, lambda_n, lambda_t, slip;
+    Real height = 0.0, creep = 0.0;
+    Sets sets;
     std::string message;
   };
   // From the nodes' positions `base` (x + u) and the load reduced onto them.
-  Small solve_small(const std::vector<Vec2>& base, const VecX& reduced, Real force) const;
+  Small solve_small(const std::vector<Vec2>& base, const VecX& reduced, const CondensedLoad& load) const;
+  // The node whose material reaches node i next from upstream (-1 at the window's upstream end).
+  Index upstream(Index i, Real travel_sign) const;
 
   Real centre_x_, radius_;
   std::vector<Index> nodes_;     // the condensed nodes, by x
@@ -57,9 +86,9 @@ class CondensedContact {
   std::vector<Index> schur_;     // their dofs' free indices: x, y of each node in turn
   MumpsSolver solver_;
   MatX compliance_;  // S^-1 on the condensed dofs (x, y of each node in turn)
-  // The last solve's nodes in contact and roller height: the next one's start.
-  std::vector<bool> active_;
-  Real height_ = 0.0;
+  // The last solve's zones, roller height and creep: the next one's start.
+  Sets sets_;
+  Real height_ = 0.0, creep_ = 0.0;
 };
 
 }  // namespace roller

@@ -41,6 +41,8 @@ class RollerCorrection : public StationaryCorrection {
  public:
   virtual const std::vector<NodeContactRecord>& contact() const = 0;
   virtual RollerPose pose() const = 0;
+  // The roller's creep (1 - omega R / V): the travel's, or the one that carries its horizontal force.
+  virtual Real creep() const = 0;
 };
 class StationaryPasses {
  public:
@@ -71,6 +73,8 @@ class StationaryPasses {
   // The load as contact records of the top nodes (contact.csv), and the roller's pose over it
   // (the last pass's, with the roller's contact).
   const std::vector<NodeContactRecord>& contact() const { return contact_; }
+  // The last pass's roller creep on the roller's contact (absent with the Hertz load).
+  std::optional<Real> creep() const { return creep_; }
   RollerPose roller_pose() const;
 
  private:
@@ -101,6 +105,7 @@ class StationaryPasses {
   // Makes the correction on the roller's contact (passes.stationary_contact = "roller"), one a pass.
   std::function<std::unique_ptr<RollerCorrection>()> new_roller_correction_;
   std::optional<RollerPose> pose_;  // the roller's, with the roller's contact
+  std::optional<Real> creep_;       // the roller's, with the roller's contact
   Index base_points_ = 0;           // the strip's points (the first copy's)
   std::vector<Index> extraction_;   // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;

@@ -4,6 +4,7 @@
 // along which the roller rolls or slides (the one with the largest |dx|), the steps of the press
 // before it, its vertical force and the tangential traction q/p.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "roller/analysis/hertz.hpp"
@@ -16,6 +17,7 @@ namespace roller {
 enum class TractionShape {
   Uniform,  // q = (Q/P) p: sliding (Q = mu P), or a traction ratio the user gives
   Carter,   // rolling under a tangential force: Carter's stick zone at the leading edge (analysis/carter.hpp)
+  Creep,    // rolling with a creep 0 < slip < 1: the traction an outcome of the roller's contact alone
 };
 
 struct SteadyLoad {
@@ -26,16 +28,22 @@ struct SteadyLoad {
   TractionShape shape = TractionShape::Uniform;
   Real friction = 0.0;     // mu of the travel segment
   Real travel_sign = 1.0;  // +1: the roller moves towards +x over the strip
+  Real creep = 0.0;        // the travel segment's slip at its end: the roller's creep where no force sets it
+  std::string segment;     // "FILE: roller.path: the segment over steps A-B", for messages
 };
 
 // `traction`: q/p given by the user (uniform); absent: Carter's traction of the travel segment's
 // horizontal force fx when it has one (the creep then turns the roller but does not set the load),
-// mu (uniform) when it slides (slip = 1 at both ends), 0 when it rolls freely (slip = 0). Throws
-// InputError naming the scene and key when there is no roller, no segment with dx != 0, no press
-// before it, an fx without fy or beyond mu fy, or a creep 0 < slip < 1 without fx: the traction a
-// creep carries depends on the strip's plastic flow and on nu (Carter's law is an elastic strip's
-// with nu = 0.5), so a steady solve takes the force.
+// mu (uniform) when it slides (slip = 1 at both ends), 0 when it rolls freely (slip = 0), and the
+// shape Creep for a creep 0 < slip < 1 without fx. Throws InputError naming the scene and key when
+// there is no roller, no segment with dx != 0, no press before it, or an fx without fy or beyond
+// mu fy.
 SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
+
+// Throws InputError for the shape Creep: a load laid on the strip (the Hertz pressure,
+// shakedown-limit's press) needs its traction, and the traction a creep carries depends on the
+// strip's plastic flow and on nu (Carter's law is an elastic strip's with nu = 0.5).
+void require_given_traction(const SteadyLoad& load);
 
 // The tangential nodal forces in x, one per record of `contact`, of the load's traction on the
 // contact's normal forces: (Q/P) |f_n| along the travel, or Carter's, mu |f_n| less the stick zone's
