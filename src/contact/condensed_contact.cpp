@@ -25,12 +25,13 @@ constexpr int kActiveSetPasses = 50;
 
 CondensedContact::CondensedContact(const SparseMatrix& tangent, const DofMap& dofs, std::vector<Index> nodes,
                                    std::vector<Vec2> positions, Real centre_x, Real radius,
-                                   const LinearSolverOptions& linear_solver)
+                                   const LinearSolverOptions& linear_solver, MumpsSolver::Symmetry symmetry)
     : centre_x_(centre_x),
       radius_(radius),
       nodes_(std::move(nodes)),
       reference_(std::move(positions)),
-      solver_(MumpsSolver::Symmetry::Symmetric, linear_solver) {
+      unknowns_(tangent.rows()),
+      solver_(symmetry, linear_solver) {
   ROLLER_ASSERT(nodes_.size() == reference_.size() && nodes_.size() >= 3, "three condensed nodes or more, placed");
   const auto n = static_cast<Index>(nodes_.size());
   for (Index i = 0; i < n; ++i) {
@@ -50,12 +51,21 @@ CondensedContact::CondensedContact(const SparseMatrix& tangent, const DofMap& do
   MatX s;
   if (!solver_.factorize_with_schur(tangent, schur_, &s))
     throw NumericalError(fmt::format("the roller's contact: the strip's tangent is singular: {}", solver_.message()));
-  compliance_ = Eigen::LLT<MatX>(s).solve(MatX::Identity(s.rows(), s.cols()));
+  const MatX identity = MatX::Identity(s.rows(), s.cols());
+  compliance_ = symmetry == MumpsSolver::Symmetry::Symmetric ? MatX(Eigen::LLT<MatX>(s).solve(identity))
+                                                             : MatX(Eigen::PartialPivLU<MatX>(s).solve(identity));
   sets_.zone.assign(nodes_.size(), Zone::Open);
   sets_.slip_sign.assign(nodes_.size(), 1.0);
 }
 
 CondensedContact::~CondensedContact() = default;
+
+void CondensedContact::start_from(const CondensedContact& other) {
+  ROLLER_ASSERT(other.nodes_ == nodes_, "the same nodes condensed");
+  sets_ = other.sets_;
+  height_ = other.height_;
+  creep_ = other.creep_;
+}
 
 bool CondensedContact::Sets::any_contact() const {
   return std::any_of(zone.begin(), zone.end(), [](Zone z) { return z != Zone::Open; });
@@ -284,10 +294,13 @@ CondensedContact::Press CondensedContact::solve(const VecX& u, const VecX& b, co
   for (std::size_t i = 0; i < nodes_.size(); ++i) base.push_back(reference_[i] + u.segment<2>(2 * nodes_[i]));
   Small small;
   Press out;
-  out.du = solver_.solve_with_schur(b, [&](const VecX& reduced) {
+  VecX padded = VecX::Zero(unknowns_);  // the tangent's unknowns after the free dofs carry no load
+  padded.head(b.size()) = b;
+  out.du = solver_.solve_with_schur(padded, [&](const VecX& reduced) {
     small = solve_small(base, reduced, load);
     return small.message.empty() ? small.v : VecX::Zero(reduced.size());
   });
+  out.du.conservativeResize(b.size());
   if (!small.message.empty()) return {VecX(), {}, {}, 0.0, small.message};
   const auto n = static_cast<Index>(nodes_.size());
   if (small.lambda_n(0) > 0.0 || small.lambda_n(n - 1) > 0.0)

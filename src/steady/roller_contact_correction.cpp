@@ -71,10 +71,13 @@ class RollerContactCorrection final : public RollerCorrection {
  public:
   RollerContactCorrection(const Scene& scene, const Mesh& mesh, const SteadyLoad& steady, Real centre_x, Real force)
       : load_(condensed_load(steady, force)),
+        centre_x_(centre_x),
+        radius_(scene.roller->radius),
         dofs_(LoadProgram(scene, mesh).dof_map()),
         contact_(condensed_contact(scene, mesh, dofs_, centre_x, window(scene, force))) {}
   Result correct(const VecX& u, const std::vector<MaterialState>& /*states*/, const VecX& r) override {
-    CondensedContact::Press pressed = contact_.solve(u, r, load_);
+    CondensedContact& contact = on_tangent_ ? *on_tangent_ : contact_;
+    CondensedContact::Press pressed = contact.solve(u, r, load_);
     if (pressed.du.size() == 0) return {VecX(), VecX(), pressed.message};
     Result out;
     out.du = std::move(pressed.du);
@@ -84,6 +87,25 @@ class RollerContactCorrection final : public RollerCorrection {
     pose_ = pressed.pose;
     creep_ = pressed.creep;
     return out;
+  }
+  // The contact condensed with the steady Jacobian: each Newton step finds its own contact.
+  bool take_operator(const SparseMatrix* tangent, const LinearSolverOptions& options) override {
+    const CondensedContact& last = on_tangent_ ? *on_tangent_ : contact_;
+    if (!tangent) {
+      contact_.start_from(last);
+      on_tangent_.reset();
+      return false;
+    }
+    try {
+      auto next = std::make_unique<CondensedContact>(*tangent, dofs_, last.nodes(), last.positions(), centre_x_,
+                                                     radius_, options, MumpsSolver::Symmetry::General);
+      next->start_from(last);
+      on_tangent_ = std::move(next);
+      return true;
+    } catch (const NumericalError&) {  // a singular J: the caller's factorisation says so
+      on_tangent_.reset();
+      return false;
+    }
   }
   const std::vector<NodeContactRecord>& contact() const override { return records_; }
   RollerPose pose() const override { return pose_; }
@@ -97,9 +119,11 @@ class RollerContactCorrection final : public RollerCorrection {
     return 4.0 * hertz_line_contact(force, scene.roller->radius, scene.contact_modulus()).half_width;
   }
   CondensedLoad load_;
+  Real centre_x_ = 0.0, radius_ = 0.0;
   DofMap dofs_;
-  CondensedContact contact_;
-  std::vector<NodeContactRecord> records_;  // the last contact
+  CondensedContact contact_;                      // with K_e, factorised once a pass
+  std::unique_ptr<CondensedContact> on_tangent_;  // with the steady Jacobian, while it is the operator
+  std::vector<NodeContactRecord> records_;        // the last contact
   RollerPose pose_;
   Real creep_ = 0.0;
 };

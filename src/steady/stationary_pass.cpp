@@ -36,6 +36,12 @@ SteadyJacobianCorrection::SteadyJacobianCorrection(const StationaryStrip& strip,
   jacobian_.configure(options);
 }
 
+void SteadyJacobianCorrection::leave_jacobian(Stage next) {
+  if (load_on_jacobian_) elastic_.take_operator(nullptr, settings_.linear_solver);
+  load_on_jacobian_ = false;
+  stage_ = next;
+}
+
 StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, const std::vector<MaterialState>& states,
                                                                const VecX& r) {
   const bool with_jacobian = stage_ == Stage::Jacobian;
@@ -44,7 +50,7 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
   if (with_jacobian && elastic_.fixed_load()) {
     out.load = *elastic_.fixed_load();  // K_e's step would be thrown away
   } else {
-    out = elastic_.correct(u, states, r);
+    out = elastic_.correct(u, states, r);  // with J's load correction: J's step already
     if (out.du.size() == 0 || dropped) return out;
   }
   const VecX load = dofs_.gather_free(out.load);
@@ -57,10 +63,10 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
     if (retried_ < settings_.retries) {
       ++retried_;
       from_ = settings_.retry * best_residual_;
-      stage_ = Stage::Elastic;
+      leave_jacobian(Stage::Elastic);
       last_residual_ = 0.0;
     } else {
-      stage_ = Stage::Diverged;
+      leave_jacobian(Stage::Diverged);
     }
     out.du = dofs_.restrict_to_free(best_u_ - u);
     out.new_operator = true;
@@ -71,6 +77,19 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
   last_residual_ = residual;
   if (!with_jacobian || (slow && residual > settings_.tolerance)) {
     const SteadyJacobian j = steady_jacobian(strip_, dofs_, elastic_free_, strip_.strains(u), upstream_, states);
+    if (elastic_.take_operator(&j.matrix, settings_.linear_solver)) {  // the load's correction condenses J
+      load_on_jacobian_ = true;
+      stage_ = Stage::Jacobian;
+      ++factorizations_;
+      Result step = elastic_.correct(u, states, r);
+      step.new_operator = true;
+      if (step.du.size() != 0) return step;
+      leave_jacobian(Stage::Singular);  // J's contact failed: K_e's correction carries on alone
+      out = elastic_.correct(u, states, r);
+      out.new_operator = true;
+      return out;
+    }
+    if (load_on_jacobian_) leave_jacobian(stage_);
     if (!jacobian_.factorize(j.matrix)) {  // K_e's correction carries on alone
       stage_ = Stage::Singular;
       if (out.du.size() == 0) out = elastic_.correct(u, states, r);
@@ -82,6 +101,7 @@ StationaryCorrection::Result SteadyJacobianCorrection::correct(const VecX& u, co
     ++factorizations_;
     out.new_operator = true;
   }
+  if (load_on_jacobian_) return out;  // J's step, with its own contact
   VecX b = VecX::Zero(n_unknowns_);
   b.head(rhs.size()) = rhs;
   out.du = jacobian_.solve(b).head(rhs.size());

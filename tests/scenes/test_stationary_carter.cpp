@@ -22,12 +22,13 @@ constexpr Real kForce = 10600.0;  // P [N/mm]: about the 0.1 mm press of carter.
 
 // One stationary pass of carter.toml with the travel segment's own keys `travel` (after dx, fy).
 Simulation carter_pass(const std::string& travel, int refine = 1) {
-  Simulation sim(load_scene(
-      std::string(ROLLER_SOURCE_DIR) + "/problems/carter.toml",
-      {{"passes.method", "\"stationary\""},
-       {"passes.count", "1"},
-       {"mesh.refine", std::to_string(refine)},
-       {"roller.path", fmt::format("[{{steps=[1,4], fy={0}}}, {{steps=[5,94], dx=34.0, fy={0}, {1}}}]", kForce, travel)}}));
+  Simulation sim(
+      load_scene(std::string(ROLLER_SOURCE_DIR) + "/problems/carter.toml",
+                 {{"passes.method", "\"stationary\""},
+                  {"passes.count", "1"},
+                  {"mesh.refine", std::to_string(refine)},
+                  {"roller.path",
+                   fmt::format("[{{steps=[1,4], fy={0}}}, {{steps=[5,94], dx=34.0, fy={0}, {1}}}]", kForce, travel)}}));
   REQUIRE(sim.advance_step(1).converged());
   return sim;
 }
@@ -47,7 +48,7 @@ TEST_CASE("stationary Carter: a prescribed creep carries Carter's Q, the stick z
   INFO("a = " << z.a << ", Q/(mu P) = " << q_ratio << " (Carter " << q_carter << "), c = " << z.c << " (Carter "
               << c_carter << "), the stick zone's leading edge " << z.d_abs + z.c - z.contact.centre);
   CHECK(f.y() == Approx(kForce).epsilon(1e-9));
-  CHECK(f.x() < 0.0);  // the roller turns slower than it rolls: the strip holds it back
+  CHECK(f.x() < 0.0);                                 // the roller turns slower than it rolls: the strip holds it back
   CHECK(std::abs(q_ratio / q_carter - 1.0) < 0.035);  // measured +2.9 %
   CHECK(std::abs(z.c / c_carter - 1.0) < 0.02);
   CHECK(std::abs((z.d_abs + z.c) - (z.contact.centre + z.a)) < 0.2);  // at the leading edge, to a node
@@ -78,8 +79,8 @@ TEST_CASE("stationary Carter: under a horizontal force the creep is an outcome o
     const Real creep = sim.state().pass_records.back().creep;
     const Real creep_carter = mu * z.a / radius * (1.0 - std::sqrt(1.0 - q / (mu * kForce)));
     const Real error = std::abs(creep / creep_carter - 1.0);
-    INFO("refine " << refine << ": a = " << z.a << ", creep " << creep << " (Carter " << creep_carter << "), c = "
-                   << z.c << " (Carter " << z.a * std::sqrt(1.0 - 0.64) << ")");
+    INFO("refine " << refine << ": a = " << z.a << ", creep " << creep << " (Carter " << creep_carter
+                   << "), c = " << z.c << " (Carter " << z.a * std::sqrt(1.0 - 0.64) << ")");
     CHECK(f.x() == Approx(-q).epsilon(1e-9));
     CHECK(f.y() == Approx(kForce).epsilon(1e-9));
     CHECK(error < 0.8 * last_error);  // converging with the node spacing (measured 3.7 %, then 2.8 %)

@@ -40,11 +40,14 @@ struct CondensedLoad {
 
 class CondensedContact {
  public:
-  // `tangent`: K over the free dofs of `dofs` (symmetric); `nodes` (by x, their dofs free) at
-  // `positions` in the mesh: the nodes condensed; the roller of `radius` over x = centre_x.
-  // NumericalError when K is singular.
+  // `tangent`: K over the free dofs of `dofs`, symmetric, or with `symmetry` General any square
+  // matrix whose first unknowns are the free dofs (the steady Jacobian, its lanes' states after
+  // them: they are condensed with the rest); `nodes` (by x, their dofs free) at `positions` in the
+  // mesh: the nodes condensed; the roller of `radius` over x = centre_x. NumericalError when K is
+  // singular.
   CondensedContact(const SparseMatrix& tangent, const DofMap& dofs, std::vector<Index> nodes,
-                   std::vector<Vec2> positions, Real centre_x, Real radius, const LinearSolverOptions& linear_solver);
+                   std::vector<Vec2> positions, Real centre_x, Real radius, const LinearSolverOptions& linear_solver,
+                   MumpsSolver::Symmetry symmetry = MumpsSolver::Symmetry::Symmetric);
   ~CondensedContact();
 
   struct Press {
@@ -56,6 +59,10 @@ class CondensedContact {
   };
   // From the strip at `u` (all dofs) under the free-dof load `b`, the roller carrying `load`.
   Press solve(const VecX& u, const VecX& b, const CondensedLoad& load);
+  // The next solve starts from `other`'s last zones, roller height and creep (same nodes).
+  void start_from(const CondensedContact& other);
+  const std::vector<Index>& nodes() const { return nodes_; }
+  const std::vector<Vec2>& positions() const { return reference_; }
 
  private:
   // A node's place in the contact; a slipping node's traction is slip_sign mu lambda_n.
@@ -84,6 +91,7 @@ class CondensedContact {
   std::vector<Vec2> reference_;  // their positions in the mesh
   std::vector<Real> tributary_;  // their surface length (half the distance to each neighbour)
   std::vector<Index> schur_;     // their dofs' free indices: x, y of each node in turn
+  Index unknowns_ = 0;           // the tangent's: the free dofs, and any unknowns after them
   MumpsSolver solver_;
   MatX compliance_;  // S^-1 on the condensed dofs (x, y of each node in turn)
   // The last solve's zones, roller height and creep: the next one's start.

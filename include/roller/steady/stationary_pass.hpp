@@ -38,6 +38,11 @@ class StationaryCorrection {
   // The load when it does not depend on the iterate (all dofs), so that another operator's step
   // needs no call of correct; none otherwise.
   virtual const VecX* fixed_load() const { return nullptr; }
+  // From now on the operator is `tangent` (the steady Jacobian: square, its first unknowns the free
+  // dofs), or K_e again when null. A correction that finds its load with the operator (the
+  // roller's contact, condensed with it) factorises it and returns true: its corrections are then
+  // the tangent's steps. False: the load is found with K_e, and the caller steps with the tangent.
+  virtual bool take_operator(const SparseMatrix* /*tangent*/, const LinearSolverOptions& /*options*/) { return false; }
 };
 
 // K_e^-1 (r + f_ext) with K_e factorised (over the free dofs) and a fixed load f_ext.
@@ -123,6 +128,9 @@ class SteadyJacobianCorrection : public StationaryCorrection {
   Real from_ = 0.0;  // the hand-over's residual: settings_.from, lowered after each divergence
   int retried_ = 0;  // divergences after which J took over again
   int factorizations_ = 0;
+  bool load_on_jacobian_ = false;  // the load's correction steps with J itself (take_operator)
+  // Back to K_e's correction: the load's correction too.
+  void leave_jacobian(Stage next);
 };
 
 struct StationarySettings {
