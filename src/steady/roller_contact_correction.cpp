@@ -18,10 +18,19 @@ namespace roller {
 
 namespace {
 
+// The strip's linear elastic stiffness K_e over the free dofs of `dofs`.
+SparseMatrix elastic_stiffness(const Scene& scene, const Mesh& mesh, const DofMap& dofs) {
+  StripModel elastic(mesh, linear_elastic(assign_materials(mesh, scene.strip_material())), scene.element);
+  elastic.set_dof_map(dofs);
+  SparseMatrix k;
+  elastic.evaluate(VecX::Zero(mesh.n_dofs()), nullptr, &k);
+  return k;
+}
+
 // The roller's contact condensed onto the scene's contact candidates within `window` of centre_x,
-// with the strip's linear elastic stiffness K_e.
-CondensedContact condensed_contact(const Scene& scene, const Mesh& mesh, const DofMap& dofs, Real centre_x,
-                                   Real window) {
+// with the strip's stiffness `k` (K_e).
+std::unique_ptr<CondensedContact> condensed_contact(const Scene& scene, const Mesh& mesh, const DofMap& dofs,
+                                                    const SparseMatrix& k, Real centre_x, Real window) {
   std::vector<Index> nodes;
   for (const Index a : contact_candidate_nodes(scene, mesh))
     if (std::abs(mesh.nodes[a].x() - centre_x) <= window && !dofs.is_constrained(2 * a) &&
@@ -34,12 +43,8 @@ CondensedContact condensed_contact(const Scene& scene, const Mesh& mesh, const D
         nodes.size(), window, centre_x));
   std::vector<Vec2> positions;
   for (const Index a : nodes) positions.push_back(mesh.nodes[a]);
-  StripModel elastic(mesh, linear_elastic(assign_materials(mesh, scene.strip_material())), scene.element);
-  elastic.set_dof_map(dofs);
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(mesh.n_dofs()), nullptr, &k);
-  return CondensedContact(k, dofs, std::move(nodes), std::move(positions), centre_x, scene.roller->radius,
-                          scene.newton.linear);
+  return std::make_unique<CondensedContact>(k, dofs, std::move(nodes), std::move(positions), centre_x,
+                                            scene.roller->radius, scene.newton.linear);
 }
 
 // The roller's load in the steady pass: its force, and its creep or, rolling under a horizontal
@@ -66,64 +71,102 @@ CondensedLoad condensed_load(const SteadyLoad& steady, Real force) {
 // roller closed at u + du, Coulomb's law between them on the steady slip, the roller carrying the
 // travel force (its height an unknown) and, under a horizontal force, that force (its creep an
 // unknown), by the contact condensed onto the top nodes under the roller
-// (contact/condensed_contact.hpp). K_e is factorised once a pass.
+// (contact/condensed_contact.hpp). K_e is factorised once a pass. With phases, on every copy of
+// the strip (assembly/phased_strip.hpp): copy k's block of the iterate under its own roller, k/P
+// of an element further along the base strip; K_e is block diagonal, so each copy's contact is
+// condensed on its own. Once the steady Jacobian takes over (take_operator), one contact is
+// condensed with it over every copy's nodes, since J couples the copies through the lanes. The
+// first copy's contact, pose and creep are the pass's.
 class RollerContactCorrection final : public RollerCorrection {
  public:
-  RollerContactCorrection(const Scene& scene, const Mesh& mesh, const SteadyLoad& steady, Real centre_x, Real force)
+  RollerContactCorrection(const Scene& scene, const Mesh& mesh, const SteadyLoad& steady, const RollerPlaces& places,
+                          Real force)
       : load_(condensed_load(steady, force)),
-        centre_x_(centre_x),
         radius_(scene.roller->radius),
         dofs_(LoadProgram(scene, mesh).dof_map()),
-        contact_(condensed_contact(scene, mesh, dofs_, centre_x, window(scene, force))) {}
+        n_dofs_(mesh.n_dofs()),
+        n_free_(dofs_.n_free()) {
+    const SparseMatrix k = elastic_stiffness(scene, mesh, dofs_);
+    const Real window = 4.0 * hertz_line_contact(force, radius_, scene.contact_modulus()).half_width;
+    for (int c = 0; c < places.phases; ++c)
+      copies_.push_back(condensed_contact(scene, mesh, dofs_, k, places.centre_x - c * places.shift, window));
+  }
   Result correct(const VecX& u, const std::vector<MaterialState>& /*states*/, const VecX& r) override {
-    CondensedContact& contact = on_tangent_ ? *on_tangent_ : contact_;
-    CondensedContact::Press pressed = contact.solve(u, r, load_);
-    if (pressed.du.size() == 0) return {VecX(), VecX(), pressed.message};
+    const auto n = static_cast<Index>(copies_.size());
+    ROLLER_ASSERT(u.size() == n * n_dofs_ && r.size() == n * n_free_, "the iterate of every copy");
     Result out;
-    out.du = std::move(pressed.du);
     out.load = VecX::Zero(u.size());
-    for (const NodeContactRecord& c : pressed.contact) out.load.segment<2>(2 * c.node) += c.force;
-    records_ = std::move(pressed.contact);
-    pose_ = pressed.pose;
-    creep_ = pressed.creep;
+    std::vector<NodeContactRecord> first;
+    if (on_tangent_) {
+      CondensedContact::Press pressed = on_tangent_->solve(u, r, load_);
+      if (pressed.du.size() == 0) return {VecX(), VecX(), pressed.message};
+      out.du = std::move(pressed.du);
+      for (const NodeContactRecord& c : pressed.contact) {
+        out.load.segment<2>(2 * c.node) += c.force;
+        if (c.node < n_dofs_ / 2) first.push_back(c);  // the first copy's nodes: the strip's own
+      }
+      pose_ = pressed.pose;
+      creep_ = pressed.creep;
+    } else {
+      out.du.resize(r.size());
+      for (Index k = 0; k < n; ++k) {
+        CondensedContact::Press pressed = copies_[static_cast<std::size_t>(k)]->solve(
+            u.segment(k * n_dofs_, n_dofs_), r.segment(k * n_free_, n_free_), load_);
+        if (pressed.du.size() == 0)
+          return {VecX(), VecX(),
+                  n == 1 ? pressed.message : fmt::format("phase {} of {}: {}", k + 1, n, pressed.message)};
+        out.du.segment(k * n_free_, n_free_) = pressed.du;
+        for (const NodeContactRecord& c : pressed.contact) out.load.segment<2>(k * n_dofs_ + 2 * c.node) += c.force;
+        if (k > 0) continue;
+        first = std::move(pressed.contact);
+        pose_ = pressed.pose;
+        creep_ = pressed.creep;
+      }
+    }
+    records_ = std::move(first);
     return out;
   }
   // The contact condensed with the steady Jacobian: each Newton step finds its own contact.
   bool take_operator(const SparseMatrix* tangent, const LinearSolverOptions& options) override {
-    const CondensedContact& last = on_tangent_ ? *on_tangent_ : contact_;
+    const auto n = static_cast<int>(copies_.size());
     if (!tangent) {
-      contact_.start_from(last);
+      if (on_tangent_)
+        for (int k = 0; k < n; ++k) copies_[static_cast<std::size_t>(k)]->start_from(*on_tangent_, k, 0);
       on_tangent_.reset();
       return false;
     }
+    std::vector<CondensedPlace> places;
+    for (int k = 0; k < n; ++k) {  // copy k's nodes and free dofs in the k-th blocks
+      CondensedPlace p = copies_[static_cast<std::size_t>(k)]->place(0);
+      for (Index& a : p.nodes) a += k * (n_dofs_ / 2);
+      for (Index& i : p.unknowns) i += k * n_free_;
+      places.push_back(std::move(p));
+    }
+    std::unique_ptr<CondensedContact> next;
     try {
-      auto next = std::make_unique<CondensedContact>(*tangent, dofs_, last.nodes(), last.positions(), centre_x_,
-                                                     radius_, options, MumpsSolver::Symmetry::General);
-      next->start_from(last);
-      on_tangent_ = std::move(next);
-      return true;
+      next = std::make_unique<CondensedContact>(*tangent, n * n_free_, std::move(places), radius_, options,
+                                                MumpsSolver::Symmetry::General);
     } catch (const NumericalError&) {  // a singular J: the caller's factorisation says so
-      on_tangent_.reset();
+      take_operator(nullptr, options);
       return false;
     }
+    for (int k = 0; k < n; ++k)
+      next->start_from(on_tangent_ ? *on_tangent_ : *copies_[static_cast<std::size_t>(k)], on_tangent_ ? k : 0, k);
+    on_tangent_ = std::move(next);
+    return true;
   }
   const std::vector<NodeContactRecord>& contact() const override { return records_; }
   RollerPose pose() const override { return pose_; }
   Real creep() const override { return creep_; }
 
  private:
-  // The nodes condensed reach this many Hertz half-widths either side of the contact's centre:
-  // the contact's own half-width stays near a (0.996 a at p0/k = 4.5, docs/benchmarks-log.md), and
-  // one that reaches the last node stops the pass with a message.
-  static Real window(const Scene& scene, Real force) {
-    return 4.0 * hertz_line_contact(force, scene.roller->radius, scene.contact_modulus()).half_width;
-  }
   CondensedLoad load_;
-  Real centre_x_ = 0.0, radius_ = 0.0;
-  DofMap dofs_;
-  CondensedContact contact_;                      // with K_e, factorised once a pass
-  std::unique_ptr<CondensedContact> on_tangent_;  // with the steady Jacobian, while it is the operator
-  std::vector<NodeContactRecord> records_;        // the last contact
+  Real radius_ = 0.0;
+  DofMap dofs_;                                            // the base strip's
+  Index n_dofs_, n_free_;                                  // a copy's
+  std::vector<std::unique_ptr<CondensedContact>> copies_;  // with K_e, factorised once a pass
+  std::unique_ptr<CondensedContact> on_tangent_;           // with the steady Jacobian, while it is the operator
+  std::vector<NodeContactRecord> records_;                 // the first copy's last contact
   RollerPose pose_;
   Real creep_ = 0.0;
 };
@@ -131,8 +174,9 @@ class RollerContactCorrection final : public RollerCorrection {
 }  // namespace
 
 std::unique_ptr<RollerCorrection> make_roller_contact_correction(const Scene& scene, const Mesh& mesh,
-                                                                 const SteadyLoad& steady, Real centre_x, Real force) {
-  return std::make_unique<RollerContactCorrection>(scene, mesh, steady, centre_x, force);
+                                                                 const SteadyLoad& steady, const RollerPlaces& places,
+                                                                 Real force) {
+  return std::make_unique<RollerContactCorrection>(scene, mesh, steady, places, force);
 }
 
 }  // namespace roller

@@ -7,7 +7,6 @@
 
 #include <fmt/format.h>
 
-#include "phased_roller_correction.hpp"
 #include "roller/analysis/carter.hpp"
 #include "roller/core/error.hpp"
 #include "roller/io/roller_start.hpp"
@@ -156,23 +155,16 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model, 
   if (!solver_.factorize(elastic_free_)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
   hertz_load_ = std::move(load.forces);
   if (scene.passes.stationary_contact == StationaryContact::Roller)
-    new_roller_correction_ = roller_corrections(scene, model, steady, base_points);
+    new_roller_correction_ = roller_corrections(scene, model, steady);
 }
 
-std::function<std::unique_ptr<RollerCorrection>()> StationaryPasses::roller_corrections(const Scene& scene,
-                                                                                        const StripModel& model,
-                                                                                        const SteadyLoad& steady,
-                                                                                        Index base_points) const {
+std::function<std::unique_ptr<RollerCorrection>()> StationaryPasses::roller_corrections(
+    const Scene& scene, const StripModel& model, const SteadyLoad& steady) const {
   // The roller k/P of an element further along copy k, which moved back as far (phased_.shift).
   // The scene by value: the Simulation that owns these passes may be moved.
-  return [this, scene, steady, base_mesh = model.mesh(), n_dofs = model.mesh().n_dofs(),
-          n_free = model.dof_map().n_free(), base_points]() -> std::unique_ptr<RollerCorrection> {
-    std::vector<std::unique_ptr<RollerCorrection>> copies;
-    for (int k = 0; k < phased_.phases; ++k)
-      copies.push_back(
-          make_roller_contact_correction(scene, base_mesh, steady, centre_x_ - k * phased_.shift, hertz_.load));
-    if (copies.size() == 1) return std::move(copies.front());  // the strip itself: no blocks to split
-    return std::make_unique<PhasedRollerCorrection>(std::move(copies), n_dofs, n_free, base_points);
+  const RollerPlaces places{centre_x_, phased_.phases, phased_.shift};
+  return [this, scene, steady, base_mesh = model.mesh(), places]() -> std::unique_ptr<RollerCorrection> {
+    return make_roller_contact_correction(scene, base_mesh, steady, places, hertz_.load);
   };
 }
 

@@ -76,6 +76,29 @@ TEST_CASE("contact session: Hertz's press under a prescribed force from typed va
   CHECK(run.state().load_offset == solution.load_offset);
 }
 
+namespace {
+
+// hertz.toml's top nodes within 4a of the roller (x = 100 mm), by x, and the strip's stiffness.
+struct UnderRoller {
+  std::vector<Index> nodes;
+  std::vector<Vec2> positions;
+  SparseMatrix stiffness;
+};
+UnderRoller under_roller(const Scene& scene, const StripModel& strip) {
+  UnderRoller out;
+  for (const Index a : contact_candidate_nodes(scene, strip.mesh()))
+    if (std::abs(strip.mesh().nodes[a].x() - 100.0) <= 8.0) out.nodes.push_back(a);
+  std::sort(out.nodes.begin(), out.nodes.end(),
+            [&](Index a, Index b) { return strip.mesh().nodes[a].x() < strip.mesh().nodes[b].x(); });
+  for (const Index a : out.nodes) out.positions.push_back(strip.mesh().nodes[a]);
+  StripModel elastic(strip.mesh(), strip.materials(), strip.options());
+  elastic.set_dof_map(strip.dof_map());
+  elastic.evaluate(VecX::Zero(strip.n_dofs()), nullptr, &out.stiffness);
+  return out;
+}
+
+}  // namespace
+
 TEST_CASE("condensed contact: Hertz's press solved on the strip's condensed stiffness is the contact session's",
           "[contact][session]") {
   // The same problem two ways: the session's force-controlled increment (interior point) and the
@@ -85,17 +108,7 @@ TEST_CASE("condensed contact: Hertz's press solved on the strip's condensed stif
   const Simulation run =
       test::run_scene("hertz", {{"steps.count", "1"}, {"roller.path", fmt::format("[{{steps=[1,1], fy={}}}]", load)}});
   const StripModel& strip = run.model();
-  std::vector<Index> nodes;
-  std::vector<Vec2> positions;
-  for (const Index a : contact_candidate_nodes(scene, strip.mesh()))
-    if (std::abs(strip.mesh().nodes[a].x() - 100.0) <= 8.0) nodes.push_back(a);  // 4a
-  std::sort(nodes.begin(), nodes.end(),
-            [&](Index a, Index b) { return strip.mesh().nodes[a].x() < strip.mesh().nodes[b].x(); });
-  for (const Index a : nodes) positions.push_back(strip.mesh().nodes[a]);
-  StripModel elastic(strip.mesh(), strip.materials(), strip.options());
-  elastic.set_dof_map(strip.dof_map());
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(strip.n_dofs()), nullptr, &k);
+  const auto [nodes, positions, k] = under_roller(scene, strip);
   CondensedContact condensed(k, strip.dof_map(), nodes, positions, 100.0, 100.0, scene.newton.linear);
   CondensedLoad frictionless;
   frictionless.force = load;
@@ -123,17 +136,7 @@ TEST_CASE("condensed contact: a general tangent with unknowns after the free dof
   const Simulation run =
       test::run_scene("hertz", {{"steps.count", "1"}, {"roller.path", "[{steps=[1,1], fy=7250.0}]"}});
   const StripModel& strip = run.model();
-  std::vector<Index> nodes;
-  std::vector<Vec2> positions;
-  for (const Index a : contact_candidate_nodes(scene, strip.mesh()))
-    if (std::abs(strip.mesh().nodes[a].x() - 100.0) <= 8.0) nodes.push_back(a);
-  std::sort(nodes.begin(), nodes.end(),
-            [&](Index a, Index b) { return strip.mesh().nodes[a].x() < strip.mesh().nodes[b].x(); });
-  for (const Index a : nodes) positions.push_back(strip.mesh().nodes[a]);
-  StripModel elastic(strip.mesh(), strip.materials(), strip.options());
-  elastic.set_dof_map(strip.dof_map());
-  SparseMatrix k;
-  elastic.evaluate(VecX::Zero(strip.n_dofs()), nullptr, &k);
+  const auto [nodes, positions, k] = under_roller(scene, strip);
   const Index extra = 7;
   std::vector<Eigen::Triplet<Real>> t;
   for (Index c = 0; c < k.outerSize(); ++c)

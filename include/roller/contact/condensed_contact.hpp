@@ -38,6 +38,17 @@ struct CondensedLoad {
   std::optional<Real> horizontal_force;
 };
 
+// One roller's place in a condensed contact: the surface nodes under it (by x; ids into the
+// iterate u, whose node a has the dofs 2a, 2a + 1), their positions in the mesh, their dofs'
+// indices among the tangent's unknowns (x, y of each node in turn) and the roller's centre x.
+// Several places (the phases' copies of the strip, each under its own roller) share one tangent.
+struct CondensedPlace {
+  std::vector<Index> nodes;
+  std::vector<Vec2> positions;
+  std::vector<Index> unknowns;
+  Real centre_x = 0.0;
+};
+
 class CondensedContact {
  public:
   // `tangent`: K over the free dofs of `dofs`, symmetric, or with `symmetry` General any square
@@ -48,21 +59,26 @@ class CondensedContact {
   CondensedContact(const SparseMatrix& tangent, const DofMap& dofs, std::vector<Index> nodes,
                    std::vector<Vec2> positions, Real centre_x, Real radius, const LinearSolverOptions& linear_solver,
                    MumpsSolver::Symmetry symmetry = MumpsSolver::Symmetry::Symmetric);
+  // The same with one roller per place, each carrying the same load; `free` of the tangent's
+  // unknowns are the free dofs (the rest carry no load).
+  CondensedContact(const SparseMatrix& tangent, Index free, std::vector<CondensedPlace> places, Real radius,
+                   const LinearSolverOptions& linear_solver, MumpsSolver::Symmetry symmetry);
   ~CondensedContact();
 
   struct Press {
     VecX du;                                 // free dofs; empty when the press failed
-    std::vector<NodeContactRecord> contact;  // every condensed node, by x (open ones at zero force)
-    RollerPose pose;                         // the roller's centre at (centre_x, c_y)
-    Real creep = 0.0;                        // the roller's creep: the load's, or the one that carries Q
+    std::vector<NodeContactRecord> contact;  // every condensed node, by place and x (open ones at zero force)
+    RollerPose pose;                         // the first place's roller: its centre at (centre_x, c_y)
+    Real creep = 0.0;                        // the first place's creep: the load's, or the one that carries Q
     std::string message;                     // why it failed
   };
-  // From the strip at `u` (all dofs) under the free-dof load `b`, the roller carrying `load`.
+  // From the strip at `u` (all dofs) under the free-dof load `b`, each roller carrying `load`.
   Press solve(const VecX& u, const VecX& b, const CondensedLoad& load);
-  // The next solve starts from `other`'s last zones, roller height and creep (same nodes).
-  void start_from(const CondensedContact& other);
-  const std::vector<Index>& nodes() const { return nodes_; }
-  const std::vector<Vec2>& positions() const { return reference_; }
+  // The next solve's start at place `to`: `other`'s last zones, roller height and creep at its
+  // place `from` (the same nodes).
+  void start_from(const CondensedContact& other, int from = 0, int to = 0);
+  int n_places() const { return static_cast<int>(places_.size()); }
+  const CondensedPlace& place(int k) const { return places_[static_cast<std::size_t>(k)]; }
 
  private:
   // A node's place in the contact; a slipping node's traction is slip_sign mu lambda_n.
@@ -71,32 +87,36 @@ class CondensedContact {
     std::vector<Zone> zone;
     std::vector<Real> slip_sign;
     bool operator==(const Sets& o) const { return zone == o.zone && slip_sign == o.slip_sign; }
-    bool any_contact() const;
   };
   // The condensed problem's solution: the nodes' displacement v, their normal and tangential
-  // forces and slips, the roller's height and creep and the nodes' zones; a message when it failed.
+  // forces and slips, each roller's height and creep and the nodes' zones; a message when it failed.
   struct Small {
     VecX v, lambda_n, lambda_t, slip;
-    Real height = 0.0, creep = 0.0;
+    VecX height, creep;
     Sets sets;
     std::string message;
   };
   // From the nodes' positions `base` (x + u) and the load reduced onto them.
   Small solve_small(const std::vector<Vec2>& base, const VecX& reduced, const CondensedLoad& load) const;
-  // The node whose material reaches node i next from upstream (-1 at the window's upstream end).
+  // The node whose material reaches node i next from upstream (-1 at its place's upstream end).
   Index upstream(Index i, Real travel_sign) const;
+  void build(const SparseMatrix& tangent, MumpsSolver::Symmetry symmetry);
 
-  Real centre_x_, radius_;
-  std::vector<Index> nodes_;     // the condensed nodes, by x
+  Real radius_;
+  std::vector<CondensedPlace> places_;
+  Index unknowns_ = 0, free_ = 0;  // the tangent's, and of them the free dofs (the first ones)
+  // Over every place's nodes in turn:
+  std::vector<Index> nodes_;     // the condensed nodes
   std::vector<Vec2> reference_;  // their positions in the mesh
+  std::vector<int> place_of_;    // their place
+  std::vector<Index> first_;     // per place, its first node's index here (and the end at n_places)
   std::vector<Real> tributary_;  // their surface length (half the distance to each neighbour)
-  std::vector<Index> schur_;     // their dofs' free indices: x, y of each node in turn
-  Index unknowns_ = 0;           // the tangent's: the free dofs, and any unknowns after them
+  std::vector<Index> schur_;     // their dofs' indices among the tangent's unknowns: x, y of each node in turn
   MumpsSolver solver_;
   MatX compliance_;  // S^-1 on the condensed dofs (x, y of each node in turn)
-  // The last solve's zones, roller height and creep: the next one's start.
+  // The last solve's zones, rollers' heights and creeps: the next one's start.
   Sets sets_;
-  Real height_ = 0.0, creep_ = 0.0;
+  VecX height_, creep_;
 };
 
 }  // namespace roller

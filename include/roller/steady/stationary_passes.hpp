@@ -81,8 +81,7 @@ class StationaryPasses {
   // Makes a pass's correction on the roller's contact (passes.stationary_contact = "roller"): one
   // per phase's copy, each on its block of the iterate.
   std::function<std::unique_ptr<RollerCorrection>()> roller_corrections(const Scene& scene, const StripModel& model,
-                                                                        const SteadyLoad& steady,
-                                                                        Index base_points) const;
+                                                                        const SteadyLoad& steady) const;
   std::vector<MaterialState> upstream_of(const StripModel& strip) const;
   // The elastic displacement of a load (all dofs), which the lift takes off; kept for the load
   // last asked for (the Hertz load's is solved once).
