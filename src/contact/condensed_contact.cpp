@@ -80,6 +80,10 @@ void CondensedContact::build(const SparseMatrix& tangent, MumpsSolver::Symmetry 
   const MatX identity = MatX::Identity(s.rows(), s.cols());
   compliance_ = symmetry == MumpsSolver::Symmetry::Symmetric ? MatX(Eigen::LLT<MatX>(s).solve(identity))
                                                              : MatX(Eigen::PartialPivLU<MatX>(s).solve(identity));
+  restart();
+}
+
+void CondensedContact::restart() {
   sets_.zone.assign(nodes_.size(), Zone::Open);
   sets_.slip_sign.assign(nodes_.size(), 1.0);
   height_ = VecX::Zero(n_places());

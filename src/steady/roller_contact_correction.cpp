@@ -158,6 +158,13 @@ class RollerContactCorrection final : public RollerCorrection {
   const std::vector<NodeContactRecord>& contact() const override { return records_; }
   RollerPose pose() const override { return pose_; }
   Real creep() const override { return creep_; }
+  void restart() override {
+    on_tangent_.reset();
+    for (const auto& c : copies_) c->restart();
+    records_.clear();
+    pose_ = RollerPose{};
+    creep_ = 0.0;
+  }
 
  private:
   CondensedLoad load_;

@@ -262,12 +262,16 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
   const DofMap& dofs = phased_.dofs;
   PrescribedLoadCorrection hertz(dofs, solver_, hertz_load_);
   StationaryCorrection* carrier = &hertz;  // K_e's correction, which finds the load
-  // The roller's contact made anew for every pass: a pass then depends on the strip it starts
-  // from alone (the twin's roller height and contact of the pass before are not in the state
-  // files), so that a run resumed from a checkpoint gives the same passes.
-  std::unique_ptr<RollerCorrection> roller_correction;
-  if (new_roller_correction_) roller_correction = new_roller_correction_();
-  if (roller_correction) carrier = roller_correction.get();
+  // The roller's contact starts afresh every pass: a pass then depends on the strip it starts
+  // from alone (the roller height and contact of the pass before are not in the state files), so
+  // that a run resumed from a checkpoint gives the same passes. Its factorisations are the same
+  // every pass, and kept.
+  if (new_roller_correction_ && !roller_correction_) roller_correction_ = new_roller_correction_();
+  RollerCorrection* roller_correction = roller_correction_.get();
+  if (roller_correction) {
+    roller_correction->restart();
+    carrier = roller_correction;
+  }
   SteadyJacobianCorrection correction(strip_, dofs, elastic_free_, *carrier, upstream, newton);
   const LeavingStates leaving_states = [&](const VecX& u, const std::vector<MaterialState>& states, const VecX& load) {
     return states_of(leaving(u, states, elastic_displacement(dofs, load)));

@@ -77,6 +77,8 @@ class CondensedContact {
   // The next solve's start at place `to`: `other`'s last zones, roller height and creep at its
   // place `from` (the same nodes).
   void start_from(const CondensedContact& other, int from = 0, int to = 0);
+  // The next solve starts as the first did: no node in contact, the rollers at height 0, creep 0.
+  void restart();
   int n_places() const { return static_cast<int>(places_.size()); }
   const CondensedPlace& place(int k) const { return places_[static_cast<std::size_t>(k)]; }
 

@@ -43,6 +43,9 @@ class RollerCorrection : public StationaryCorrection {
   virtual RollerPose pose() const = 0;
   // The roller's creep (1 - omega R / V): the travel's, or the one that carries its horizontal force.
   virtual Real creep() const = 0;
+  // The next pass starts afresh, as a new correction would: no contact, zones or roller height
+  // carried over from the pass before (no state file holds them), the factorisations kept.
+  virtual void restart() = 0;
 };
 class StationaryPasses {
  public:
@@ -103,10 +106,11 @@ class StationaryPasses {
   VecX hertz_load_;            // the Hertz pressure and its traction (all dofs)
   // Makes the correction on the roller's contact (passes.stationary_contact = "roller"), one a pass.
   std::function<std::unique_ptr<RollerCorrection>()> new_roller_correction_;
-  std::optional<RollerPose> pose_;  // the roller's, with the roller's contact
-  std::optional<Real> creep_;       // the roller's, with the roller's contact
-  Index base_points_ = 0;           // the strip's points (the first copy's)
-  std::vector<Index> extraction_;   // per streamline: its point at the extraction column (of the first copy)
+  std::unique_ptr<RollerCorrection> roller_correction_;  // made at the first pass, restarted at each
+  std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
+  std::optional<Real> creep_;                            // the roller's, with the roller's contact
+  Index base_points_ = 0;                                // the strip's points (the first copy's)
+  std::vector<Index> extraction_;  // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;
   VecX elastic_load_, elastic_displacement_;  // elastic_displacement()'s last load, and its displacement
 };
