@@ -102,6 +102,14 @@ void CondensedContact::start_from(const CondensedContact& other, int from, int t
   creep_(to) = other.creep_(from);
 }
 
+void CondensedContact::set_roller_compliance(int place, const MatX& h) {
+  const Index first = first_[static_cast<std::size_t>(place)];
+  const Index size = 2 * (first_[static_cast<std::size_t>(place) + 1] - first);
+  ROLLER_ASSERT(h.rows() == size && h.cols() == size, "a roller compliance over the place's dofs");
+  if (roller_compliance_.size() == 0) roller_compliance_ = MatX::Zero(compliance_.rows(), compliance_.cols());
+  roller_compliance_.block(2 * first, 2 * first, size, size) = h;
+}
+
 Index CondensedContact::upstream(Index i, Real travel_sign) const {
   const Index j = i + (travel_sign > 0.0 ? 1 : -1);  // the nodes by x; the material comes from ahead
   const int k = place_of_[static_cast<std::size_t>(i)];
@@ -120,6 +128,8 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
   Small out;
   const VecX v0 = compliance_ * reduced;  // the nodes' displacement without contact
   out.v = v0;
+  out.rim = VecX::Zero(2 * n);
+  const bool elastic = roller_compliance_.size() != 0;
   out.lambda_n = VecX::Zero(n);
   out.lambda_t = VecX::Zero(n);
   out.slip = VecX::Zero(n);
@@ -155,7 +165,8 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
     // t . (x_i - x_up) + travel (1 - creep) step (the transient's t . (du - dc) - R dphi).
     std::vector<Vec2> normal(nodes_.size()), tangent(nodes_.size());
     VecX gap(n), slope(n), slip = VecX::Zero(n);
-    auto at = [&](Index i) { return base[static_cast<std::size_t>(i)] + out.v.segment<2>(2 * i); };
+    // Where node i touches: the strip's point moved by v, against a rim moved by -(H f).
+    auto at = [&](Index i) { return base[static_cast<std::size_t>(i)] + (out.v + out.rim).segment<2>(2 * i); };
     for (Index i = 0; i < n; ++i) {
       const Vec2 d = at(i) - Vec2(places_[static_cast<std::size_t>(place(i))].centre_x, out.height(place(i)));
       const Real rho = d.norm();
@@ -171,7 +182,7 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
     out.slip = slip;
     // Settled: the last step moved no node by more than the tolerance (the normals, and so the
     // forces' directions, are the step's), and every node meets its zone's conditions.
-    bool settled = newton > 0 && (out.v - last_v).cwiseAbs().maxCoeff() <= tolerance;
+    bool settled = newton > 0 && (out.v + out.rim - last_v).cwiseAbs().maxCoeff() <= tolerance;
     for (Index i = 0; i < n && settled; ++i) {
       const auto k = static_cast<std::size_t>(i);
       switch (out.sets.zone[k]) {
@@ -184,12 +195,21 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
     if (settled) return out;
     // The step's linear problem in the forces: C N and C T (N, T the normals and tangents as
     // columns), the gaps' and slips' responses, linear in the forces, with normals and tangents held.
-    MatX cn(2 * n, n), ct(2 * n, n);
+    MatX cn(2 * n, n), ct(2 * n, n), hn, ht;
     for (Index i = 0; i < n; ++i) {
       const Vec2& ni = normal[static_cast<std::size_t>(i)];
       const Vec2& ti = tangent[static_cast<std::size_t>(i)];
       cn.col(i) = compliance_.col(2 * i) * ni.x() + compliance_.col(2 * i + 1) * ni.y();
       ct.col(i) = compliance_.col(2 * i) * ti.x() + compliance_.col(2 * i + 1) * ti.y();
+    }
+    if (elastic) {  // the rollers' share: (H N) and (H T)
+      hn.resize(2 * n, n), ht.resize(2 * n, n);
+      for (Index i = 0; i < n; ++i) {
+        const Vec2& ni = normal[static_cast<std::size_t>(i)];
+        const Vec2& ti = tangent[static_cast<std::size_t>(i)];
+        hn.col(i) = roller_compliance_.col(2 * i) * ni.x() + roller_compliance_.col(2 * i + 1) * ni.y();
+        ht.col(i) = roller_compliance_.col(2 * i) * ti.x() + roller_compliance_.col(2 * i + 1) * ti.y();
+      }
     }
     // Rows of the gaps (n . v at the node) and the slips (t . (v_i - v_up)) of a matrix over v.
     auto gap_rows = [&](const MatX& x) {
@@ -210,8 +230,11 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
       }
       return rows;
     };
-    const MatX m_nn = gap_rows(cn), m_nt = gap_rows(ct), m_sn = slip_rows(cn), m_st = slip_rows(ct);
-    const VecX dv = v0 - out.v;
+    MatX m_nn = gap_rows(cn), m_nt = gap_rows(ct), m_sn = slip_rows(cn), m_st = slip_rows(ct);
+    if (elastic) {  // the gaps and slips answer to the strip's and the rollers' compliance together
+      m_nn += gap_rows(hn), m_nt += gap_rows(ht), m_sn += slip_rows(hn), m_st += slip_rows(ht);
+    }
+    const VecX dv = v0 - out.v - out.rim;
     const VecX q_n = gap + gap_rows(dv), q_s = slip + slip_rows(dv);
     Sets sets = out.sets;
     VecX lambda_n, lambda_t, dh, dcreep;
@@ -324,8 +347,9 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
                                 kActiveSetPasses);
       return out;
     }
-    last_v = out.v;
+    last_v = out.v + out.rim;
     out.v = v0 + cn * lambda_n + ct * lambda_t;
+    if (elastic) out.rim = hn * lambda_n + ht * lambda_t;
     out.lambda_n = lambda_n;
     out.lambda_t = lambda_t;
     out.height += dh;
@@ -369,7 +393,8 @@ CondensedContact::Press CondensedContact::solve(const VecX& u, const VecX& b, co
     c.node = nodes_[static_cast<std::size_t>(i)];
     c.position = base[static_cast<std::size_t>(i)] + small.v.segment<2>(2 * i);
     const int k = place_of_[static_cast<std::size_t>(i)];
-    const Vec2 d = c.position - Vec2(places_[static_cast<std::size_t>(k)].centre_x, small.height(k));
+    const Vec2 d =
+        c.position + small.rim.segment<2>(2 * i) - Vec2(places_[static_cast<std::size_t>(k)].centre_x, small.height(k));
     const Zone zone = small.sets.zone[static_cast<std::size_t>(i)];
     c.contact.normal_force = zone != Zone::Open ? small.lambda_n(i) : 0.0;
     c.contact.tangential_force = zone != Zone::Open ? small.lambda_t(i) : 0.0;

@@ -1,6 +1,7 @@
 #include "roller/contact/elastic_roller.hpp"
 
 #include <fmt/format.h>
+#include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -177,6 +178,20 @@ std::vector<RimWeight> rim_average(const std::vector<Vec2>& positions, Real from
     out.push_back({s + 1, share * second});
   }
   return out;
+}
+
+MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& halves) {
+  ROLLER_ASSERT(angles.size() == halves.size(), "rim_compliance: a half-width per point");
+  const auto m = static_cast<Index>(rim.positions.size()), n = static_cast<Index>(angles.size());
+  MatX w = MatX::Zero(2 * m, 2 * n);
+  for (Index j = 0; j < n; ++j) {
+    const auto s = static_cast<std::size_t>(j);
+    for (const RimWeight& k : rim_average(rim.positions, angles[s] - halves[s], angles[s] + halves[s])) {
+      w(2 * k.node, 2 * j) += k.weight;
+      w(2 * k.node + 1, 2 * j + 1) += k.weight;
+    }
+  }
+  return w.transpose() * Eigen::LLT<MatX>(rim.stiffness).solve(w);
 }
 
 RimGap rim_gap(const std::vector<Vec2>& positions, const VecX& w, const Vec2& x) {

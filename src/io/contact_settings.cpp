@@ -49,12 +49,15 @@ ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& 
         s.largest_force.x() = std::max(s.largest_force.x(), std::abs(*fx));
       if (seg.fy) s.largest_force.y() = std::max(s.largest_force.y(), *seg.fy);
     }
-  if (scene.roller && scene.roller->elastic()) {
-    const RollerSpec& r = *scene.roller;
-    const ElasticRollerSpec spec{r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
-    s.rim = std::make_shared<const RimStiffness>(condensed_rim_stiffness(spec, elastic_rim_arc(scene, mesh)));
-  }
+  s.rim = elastic_rim(scene, mesh);
   return s;
+}
+
+std::shared_ptr<const RimStiffness> elastic_rim(const Scene& scene, const Mesh& mesh) {
+  if (!scene.roller || !scene.roller->elastic()) return nullptr;
+  const RollerSpec& r = *scene.roller;
+  const ElasticRollerSpec spec{r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
+  return std::make_shared<const RimStiffness>(condensed_rim_stiffness(spec, elastic_rim_arc(scene, mesh)));
 }
 
 }  // namespace roller

@@ -1180,10 +1180,6 @@ std::vector<SceneTable> make_tables() {
       s.fail("passes", "repeated passes need a [roller] whose [[roller.path]] describes one pass");
     if (scene.passes.method == PassMethod::Stationary && !scene.roller)
       s.fail("passes", "the stationary method needs a [roller] and its [[roller.path]]");
-    if (scene.passes.method == PassMethod::Stationary && scene.roller && scene.roller->elastic())
-      s.fail("passes",
-             "the stationary method takes a rigid roller so far: remove roller.E, or set passes.method = "
-             "\"transient\" (docs/limitations.md)");
   };
 
   SceneTable& material = add("material");

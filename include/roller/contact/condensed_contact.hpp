@@ -79,6 +79,10 @@ class CondensedContact {
   void start_from(const CondensedContact& other, int from = 0, int to = 0);
   // The next solve starts as the first did: no node in contact, the rollers at height 0, creep 0.
   void restart();
+  // An elastic roller at `place`: H (2n x 2n over the place's nodes, elastic_roller.hpp's
+  // rim_compliance) moves its rim at node i by -(H f)_i under the nodes' contact forces f, so the
+  // gaps and slips take v + H f where the strip moves by v.
+  void set_roller_compliance(int place, const MatX& h);
   int n_places() const { return static_cast<int>(places_.size()); }
   const CondensedPlace& place(int k) const { return places_[static_cast<std::size_t>(k)]; }
 
@@ -93,7 +97,7 @@ class CondensedContact {
   // The condensed problem's solution: the nodes' displacement v, their normal and tangential
   // forces and slips, each roller's height and creep and the nodes' zones; a message when it failed.
   struct Small {
-    VecX v, lambda_n, lambda_t, slip;
+    VecX v, rim, lambda_n, lambda_t, slip;  // rim: H f, the rollers' share of the gaps and slips
     VecX height, creep;
     Sets sets;
     std::string message;
@@ -115,7 +119,8 @@ class CondensedContact {
   std::vector<Real> tributary_;  // their surface length (half the distance to each neighbour)
   std::vector<Index> schur_;     // their dofs' indices among the tangent's unknowns: x, y of each node in turn
   MumpsSolver solver_;
-  MatX compliance_;  // S^-1 on the condensed dofs (x, y of each node in turn)
+  MatX compliance_;         // S^-1 on the condensed dofs (x, y of each node in turn)
+  MatX roller_compliance_;  // H over the same dofs, block diagonal by place; empty: rigid rollers
   // The last solve's zones, rollers' heights and creeps: the next one's start.
   Sets sets_;
   VecX height_, creep_;

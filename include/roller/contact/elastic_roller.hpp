@@ -67,6 +67,13 @@ struct RimWeight {
 };
 std::vector<RimWeight> rim_average(const std::vector<Vec2>& positions, Real from, Real to);
 
+// The rim's compliance at points of the strip's surface, for the steady contact
+// (contact/condensed_contact.hpp): point j at the angle angles[j] from the lowest point, spread over
+// [angle - halves[j], angle + halves[j]] (its tributary length); forces f_j on the strip (the
+// roller takes -f_j, spread with rim_average's weights W) move the rim at point i, averaged with
+// the same weights, by -(H f)_i, H = W^T K^-1 W (2n x 2n, x and y of each point in turn).
+MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& halves);
+
 // A point's gap to the deformed rim arc: the circle through the arc's nodes moved radially by
 // their displacements' radial parts, interpolated linearly in the angle between two nodes
 // (displacements far below the spacing; their tangential parts move material along the rim, not

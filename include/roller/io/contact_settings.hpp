@@ -1,4 +1,5 @@
 #pragma once
+#include <memory>
 // A scene's words for its contact solves, typed: what a ContactSession (contact/contact_session.hpp)
 // takes of the scene, so that the session itself knows no scene.
 #include "roller/contact/contact_session.hpp"
@@ -14,5 +15,8 @@ ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& 
 // the path's largest force (or the geometric half-width of its deepest press), at least ten of the
 // strip's surface spacings, the spacing the strip's finest along its top.
 RimArc elastic_rim_arc(const Scene& scene, const Mesh& mesh);
+
+// The scene's elastic roller condensed onto that arc; null for a rigid roller.
+std::shared_ptr<const RimStiffness> elastic_rim(const Scene& scene, const Mesh& mesh);
 
 }  // namespace roller
