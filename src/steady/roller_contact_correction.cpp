@@ -87,7 +87,7 @@ CondensedLoad condensed_load(const SteadyLoad& steady, Real force) {
 // roller closed at u + du, Coulomb's law between them on the steady slip, the roller carrying the
 // travel force (its height an unknown) and, under a horizontal force, that force (its creep an
 // unknown), by the contact condensed onto the top nodes under the roller
-// (contact/condensed_contact.hpp). K_e is factorised once a pass. With phases, on every copy of
+// (contact/condensed_contact.hpp). K_e is factorised once a run. With phases, on every copy of
 // the strip (assembly/phased_strip.hpp): copy k's block of the iterate under its own roller, k/P
 // of an element further along the base strip; K_e is block diagonal, so each copy's contact is
 // condensed on its own. Once the steady Jacobian takes over (take_operator), one contact is
