@@ -203,10 +203,11 @@ def test_pass_runs_write_each_pass_loaded_state_for_paraview(tmp_path):
     assert marched.at_step(14)["contact_pressure"].max() == 0.0
 
 
-def test_the_documented_example_draws_its_figure(tmp_path):
-    figure = tmp_path / "load_sweep.png"
+@pytest.mark.parametrize("example", ["load_sweep", "stationary_carter"])
+def test_the_documented_examples_draw_their_figures(tmp_path, example):
+    figure = tmp_path / f"{example}.png"
     env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "python"))
-    subprocess.run([sys.executable, os.path.join(ROOT, "docs", "examples", "load_sweep.py"), str(figure)],
+    subprocess.run([sys.executable, os.path.join(ROOT, "docs", "examples", f"{example}.py"), str(figure)],
                    cwd=ROOT, env=env, check=True, timeout=120)
     assert figure.stat().st_size > 10000
 

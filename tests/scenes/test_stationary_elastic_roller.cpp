@@ -30,7 +30,8 @@ Simulation pass(const std::string& travel, Real roller_e, Real roller_nu, Real f
       {"passes.method", "\"stationary\""},
       {"passes.count", "1"},
       {"contact.friction", fmt::format("{}", friction)},
-      {"roller.path", fmt::format("[{{steps=[1,4], fy={0}}}, {{steps=[5,94], dx=34.0, fy={0}, {1}}}]", kForce, travel)}};
+      {"roller.path",
+       fmt::format("[{{steps=[1,4], fy={0}}}, {{steps=[5,94], dx=34.0, fy={0}, {1}}}]", kForce, travel)}};
   if (roller_e > 0.0) {
     o.push_back({"roller.E", fmt::format("{}", roller_e)});
     o.push_back({"roller.nu", fmt::format("{}", roller_nu)});
@@ -45,7 +46,8 @@ Simulation pass(const std::string& travel, Real roller_e, Real roller_nu, Real f
 }  // namespace
 
 // Measured: a -0.50 / -0.57 %, p0 +0.32 / +0.54 % for the steel and the aluminium roller.
-TEST_CASE("stationary elastic roller: two-body Hertz half-width and peak pressure", "[scenes][stationary][elastic_roller]") {
+TEST_CASE("stationary elastic roller: two-body Hertz half-width and peak pressure",
+          "[scenes][stationary][elastic_roller]") {
   for (auto [e, nu] : {std::pair{2.1e5, 0.3}, {7.0e4, 0.33}}) {
     const Simulation sim = pass("slip=0.0", e, nu, 0.0);
     const HertzComparison h = compare_with_hertz(pressure_profile(sim.state().contact, sim.state().pose), kForce,
