@@ -102,12 +102,18 @@ void CondensedContact::start_from(const CondensedContact& other, int from, int t
   creep_(to) = other.creep_(from);
 }
 
-void CondensedContact::set_roller_compliance(int place, const MatX& h) {
-  const Index first = first_[static_cast<std::size_t>(place)];
-  const Index size = 2 * (first_[static_cast<std::size_t>(place) + 1] - first);
-  ROLLER_ASSERT(h.rows() == size && h.cols() == size, "a roller compliance over the place's dofs");
-  if (roller_compliance_.size() == 0) roller_compliance_ = MatX::Zero(compliance_.rows(), compliance_.cols());
-  roller_compliance_.block(2 * first, 2 * first, size, size) = h;
+void CondensedContact::set_roller(const RimStiffness& rim) {
+  roller_compliance_ = MatX::Zero(compliance_.rows(), compliance_.cols());
+  for (std::size_t k = 0; k < places_.size(); ++k) {
+    std::vector<Real> angles, halves;
+    for (Index i = first_[k]; i < first_[k + 1]; ++i) {
+      const auto s = static_cast<std::size_t>(i);
+      angles.push_back(std::asin(std::clamp((reference_[s].x() - places_[k].centre_x) / radius_, -1.0, 1.0)));
+      halves.push_back(0.5 * tributary_[s] / radius_);
+    }
+    const Index size = 2 * (first_[k + 1] - first_[k]);
+    roller_compliance_.block(2 * first_[k], 2 * first_[k], size, size) = rim_compliance(rim, angles, halves);
+  }
 }
 
 Index CondensedContact::upstream(Index i, Real travel_sign) const {

@@ -9,7 +9,6 @@
 #include "roller/assembly/element_materials.hpp"
 #include "roller/assembly/strip_model.hpp"
 #include "roller/contact/condensed_contact.hpp"
-#include "roller/contact/elastic_roller.hpp"
 #include "roller/core/error.hpp"
 #include "roller/io/contact_settings.hpp"
 #include "roller/io/load_program.hpp"
@@ -47,20 +46,6 @@ std::unique_ptr<CondensedContact> condensed_contact(const Scene& scene, const Me
   for (const Index a : nodes) positions.push_back(mesh.nodes[a]);
   return std::make_unique<CondensedContact>(k, dofs, std::move(nodes), std::move(positions), centre_x,
                                             scene.roller->radius, scene.newton.linear);
-}
-
-// An elastic roller's rim compliance at a place's nodes (contact/elastic_roller.hpp): each node's
-// contact point at the angle asin(dx/R) from the lowest point, over half the distances to its
-// neighbours.
-MatX roller_compliance(const RimStiffness& rim, const CondensedPlace& place, Real radius) {
-  std::vector<Real> angles, halves;
-  const std::vector<Vec2>& x = place.positions;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    angles.push_back(std::asin(std::clamp((x[i].x() - place.centre_x) / radius, -1.0, 1.0)));
-    const Real left = x[i > 0 ? i - 1 : i].x(), right = x[i + 1 < x.size() ? i + 1 : i].x();
-    halves.push_back(0.25 * (right - left) / radius);
-  }
-  return rim_compliance(rim, angles, halves);
 }
 
 // The roller's load in the steady pass: its force, and its creep or, rolling under a horizontal
@@ -101,15 +86,13 @@ class RollerContactCorrection final : public RollerCorrection {
         radius_(scene.roller->radius),
         dofs_(LoadProgram(scene, mesh).dof_map()),
         n_dofs_(mesh.n_dofs()),
-        n_free_(dofs_.n_free()) {
+        n_free_(dofs_.n_free()),
+        rim_(elastic_rim(scene, mesh)) {
     const SparseMatrix k = elastic_stiffness(scene, mesh, dofs_);
     const Real window = 4.0 * hertz_line_contact(force, radius_, scene.contact_modulus()).half_width;
-    const std::shared_ptr<const RimStiffness> rim = elastic_rim(scene, mesh);
     for (int c = 0; c < places.phases; ++c) {
       copies_.push_back(condensed_contact(scene, mesh, dofs_, k, places.centre_x - c * places.shift, window));
-      if (!rim) continue;
-      roller_compliances_.push_back(roller_compliance(*rim, copies_.back()->place(0), radius_));
-      copies_.back()->set_roller_compliance(0, roller_compliances_.back());
+      if (rim_) copies_.back()->set_roller(*rim_);
     }
   }
   Result correct(const VecX& u, const std::vector<MaterialState>& /*states*/, const VecX& r) override {
@@ -171,11 +154,9 @@ class RollerContactCorrection final : public RollerCorrection {
       take_operator(nullptr, options);
       return false;
     }
-    for (int k = 0; k < n; ++k) {
+    for (int k = 0; k < n; ++k)
       next->start_from(on_tangent_ ? *on_tangent_ : *copies_[static_cast<std::size_t>(k)], on_tangent_ ? k : 0, k);
-      if (!roller_compliances_.empty())
-        next->set_roller_compliance(k, roller_compliances_[static_cast<std::size_t>(k)]);
-    }
+    if (rim_) next->set_roller(*rim_);
     on_tangent_ = std::move(next);
     return true;
   }
@@ -195,8 +176,8 @@ class RollerContactCorrection final : public RollerCorrection {
   Real radius_ = 0.0;
   DofMap dofs_;                                            // the base strip's
   Index n_dofs_, n_free_;                                  // a copy's
+  std::shared_ptr<const RimStiffness> rim_;                // an elastic roller's condensed rim; null: rigid
   std::vector<std::unique_ptr<CondensedContact>> copies_;  // with K_e, factorised once a run
-  std::vector<MatX> roller_compliances_;                   // an elastic roller's, per copy; empty: rigid
   std::unique_ptr<CondensedContact> on_tangent_;           // with the steady Jacobian, while it is the operator
   std::vector<NodeContactRecord> records_;                 // the first copy's last contact
   RollerPose pose_;

@@ -154,18 +154,10 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model, 
   elastic.evaluate(VecX::Zero(phased_.mesh.n_dofs()), nullptr, &elastic_free_);
   if (!solver_.factorize(elastic_free_)) throw NumericalError("the stationary pass: the elastic stiffness is singular");
   hertz_load_ = std::move(load.forces);
-  if (scene.passes.stationary_contact == StationaryContact::Roller)
-    new_roller_correction_ = roller_corrections(scene, model, steady);
-}
-
-std::function<std::unique_ptr<RollerCorrection>()> StationaryPasses::roller_corrections(
-    const Scene& scene, const StripModel& model, const SteadyLoad& steady) const {
   // The roller k/P of an element further along copy k, which moved back as far (phased_.shift).
-  // The scene by value: the Simulation that owns these passes may be moved.
-  const RollerPlaces places{centre_x_, phased_.phases, phased_.shift};
-  return [this, scene, steady, base_mesh = model.mesh(), places]() -> std::unique_ptr<RollerCorrection> {
-    return make_roller_contact_correction(scene, base_mesh, steady, places, hertz_.load);
-  };
+  if (scene.passes.stationary_contact == StationaryContact::Roller)
+    roller_correction_ = make_roller_contact_correction(
+        scene, model.mesh(), steady, RollerPlaces{centre_x_, phased_.phases, phased_.shift}, hertz_.load);
 }
 
 RollerPose StationaryPasses::roller_pose() const {
@@ -266,7 +258,6 @@ StationaryPasses::Pass StationaryPasses::run(const StripModel& strip, const VecX
   // from alone (the roller height and contact of the pass before are not in the state files), so
   // that a run resumed from a checkpoint gives the same passes. Its factorisations are the same
   // every pass, and kept.
-  if (new_roller_correction_ && !roller_correction_) roller_correction_ = new_roller_correction_();
   RollerCorrection* roller_correction = roller_correction_.get();
   if (roller_correction) {
     roller_correction->restart();

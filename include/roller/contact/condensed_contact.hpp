@@ -19,6 +19,7 @@
 
 #include "roller/assembly/dof_map.hpp"
 #include "roller/contact/contact_records.hpp"
+#include "roller/contact/elastic_roller.hpp"
 #include "roller/contact/roller.hpp"
 #include "roller/core/types.hpp"
 #include "roller/solver/linear_solver_options.hpp"
@@ -79,10 +80,11 @@ class CondensedContact {
   void start_from(const CondensedContact& other, int from = 0, int to = 0);
   // The next solve starts as the first did: no node in contact, the rollers at height 0, creep 0.
   void restart();
-  // An elastic roller at `place`: H (2n x 2n over the place's nodes, elastic_roller.hpp's
-  // rim_compliance) moves its rim at node i by -(H f)_i under the nodes' contact forces f, so the
-  // gaps and slips take v + H f where the strip moves by v.
-  void set_roller_compliance(int place, const MatX& h);
+  // Elastic rollers of the rim `rim` at every place: H (2n x 2n over a place's nodes,
+  // elastic_roller.hpp's rim_compliance; each node's contact point at the angle asin(dx/R) from the
+  // lowest point, over its tributary length) moves the rim at node i by -(H f)_i under the nodes'
+  // contact forces f, so the gaps and slips take v + H f where the strip moves by v.
+  void set_roller(const RimStiffness& rim);
   int n_places() const { return static_cast<int>(places_.size()); }
   const CondensedPlace& place(int k) const { return places_[static_cast<std::size_t>(k)]; }
 

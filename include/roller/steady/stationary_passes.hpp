@@ -16,7 +16,6 @@
 // that state while the pass is solved. The displacement is the sum of the passes' long-track
 // displacements (uniform along x: the plastic shear and the yy strain integrated from the base). So the next pass's
 // upstream state, the pass metrics (measure_pass) and the state files are the transient method's.
-#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -81,10 +80,6 @@ class StationaryPasses {
   RollerPose roller_pose() const;
 
  private:
-  // Makes a pass's correction on the roller's contact (passes.stationary_contact = "roller"): one
-  // per phase's copy, each on its block of the iterate.
-  std::function<std::unique_ptr<RollerCorrection>()> roller_corrections(const Scene& scene, const StripModel& model,
-                                                                        const SteadyLoad& steady) const;
   std::vector<MaterialState> upstream_of(const StripModel& strip) const;
   // The elastic displacement of a load (all dofs), which the lift takes off; kept for the load
   // last asked for (the Hertz load's is solved once).
@@ -104,13 +99,13 @@ class StationaryPasses {
   SparseSolver solver_{MumpsSolver::Symmetry::Symmetric};
   SparseMatrix elastic_free_;  // K_e over the free dofs, which solver_ holds factorised
   VecX hertz_load_;            // the Hertz pressure and its traction (all dofs)
-  // Makes the correction on the roller's contact (passes.stationary_contact = "roller"), one a pass.
-  std::function<std::unique_ptr<RollerCorrection>()> new_roller_correction_;
-  std::unique_ptr<RollerCorrection> roller_correction_;  // made at the first pass, restarted at each
-  std::optional<RollerPose> pose_;                       // the roller's, with the roller's contact
-  std::optional<Real> creep_;                            // the roller's, with the roller's contact
-  Index base_points_ = 0;                                // the strip's points (the first copy's)
-  std::vector<Index> extraction_;  // per streamline: its point at the extraction column (of the first copy)
+  // The correction on the roller's contact (passes.stationary_contact = "roller"), restarted at
+  // every pass; null with the Hertz load.
+  std::unique_ptr<RollerCorrection> roller_correction_;
+  std::optional<RollerPose> pose_;  // the roller's, with the roller's contact
+  std::optional<Real> creep_;       // the roller's, with the roller's contact
+  Index base_points_ = 0;           // the strip's points (the first copy's)
+  std::vector<Index> extraction_;   // per streamline: its point at the extraction column (of the first copy)
   std::vector<NodeContactRecord> contact_;
   VecX elastic_load_, elastic_displacement_;  // elastic_displacement()'s last load, and its displacement
 };
