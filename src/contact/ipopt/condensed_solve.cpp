@@ -43,6 +43,14 @@ CondensedSolve::CondensedSolve(const IncrementProblem& problem, const ContactOpt
       spring_(problem.roller_potential()),
       tangent_changes_(!problem.strip_tangent_is_constant()) {}
 
+Real CondensedSolve::rim_energy(const VecX& w) const {
+  return problem_.rim() ? 0.5 * w.dot(problem_.rim()->stiffness * w) : 0.0;
+}
+
+void CondensedSolve::move_rim(const VecX& w0, Real alpha, const VecX& dw) {
+  if (problem_.rim()) problem_.set_rim_displacement(w0 + alpha * dw);
+}
+
 CondensedOutcome CondensedSolve::run(const VecX& x0) {
   if (End end = start(x0)) return std::move(*end);
   for (int outer = 1; outer <= kMaxLinearisations && !converged_; ++outer) {
@@ -117,6 +125,7 @@ CondensedSolve::OrEnd<CondensedSolve::ModelStep> CondensedSolve::solve_model(int
                                 "ipopt backend (condensed): the roller carries a prescribed force but touches no "
                                 "candidate: nothing holds it");
     if (spring_) answer.dw = -spring_->derivative(problem_.roller_offset()) / spring_->stiffness;
+    if (problem_.rim()) answer.rim = VecX::Zero(problem_.n_rim());  // nothing loads the rim
     fixed_point_converged_ = true;
     std::fill(normal_.begin(), normal_.end(), 0.0);
     std::fill(tangential_.begin(), tangential_.end(), 0.0);
@@ -130,8 +139,14 @@ CondensedSolve::OrEnd<CondensedSolve::ModelStep> CondensedSolve::solve_model(int
     start.guess.normal.push_back(normal_[r.candidate]);
     start.guess.tangential.push_back(tangential_[r.candidate]);
   }
-  QuadraticModel model = spring_ ? QuadraticModel(cond_, *spring_, problem_.roller_offset()) : QuadraticModel(cond_);
+  QuadraticModel strip = spring_ ? QuadraticModel(cond_, *spring_, problem_.roller_offset()) : QuadraticModel(cond_);
+  // An elastic roller's rim displacements follow the condensed strip's variables, as in the full
+  // formulation (docs/model.md, Elastic roller): absolute, since their energy is exactly quadratic.
+  std::optional<RimObjective> with_rim;
+  if (problem_.rim()) with_rim.emplace(strip, problem_.rim()->stiffness);
+  NlpObjective& model = with_rim ? static_cast<NlpObjective&>(*with_rim) : strip;
   start.primal = VecX::Zero(model.n());
+  if (with_rim) start.primal.tail(problem_.n_rim()) = problem_.rim_displacement();
   const int max_passes = fixed_point_->iterated() ? o_.fixed_point_max : 1;
   const int passes_here = outer > 1 && model_error_ <= 1e-3 ? max_passes : 1;
   const FrictionPasses passes = solve_friction_passes(*app_, model, problem_, cond_.rows, *fixed_point_,
@@ -158,6 +173,7 @@ CondensedSolve::OrEnd<CondensedSolve::ModelStep> CondensedSolve::solve_model(int
   answer.friction = passes.friction;
   answer.d_c = passes.last.z.head(m);
   if (spring_) answer.dw = passes.last.z(m);
+  if (with_rim) answer.rim = passes.last.z.segment(with_rim->rim_slot(), problem_.n_rim());
   details().nlp_variables = passes.nlp_variables;
   details().nlp_constraints = passes.nlp_constraints;
   return answer;
@@ -176,6 +192,11 @@ CondensedSolve::Step CondensedSolve::whole_step(const ModelStep& model) {
   step.dw = model.dw;
   const Real w0 = problem_.roller_offset();
   step.model_change = g_.dot(step.d) + 0.5 * step.d.dot(step.kd) + roller_energy(w0 + step.dw) - roller_energy(w0);
+  if (problem_.rim()) {
+    const VecX& rim0 = problem_.rim_displacement();
+    step.d_rim = model.rim - rim0;
+    step.model_change += rim_energy(model.rim) - rim_energy(rim0);
+  }
   return step;
 }
 
@@ -186,15 +207,18 @@ CondensedSolve::OrEnd<CondensedSolve::Trial> CondensedSolve::line_search(int out
   Real fn_max = 0.0;
   for (const Real f : normal_) fn_max = std::max(fn_max, f);
   const Real w0 = problem_.roller_offset();
+  const VecX rim0 = problem_.rim_displacement();
   const Real nu = 2.0 * std::max(fn_max, 1e-6 * scales_.force);
-  const Real phi0 = merit(problem_, rows, friction, energy_ + roller_energy(w0), x_, nu);
+  const Real phi0 = merit(problem_, rows, friction, energy_ + roller_energy(w0) + rim_energy(rim0), x_, nu);
   Real pred = -step.model_change;
   {
     VecX x1 = x_ + step.d;
     pred += merit(problem_, rows, friction, 0.0, x_, nu);
     problem_.move_roller(w0 + step.dw);
+    move_rim(rim0, 1.0, step.d_rim);
     pred -= merit(problem_, rows, friction, 0.0, x1, nu);
     problem_.move_roller(w0);
+    move_rim(rim0, 0.0, step.d_rim);
   }
   const Real roundoff = 1e-10 * (std::abs(energy_) + scales_.force * scales_.length);
   Trial trial;
@@ -213,7 +237,10 @@ CondensedSolve::OrEnd<CondensedSolve::Trial> CondensedSolve::line_search(int out
     }
     trial.energy = at_trial->value;
     problem_.move_roller(w0 + alpha * step.dw);
-    const Real phi = merit(problem_, rows, friction, trial.energy + roller_energy(w0 + alpha * step.dw), trial.x, nu);
+    move_rim(rim0, alpha, step.d_rim);
+    const Real phi = merit(problem_, rows, friction,
+                           trial.energy + roller_energy(w0 + alpha * step.dw) + rim_energy(problem_.rim_displacement()),
+                           trial.x, nu);
     accepted = std::isfinite(phi) &&
                (pred <= roundoff || phi <= phi0 - 1e-4 * alpha * pred || (alpha == 1.0 && phi <= phi0 + roundoff));
     // Minimiser of the parabola through phi0 (slope -pred) and phi(alpha), kept in [0.1, 0.9] alpha.
@@ -225,6 +252,7 @@ CondensedSolve::OrEnd<CondensedSolve::Trial> CondensedSolve::line_search(int out
   }
   if (!accepted) {
     problem_.move_roller(w0);
+    move_rim(rim0, 0.0, step.d_rim);
     return formulation_failed(result_, Termination::LimitReached,
                               fmt::format("ipopt backend (condensed): no descent along the step of linearisation "
                                           "{}{}; use smaller steps (a larger steps.count, or steps.max_cuts)",
@@ -275,6 +303,7 @@ CondensedSolve::End CondensedSolve::relinearise(Trial&& trial) {
 CondensedOutcome CondensedSolve::finish() {
   result_.x = x_;
   if (spring_) result_.roller_offset = problem_.roller_offset();
+  if (problem_.rim()) result_.rim = problem_.rim_displacement();
   details().fixed_point_iterations = passes_last_;  // Coulomb passes on the last linearisation
   details().linearisations = linearisations_;
   details().condensed_dofs = static_cast<int>(cond_.dofs.size());

@@ -33,16 +33,20 @@ class CondensedSolve {
   template <class T>
   using OrEnd = std::variant<T, CondensedOutcome>;
   using End = std::optional<CondensedOutcome>;
-  // The NLP's answer on one linearisation: the contact dofs' step, the roller's, the friction terms.
+  // The NLP's answer on one linearisation: the contact dofs' step, the roller's, an elastic
+  // roller's rim displacements (empty for a rigid roller), the friction terms.
   struct ModelStep {
     VecX d_c;
     Real dw = 0.0;
+    VecX rim;
     FrictionTerms friction;
   };
-  // The whole step d = (d_I, d_C), K d, and the model's change of the energy along it.
+  // The whole step d = (d_I, d_C), K d, the roller's and the rim's steps, and the model's change
+  // of the energy along it.
   struct Step {
     VecX d, kd;
     Real dw = 0.0;
+    VecX d_rim;
     Real model_change = 0.0;
   };
   // The point the line search accepted.
@@ -69,6 +73,10 @@ class CondensedSolve {
   const std::optional<RollerPotential> spring_;  // a free roller height (ipopt_condensed.cpp)
   // The free roller's potential at offset w (0 for a placed roller).
   Real roller_energy(Real w) const { return spring_ ? spring_->energy(w) : 0.0; }
+  // An elastic roller's strain energy at rim displacements w, 1/2 w^T K w (0 for a rigid roller).
+  Real rim_energy(const VecX& w) const;
+  // Moves the problem's rim to w0 + alpha dw (nothing for a rigid roller).
+  void move_rim(const VecX& w0, Real alpha, const VecX& dw);
   const bool tangent_changes_;  // a constant tangent needs no new one at the full step
   BackendResult result_;
   Scales scales_;

@@ -54,9 +54,13 @@ BackendResult IpoptBackend::do_solve(IncrementProblem& problem, const VecX& x0) 
     r.message = "no free dofs: nothing to solve";
     return r;
   }
-  // The condensed formulation does not take an elastic roller's rim: the full one does.
-  if (options_.ipopt.formulation == IpoptFormulation::Full || problem.rim()) return solve_full(problem, x0, options_);
+  // The regularized friction's curvature in an elastic roller's rim displacements is not built:
+  // the full formulation says so.
+  const bool regularized_rim =
+      problem.rim() && options_.ipopt.friction == IpoptFriction::Regularized && problem.roller().friction > 0.0;
+  if (options_.ipopt.formulation == IpoptFormulation::Full || regularized_rim) return solve_full(problem, x0, options_);
   CondensedOutcome condensed = CondensedSolve(problem, options_, condenser_).run(x0);
+  if (problem.rim() && condensed.result.rim.size() > 0) problem.set_rim_displacement(condensed.result.rim);
   // Factors are kept only for the next increment's same tangent, and never beside the full formulation's.
   if (!problem.strip_tangent_is_constant() || condensed.formulation_failed) condenser_.release();
   // The full formulation has no roller variable: a suspended roller's failure goes back to the
