@@ -54,9 +54,9 @@ std::string bound_line(const char* name, const ShakedownLimitResult& r, const Me
 void print_result(const Scene& scene, const ShakedownLimitResult& r) {
   const ShakedownLoad& l = r.load;
   std::cout << fmt::format(
-      "roller: shakedown limit of '{}' (load factor 1: the scene's load P = {:.6g} N/mm, Hertz a = {:.4g} mm, "
+      "roller: shakedown limit of '{}' (load factor 1: the scene's load P = {:.6g} N/mm, {}Hertz a = {:.4g} mm, "
       "p0 = {:.5g} MPa; computed peak pressure {:.5g} MPa; {})\n",
-      scene.name, l.load, l.half_width, l.hertz_peak, l.computed_peak,
+      scene.name, l.load, scene.roller->elastic() ? "two-body " : "", l.half_width, l.hertz_peak, l.computed_peak,
       l.shape == TractionShape::Carter
           ? fmt::format("Carter's traction Q = {:.3g} P, stick zone c = {:.4g} mm at the leading edge", l.traction,
                         l.stick_half_width)

@@ -34,6 +34,7 @@ IncrementReport ElasticPress::press(Real s_from, Real s_to) {
   IncrementEnergy energy(*strip_, prescribed, loads_.external_force(s_to));  // quasi-static
   IncrementStart start;
   start.friction = &friction_;
+  if (rim_.size() > 0) start.rim = &rim_;
   start.load_offset = load_offset_;
   start.load_stiffness = load_stiffness_;
   start.motion.radius = scene_.roller->radius;
@@ -55,6 +56,7 @@ IncrementReport ElasticPress::press(Real s_from, Real s_to) {
     return report;
   }
   last_increment_ = solution.u;
+  if (solution.contact.rim.size() > 0) rim_ = solution.contact.rim;
   last_length_ = s_to - s_from;
   load_offset_ = solution.load_offset;
   load_stiffness_ = solution.load_stiffness;

@@ -172,8 +172,8 @@ ShakedownLoad press_load(const Scene& scene, const ElasticPress& press, int pres
   ShakedownLoad load;
   load.press_steps = press_steps;
   load.load = std::abs(press.roller_force().y());
-  const MaterialParams surface = scene.strip_material().surface();
-  const HertzSolution h = hertz_line_contact(load.load, scene.roller->radius, surface.plane_strain_modulus());
+  // With an elastic roller, the two bodies' modulus (docs/model.md, Elastic roller).
+  const HertzSolution h = hertz_line_contact(load.load, scene.roller->radius, scene.contact_modulus());
   load.half_width = h.half_width;
   load.hertz_peak = h.peak;
   for (const NodeContactRecord& c : press.contact())

@@ -85,6 +85,26 @@ TEST_CASE("shakedown-limit of the deep strip: Johnson's limits without and with 
   CHECK_FALSE(r.kinematic);                                       // perfectly plastic: no back-stress bound
 }
 
+// A steel roller on the steel strip: the same force on half the modulus, so Hertz's p0 falls by
+// sqrt(2) and the contact widens as much; the strip's stresses under the semi-elliptic pressure are
+// the half-plane's at any p0, so Johnson's limit p0/k = 4 holds as for the rigid roller.
+TEST_CASE("shakedown-limit with an elastic roller: Johnson's limit in the two bodies' p0",
+          "[scenes][melan][elastic_roller][slow]") {
+  const ShakedownLimitResult rigid = limit_of(shipped("shakedown_p45"), 0.0);
+  const ShakedownLimitResult steel =
+      limit_of(shipped("shakedown_p45", {{"roller.E", "2.1e5"}, {"roller.nu", "0.3"}}), 0.0);
+  std::cout << fmt::format("p45 frictionless, steel roller: P = {:.6g} N/mm, a = {:.4g} mm, p0/k = {:.4f} (rigid {:.4f})\n",
+                           steel.load.load, steel.load.half_width, steel.p0_over_k(steel.elastic),
+                           rigid.p0_over_k(rigid.elastic));
+  CHECK(steel.load.load == Approx(rigid.load.load).epsilon(1e-6));  // the scene's force
+  CHECK(steel.load.hertz_peak == Approx(rigid.load.hertz_peak / std::sqrt(2.0)).epsilon(1e-6));
+  CHECK(steel.load.half_width == Approx(rigid.load.half_width * std::sqrt(2.0)).epsilon(1e-6));
+  // The press's own peak pressure is the two-body contact's.
+  CHECK(steel.load.computed_peak == Approx(steel.load.hertz_peak).epsilon(0.02));
+  CHECK(steel.p0_over_k(steel.elastic) == Approx(4.0).epsilon(0.01));
+  CHECK(steel.p0_over_k(steel.elastic) == Approx(rigid.p0_over_k(rigid.elastic)).epsilon(0.01));
+}
+
 TEST_CASE("shakedown-limit with kinematic hardening: the back-stress bound of the half-plane",
           "[scenes][melan][slow]") {
   const Real mu = 0.2;

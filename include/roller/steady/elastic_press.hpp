@@ -2,8 +2,9 @@
 // The roller pressed on an elastic strip: shakedown-limit's elastic press, solved through the
 // contact session (contact/contact_session.hpp), one increment a press. The strip is the
 // scene's made linear elastic, small-strain and frictionless (elastic_frictionless_scene). A press
-// starts where the last one ended (the roller's pose and load offset, the friction history, the
-// last increment as its predictor), so that a sequence of presses warm-starts.
+// starts where the last one ended (the roller's pose and load offset, the friction history, an
+// elastic roller's rim, the last increment as its predictor), so that a sequence of presses
+// warm-starts.
 #include <memory>
 #include <vector>
 
@@ -49,6 +50,7 @@ class ElasticPress {
   Real last_length_ = 0.0;
   std::vector<NodeContactRecord> contact_;
   FrictionHistory friction_;
+  VecX rim_;  // an elastic roller's rim displacements (empty: a rigid roller, or none yet)
 };
 
 }  // namespace roller

@@ -42,6 +42,10 @@
 // and the suspension in equilibrium, where the driver's coupling loop (dynamics/suspension.hpp) needs three or four
 // contact solves.
 //
+// Elastic roller (IncrementProblem::rim). Its rim displacements w follow the condensed variables in
+// the NLP (RimObjective: 1/2 w^T K w, exactly quadratic, so w itself and not a step), and the line
+// search moves them with the strip (docs/model.md, Elastic roller).
+//
 // Working set. Candidates with a free dof whose gap at the start vector is within kReach l_step
 // (l_step the increment's length scale, ipopt_common.hpp), or that carried a normal force in the
 // previous increment. After each step every other candidate's gap is checked; a penetrating one
