@@ -97,7 +97,9 @@ Row roller_row(int step, int pass, Real time, const Simulation::RollerRecord& r)
           {"fx_prescribed", "N/mm", optional_cell(r.prescribed.fx)},
           {"fy_prescribed", "N/mm", optional_cell(r.prescribed.fy)},
           {"load_offset_x", "mm", r.load_offset.x()},
-          {"load_offset_y", "mm", r.load_offset.y()}};
+          {"load_offset_y", "mm", r.load_offset.y()},
+          {"flattening", "mm", r.flattening},
+          {"effective_radius", "mm", optional_cell(r.effective_radius)}};
 }
 
 Row pass_row(int step, const PassRecord& r) {

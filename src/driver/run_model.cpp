@@ -1,5 +1,7 @@
 #include "run_model.hpp"
 
+#include "roller/analysis/roller_flattening.hpp"
+
 namespace roller {
 
 void RunModel::record_state(StepRecord& res, int program_step) const {
@@ -16,6 +18,13 @@ void RunModel::record_state(StepRecord& res, int program_step) const {
   r.deflection_acceleration = dynamics.suspension_acceleration();
   r.prescribed = program.force(program_step);
   r.load_offset = state.load_offset;
+  if (scene.roller->elastic()) {
+    const RollerFlattening rim = roller_flattening(state.contact, state.pose.centre, scene.roller->radius);
+    r.flattening = rim.flattening;
+    r.effective_radius = rim.effective_radius;
+  } else {
+    r.effective_radius = scene.roller->radius;
+  }
   res.roller = r;
 }
 

@@ -23,6 +23,10 @@ struct RollerRecord {
   Real deflection = 0.0, deflection_velocity = 0.0, deflection_acceleration = 0.0;  // suspension
   PrescribedForce prescribed;  // the forces the step prescribed (none: its motion)
   Vec2 load_offset = Vec2::Zero();
+  // An elastic roller's rim in the contact (analysis/roller_flattening.hpp); a rigid roller's:
+  // 0 and its radius.
+  Real flattening = 0.0;
+  std::optional<Real> effective_radius;
 };
 
 // What a scene step did and left: every value the outputs write about it (driver/run_outputs.hpp),
