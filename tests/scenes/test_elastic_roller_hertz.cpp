@@ -72,15 +72,15 @@ TEST_CASE("elastic roller (penalty): a roller of E = 1e9 MPa carries the rigid r
 TEST_CASE("elastic roller: the rim flattens to Hertz's radius R (1 + E'_strip / E'_roller) in the contact",
           "[contact][elastic_roller]") {
   for (auto [e, nu] : {std::pair{2.1e5, 0.3}, {7.0e4, 0.33}}) {
-    const Simulation sim = test::run_scene(
-        "hertz", {{"roller.path", "[{steps = [1, 4], dy = -0.1}]"}, {"roller.E", std::to_string(e)},
-                  {"roller.nu", std::to_string(nu)}});
+    const Simulation sim = test::run_scene("hertz", {{"roller.path", "[{steps = [1, 4], dy = -0.1}]"},
+                                                     {"roller.E", std::to_string(e)},
+                                                     {"roller.nu", std::to_string(nu)}});
     const Real radius = sim.scene().roller->radius;
     const RollerFlattening rim = roller_flattening(sim.state().contact, sim.state().pose.centre, radius);
     const Real strip = sim.scene().strip_material().surface().plane_strain_modulus();
     const Real expected = radius * (1.0 + strip / (e / (1.0 - nu * nu)));
-    INFO("E_roller " << e << ": R' = " << (rim.effective_radius ? *rim.effective_radius : 0.0) << " (Hertz "
-                     << expected << "), flattening " << rim.flattening << " mm");
+    INFO("E_roller " << e << ": R' = " << (rim.effective_radius ? *rim.effective_radius : 0.0) << " (Hertz " << expected
+                     << "), flattening " << rim.flattening << " mm");
     REQUIRE(rim.effective_radius);
     CHECK(*rim.effective_radius == Approx(expected).epsilon(0.01));
     // The rim moved inwards at the contact, by less than the press's 0.1 mm (measured 0.052, 0.076 mm).

@@ -93,9 +93,9 @@ TEST_CASE("shakedown-limit with an elastic roller: Johnson's limit in the two bo
   const ShakedownLimitResult rigid = limit_of(shipped("shakedown_p45"), 0.0);
   const ShakedownLimitResult steel =
       limit_of(shipped("shakedown_p45", {{"roller.E", "2.1e5"}, {"roller.nu", "0.3"}}), 0.0);
-  std::cout << fmt::format("p45 frictionless, steel roller: P = {:.6g} N/mm, a = {:.4g} mm, p0/k = {:.4f} (rigid {:.4f})\n",
-                           steel.load.load, steel.load.half_width, steel.p0_over_k(steel.elastic),
-                           rigid.p0_over_k(rigid.elastic));
+  std::cout << fmt::format(
+      "p45 frictionless, steel roller: P = {:.6g} N/mm, a = {:.4g} mm, p0/k = {:.4f} (rigid {:.4f})\n", steel.load.load,
+      steel.load.half_width, steel.p0_over_k(steel.elastic), rigid.p0_over_k(rigid.elastic));
   CHECK(steel.load.load == Approx(rigid.load.load).epsilon(1e-6));  // the scene's force
   CHECK(steel.load.hertz_peak == Approx(rigid.load.hertz_peak / std::sqrt(2.0)).epsilon(1e-6));
   CHECK(steel.load.half_width == Approx(rigid.load.half_width * std::sqrt(2.0)).epsilon(1e-6));
