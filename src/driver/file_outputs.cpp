@@ -35,16 +35,17 @@ FileOutputs::FileOutputs(const Scene& scene, const Mesh& mesh, const std::filesy
     for (const bool loaded : {true, false}) {  // in the order of their times
       const Real time = (step - (loaded ? 0.5 : 0.0)) * scene.steps.dt;
       if (std::filesystem::exists(vtu_path(step, loaded))) series_.add(time, vtu_path(step, loaded));
-      if (roller_series_ && std::filesystem::exists(vtp_path(step, loaded)))
-        roller_series_->add(time, vtp_path(step, loaded));
+      if (roller_series_ && std::filesystem::exists(roller_path(step, loaded)))
+        roller_series_->add(time, roller_path(step, loaded));
     }
 }
 
 std::filesystem::path FileOutputs::vtu_path(int step, bool loaded) const {
   return out_dir_ / fmt::format("step_{:04d}{}.vtu", step, loaded ? "_loaded" : "");
 }
-std::filesystem::path FileOutputs::vtp_path(int step, bool loaded) const {
-  return out_dir_ / fmt::format("roller_{:04d}{}.vtp", step, loaded ? "_loaded" : "");
+std::filesystem::path FileOutputs::roller_path(int step, bool loaded) const {
+  const bool disc = scene_.roller && scene_.roller->elastic();
+  return out_dir_ / fmt::format("roller_{:04d}{}.{}", step, loaded ? "_loaded" : "", disc ? "vtu" : "vtp");
 }
 
 void FileOutputs::add_row(OutputTable table, const Row& row) { tables_.at(table)->add_row(cells_of(row)); }
@@ -55,9 +56,14 @@ void FileOutputs::add_fields(StepFields f) {
   // and a series lists a file once it is complete.
   writer_.submit([this, f = std::move(f)] {
     const std::vector<VtuField> info = step_field_data(f.step, f.pass, f.time);
-    const std::filesystem::path vtu = vtu_path(f.step, f.loaded), vtp = vtp_path(f.step, f.loaded);
+    const std::filesystem::path vtu = vtu_path(f.step, f.loaded), vtp = roller_path(f.step, f.loaded);
     write_vtu(vtu, mesh_, mesh_.nodes, f.strip.point_data, f.strip.cell_data, VtuCompression::ZLib, info);
-    if (f.roller) write_roller_vtp(vtp, f.roller->centre, scene_.roller->radius, f.roller->angle, info);
+    if (f.roller_body) {
+      const RollerBody& b = *f.roller_body;
+      write_vtu(vtp, *b.mesh, b.points, b.point_data, b.cell_data, VtuCompression::ZLib, info);
+    } else if (f.roller) {
+      write_roller_vtp(vtp, f.roller->centre, scene_.roller->radius, f.roller->angle, info);
+    }
     const std::lock_guard<std::mutex> lock(series_mutex_);
     series_.add(f.time, vtu);
     if (f.roller && roller_series_) roller_series_->add(f.time, vtp);

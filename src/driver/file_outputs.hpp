@@ -35,7 +35,8 @@ class FileOutputs : public OutputSink {
  private:
   // A step's files; `loaded`: a stationary pass's loaded state beside them (StepFields::loaded).
   std::filesystem::path vtu_path(int step, bool loaded = false) const;
-  std::filesystem::path vtp_path(int step, bool loaded = false) const;
+  // The roller's: its circle (.vtp), an elastic roller's disc (.vtu).
+  std::filesystem::path roller_path(int step, bool loaded = false) const;
 
   const Scene& scene_;
   const Mesh& mesh_;

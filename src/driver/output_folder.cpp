@@ -27,9 +27,9 @@ std::string recorded_scene(const std::filesystem::path& dir) {
 
 bool is_run_output(const std::string& name) {
   static const std::regex pattern(
-      R"((fields\.pvd|roller\.pvd|roller_\d{4}\.vtp|solver\.csv|contact\.csv|roller\.csv|passes\.csv|residual_depth\.csv|passes\.png|)"
+      R"((fields\.pvd|roller\.pvd|roller_\d{4}(_loaded)?\.vt[pu]|solver\.csv|contact\.csv|roller\.csv|passes\.csv|residual_depth\.csv|fatigue\.csv|passes\.png|)"
       R"(residual_depth\.png|summary\.json|scene\.resolved\.toml|)"
-      R"(checkpoint\.cbor|state_final\.cbor|state_\d{4}\.cbor|step_\d{4}\.vtu)(\.tmp)?)");
+      R"(checkpoint\.cbor|state_final\.cbor|state_\d{4}\.cbor|step_\d{4}(_loaded)?\.vtu)(\.tmp)?)");
   return std::regex_match(name, pattern);
 }
 

@@ -64,6 +64,8 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
       sinks_(std::move(sinks)),
       step_start_displacement_(model.total_displacement()),
       mid_pass_step_(mid_pass_step(scene)) {
+  if (scene.output.vtu && !sinks_.empty() && scene.roller && scene.roller->elastic())
+    disc_ = std::make_unique<RollerDiscFields>(scene, model.mesh());
   if (!fresh) return;
   if (scene.roller) {
     Simulation::RollerRecord start;
@@ -89,6 +91,7 @@ void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactR
     f.strip.point_data.push_back(nodal_vector("velocity", dynamics_.velocity()));
     f.strip.point_data.push_back(nodal_vector("acceleration", dynamics_.acceleration()));
   }
+  if (disc_ && roller) f.roller_body = disc_->at(contact, roller->centre);
   add_fields(std::move(f));
 }
 
@@ -106,6 +109,7 @@ void RunOutputs::write_loaded_fields(const Simulation::StepRecord& step) {
                step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt,
                true};
   append_contact_fields(step.contact, model_.mesh().n_nodes(), f.strip.point_data);
+  if (disc_ && step.roller) f.roller_body = disc_->at(step.contact, step.roller->pose.centre);
   add_fields(std::move(f));
 }
 

@@ -3,12 +3,14 @@
 // step; for a converged step its contact and roller rows, at the end of a pass its row of passes
 // and its residual profile, and the strip's fields every output.every steps and at the last one.
 // A fresh run gives the start state first: the roller's row 0 and the fields of step 0.
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "roller/driver/output_sink.hpp"
 #include "roller/driver/simulation.hpp"
 #include "roller/driver/step_monitor.hpp"
+#include "roller_disc_fields.hpp"
 
 namespace roller {
 
@@ -42,8 +44,9 @@ class RunOutputs {
   const StripModel& model_;
   const DynamicsState& dynamics_;
   std::vector<OutputSink*> sinks_;
-  VecX step_start_displacement_;  // total displacement at the start of the step being given
-  int mid_pass_step_ = 0;         // the step within a pass whose fields output.mid_pass adds (0: none)
+  VecX step_start_displacement_;            // total displacement at the start of the step being given
+  int mid_pass_step_ = 0;                   // the step within a pass whose fields output.mid_pass adds (0: none)
+  std::unique_ptr<RollerDiscFields> disc_;  // an elastic roller's disc, with the VTU output
 };
 
 }  // namespace roller

@@ -4,6 +4,7 @@
 // roller's pose. A sink keeps them: the output folder's files (CSV tables and VTU series), or
 // memory (MemoryOutputs, for roller run from Python: docs/python.md).
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,15 @@ namespace roller {
 
 // The strip's fields of a written step (the strip's, its contact's and, with strip inertia, its
 // velocity and acceleration) and the roller there (none without a roller).
+// An elastic roller's disc at a step (driver/roller_disc_fields.hpp): its mesh about the origin,
+// the points placed at the roller's centre (the frame that moves with the centre without turning),
+// its displacement, stresses and the contact's forces on it.
+struct RollerBody {
+  std::shared_ptr<const Mesh> mesh;
+  std::vector<Vec2> points;
+  std::vector<VtuField> point_data, cell_data;
+};
+
 struct StepFields {
   int step = 0;
   int pass = 1;
@@ -25,6 +35,8 @@ struct StepFields {
   // A stationary pass's loaded state (the strip under the roller, in its frame) written beside the
   // pass's own fields, the residual strip: step_NNNN_loaded.vtu at time (step - 1/2) dt.
   bool loaded = false;
+  // An elastic roller's disc (written as roller_NNNN.vtu instead of the rigid roller's circle).
+  std::shared_ptr<const RollerBody> roller_body;
 };
 
 class OutputSink {
