@@ -44,7 +44,8 @@ def test_the_scene_point_and_the_files(tmp_path, capsys):
     resolved = tomllib.loads(inprocess.load_scene(SCENE).toml())
     k, nu, fatigue, point = rcf_map.scene_values(resolved)
     assert abs(k - 280.0 / math.sqrt(3.0)) < 1e-9       # the softened yield stress 320 - 40
-    assert abs(point[0] - 1408.55 / k) < 0.01 and point[1] == 0.5  # Hertz's p0 of the rigid roller
+    # The elastic wheel's two-body Hertz p0; its creep's traction only a run finds (--run marks it).
+    assert abs(point[0] - 1408.55 / k) < 0.01 and point[1] == 0.0
     assert fatigue["shear_fatigue_limit"] == 300.0
     out = str(tmp_path / "map")
     assert rcf_map.main([SCENE, "--out", out, "--mu-max", "0.1", "--mu-step", "0.1"]) == 0

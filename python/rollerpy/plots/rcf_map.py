@@ -20,7 +20,8 @@ plane strain, the out-of-plane stress nu (sigma_x + sigma_z)), not from the scen
 k is [material]'s lowest yield stress over sqrt(3) (a softening Voce term lowers it; a [[layer]] or
 yield profile at the surface is not read, where a run takes its surface's), a_DV, tau_w and tau_e
 the scene's [fatigue]. The point is the scene's largest roller force on its radius
-(Hertz, p0 = sqrt(P E'/(pi R)), E' = E/(1 - nu^2)) and its travel's prescribed traction: q_over_p,
+(Hertz, p0 = sqrt(P E'/(pi R)), E' = E/(1 - nu^2), with an elastic roller the two bodies'
+1/E' = 1/E'_strip + 1/E'_roller) and its travel's prescribed traction: q_over_p,
 |fx|/fy, or 0 (free rolling, or a creep whose traction only a run finds: --run OUT_DIR marks the
 load a run measured, --point the one given).
 """
@@ -81,6 +82,9 @@ def scene_values(resolved):
     e_prime = material["E"] / (1.0 - nu * nu)
     point = None
     roller = resolved.get("roller")
+    if roller and "E" in roller:  # an elastic roller: the two bodies' modulus (docs/model.md, Elastic roller)
+        roller_prime = roller["E"] / (1.0 - roller.get("nu", 0.3) ** 2)
+        e_prime = 1.0 / (1.0 / e_prime + 1.0 / roller_prime)
     if roller:
         path = roller.get("path", [])
         load = max((abs(s.get("fy", 0.0)) for s in path), default=0.0)
