@@ -191,8 +191,10 @@ def run(scene: SceneSource, *, set: Optional[dict] = None,
 
 def _column(texts: list, like: Optional[np.ndarray]) -> np.ndarray:
     """A CSV column as the run's own tables hold it: of the type of `like` (this call's column),
-    else int64 when every cell is an integer, str when any is text, float64 otherwise."""
-    if like is not None and like.dtype.kind in "iuf":
+    else int64 when every cell is an integer, str when any is text, float64 otherwise. A column that
+    is numeric in this call's steps but has empty cells in the folder's earlier ones (an optional
+    value, such as roller.csv's effective_radius at step 0) is str, as a whole run's would be."""
+    if like is not None and like.dtype.kind in "iuf" and all(texts):
         return np.array([float(t) for t in texts], dtype=like.dtype) if like.dtype.kind == "f" else \
             np.array([int(t) for t in texts], dtype=like.dtype)
     if like is not None:

@@ -6,8 +6,13 @@
 
 namespace roller {
 
-RollerFlattening roller_flattening(const std::vector<NodeContactRecord>& contact, const Vec2& centre, Real radius) {
+RollerFlattening roller_flattening(const std::vector<NodeContactRecord>& contact, const Vec2& centre, Real radius,
+                                   bool elastic) {
   RollerFlattening out;
+  if (!elastic) {
+    out.effective_radius = radius;
+    return out;
+  }
   std::vector<Vec2> touching;
   for (const NodeContactRecord& c : contact)
     if (c.contact.status != ContactStatus::Open) touching.push_back(c.position - centre);

@@ -103,7 +103,7 @@ int system_exit() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"roller: finite-element contact of a rigid roller with an elastic-plastic strip"};
+  CLI::App app{"roller: finite-element contact of a roller (rigid or elastic) with an elastic-plastic strip"};
   app.require_subcommand(1);
   app.set_version_flag("--version", [] {
     const roller::BuildInfo b = roller::build_info();

@@ -49,7 +49,7 @@ RollerDiscFields::RollerDiscFields(RollerDiscMesh disc, const Scene& scene)
 }
 
 std::shared_ptr<const RollerBody> RollerDiscFields::at(const std::vector<NodeContactRecord>& contact,
-                                                      const Vec2& centre) {
+                                                       const Vec2& centre) {
   // The strip's forces on the rim, spread with the contact rows' weights (rim_average).
   const DofMap& dofs = model_.dof_map();
   VecX load = VecX::Zero(dofs.n_free());

@@ -18,13 +18,10 @@ void RunModel::record_state(StepRecord& res, int program_step) const {
   r.deflection_acceleration = dynamics.suspension_acceleration();
   r.prescribed = program.force(program_step);
   r.load_offset = state.load_offset;
-  if (scene.roller->elastic()) {
-    const RollerFlattening rim = roller_flattening(state.contact, state.pose.centre, scene.roller->radius);
-    r.flattening = rim.flattening;
-    r.effective_radius = rim.effective_radius;
-  } else {
-    r.effective_radius = scene.roller->radius;
-  }
+  const RollerFlattening rim =
+      roller_flattening(state.contact, state.pose.centre, scene.roller->radius, scene.roller->elastic());
+  r.flattening = rim.flattening;
+  r.effective_radius = rim.effective_radius;
   res.roller = r;
 }
 

@@ -1,6 +1,7 @@
 #include "run_outputs.hpp"
 
 #include "pass_fatigue.hpp"
+#include "roller/analysis/roller_flattening.hpp"
 
 namespace roller {
 
@@ -71,6 +72,8 @@ RunOutputs::RunOutputs(const Scene& scene, const StripModel& model, const Dynami
     Simulation::RollerRecord start;
     start.pose = start_pose;
     start.anchor_y = start_pose.centre.y();
+    start.effective_radius =
+        roller_flattening({}, start_pose.centre, scene.roller->radius, scene.roller->elastic()).effective_radius;
     add_row(OutputTable::Roller, roller_row(0, 1, 0.0, start));
   }
   write_fields(0, 1, {}, scene.roller ? std::optional<RollerPose>(start_pose) : std::nullopt);

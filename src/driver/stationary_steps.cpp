@@ -21,7 +21,9 @@ class StationarySteps final : public StepMethod {
   // A stationary pass (one step) carries its travel segment's load whole, not the ramp the step's
   // number would read in a transient pass's program.
   explicit StationarySteps(RunModel& run)
-      : run_(run), steady_(steady_load(run.scene, std::nullopt)), program_step_(steady_.travel->last_step) {}
+      : run_(run), steady_(steady_load(run.scene, std::nullopt)), program_step_(steady_.travel->last_step) {
+    require_stationary_load(run.scene, steady_);  // before the first step: a load the set-up refuses
+  }
 
   StepRecord advance(int step, const StepOptions& control) override {
     const bool built = !passes_;  // K_e is factorised once, when the set-up is built

@@ -44,6 +44,17 @@ struct CellFormatter {
 
 }  // namespace
 
+std::string cell_text(const CsvTable::Cell& cell) {
+  return std::visit(
+      [](const auto& v) -> std::string {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::string>)
+          return v;
+        else
+          return CellFormatter{}(v);
+      },
+      cell);
+}
+
 CsvTable::CsvTable(const std::filesystem::path& path, std::vector<std::string> columns)
     : columns_(std::move(columns)), path_(path) {
   if (columns_.empty()) {

@@ -11,7 +11,8 @@ namespace roller::python {
 
 namespace {
 
-// One column of a table: int64 when every cell is an index, str when any is text, else float64.
+// One column of a table: int64 when every cell is an index, str when any is text (each cell's
+// text as the CSV file holds it), else float64.
 py::object column_array(const std::vector<std::vector<CsvTable::Cell>>& rows, std::size_t col) {
   bool all_index = true, any_text = false;
   for (const auto& row : rows) {
@@ -21,7 +22,7 @@ py::object column_array(const std::vector<std::vector<CsvTable::Cell>>& rows, st
   const auto n = static_cast<py::ssize_t>(rows.size());
   if (any_text) {
     py::list values;
-    for (const auto& row : rows) std::visit([&](const auto& v) { values.append(py::str(py::cast(v))); }, row[col]);
+    for (const auto& row : rows) values.append(py::str(cell_text(row[col])));
     return py::module_::import("numpy").attr("array")(values, py::arg("dtype") = "str");
   }
   if (all_index && !rows.empty()) {

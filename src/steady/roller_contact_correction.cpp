@@ -57,11 +57,7 @@ CondensedLoad condensed_load(const SteadyLoad& steady, Real force) {
   load.travel_sign = steady.travel_sign;
   load.creep = steady.creep;
   if (steady.shape == TractionShape::Carter && steady.friction > 0.0) {
-    if (std::abs(steady.traction) >= steady.friction)
-      throw InputError(fmt::format(
-          "{}: |q/p| = |fx|/fy = {:.6g} is mu = {}: on the roller's contact no creep carries it rolling; give the "
-          "segment slip = 1 (the roller slides) instead of the force",
-          steady.segment, std::abs(steady.traction), steady.friction));
+    require_rollable(steady);
     load.creep = 0.0;  // the start of the unknown creep
     load.horizontal_force = -steady.travel_sign * steady.traction * force;
   }

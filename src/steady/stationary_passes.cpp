@@ -139,7 +139,7 @@ StationaryPasses::StationaryPasses(const Scene& scene, const StripModel& model, 
       elastic_materials_(linear_elastic(phased_.materials)),
       linear_solver_(scene.newton.linear) {
   require_held_base(scene, model);
-  if (scene.passes.stationary_contact == StationaryContact::Hertz) require_given_traction(steady);
+  require_stationary_load(scene, steady);
   hertz_ = hertz_line_contact(travel_force(scene, steady), scene.roller->radius, scene.contact_modulus());
   centre_x_ = contact_centre(scene, steady);
   // Half-way between the contact's trailing edge and the strip's downstream end.

@@ -69,6 +69,21 @@ void require_given_traction(const SteadyLoad& load) {
       load.segment, load.travel->slip_start, load.travel->slip_end));
 }
 
+void require_rollable(const SteadyLoad& load) {
+  if (load.shape != TractionShape::Carter || !(load.friction > 0.0) || std::abs(load.traction) < load.friction) return;
+  throw InputError(fmt::format(
+      "{}: |q/p| = |fx|/fy = {:.6g} is mu = {}: on the roller's contact no creep carries it rolling; give the "
+      "segment slip = 1 (the roller slides) instead of the force",
+      load.segment, std::abs(load.traction), load.friction));
+}
+
+void require_stationary_load(const Scene& scene, const SteadyLoad& load) {
+  if (scene.passes.stationary_contact == StationaryContact::Hertz)
+    require_given_traction(load);
+  else
+    require_rollable(load);
+}
+
 std::vector<Real> traction_forces(const SteadyLoad& load, const std::vector<NodeContactRecord>& contact,
                                   const HertzSolution& hertz, Real centre_x) {
   const Real travel = load.travel_sign;

@@ -173,3 +173,11 @@ TEST_CASE("CsvTable at an unwritable path throws naming the path", "[io]") {
   const auto msg = thrown_message<std::runtime_error>([&] { CsvTable table(file, {"a", "b"}); });
   CHECK_THAT(msg, Contains(file.string()));
 }
+
+TEST_CASE("csv table: a cell's text is what a CSV reader reads back", "[io][csv]") {
+  CHECK(cell_text(CsvTable::Cell(Real{100.0})) == "100");
+  CHECK(cell_text(CsvTable::Cell(Real{0.1})) == "0.10000000000000001");
+  CHECK(cell_text(CsvTable::Cell(Index{7})) == "7");
+  CHECK(cell_text(CsvTable::Cell(std::string("a, \"b\""))) == "a, \"b\"");  // unquoted
+  CHECK(cell_text(CsvTable::Cell(std::string())).empty());
+}

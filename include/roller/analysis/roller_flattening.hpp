@@ -22,7 +22,9 @@ struct RollerFlattening {
 };
 
 // `contact`: the nodes of a solved contact (their positions deformed); `centre`, `radius`: the
-// roller's centre and undeformed radius.
-RollerFlattening roller_flattening(const std::vector<NodeContactRecord>& contact, const Vec2& centre, Real radius);
+// roller's centre and undeformed radius; `elastic`: false for a rigid roller, whose rim does not
+// deform (0 and its radius, with or without contact).
+RollerFlattening roller_flattening(const std::vector<NodeContactRecord>& contact, const Vec2& centre, Real radius,
+                                   bool elastic = true);
 
 }  // namespace roller

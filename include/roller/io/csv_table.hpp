@@ -35,4 +35,8 @@ class CsvTable {
   std::filesystem::path path_;
 };
 
+// A cell's text as a CSV reader reads it back from the file (unquoted): reals with 17 significant
+// digits, as written.
+std::string cell_text(const CsvTable::Cell& cell);
+
 }  // namespace roller

@@ -45,6 +45,14 @@ SteadyLoad steady_load(const Scene& scene, std::optional<Real> traction);
 // strip's plastic flow and on nu (Carter's law is an elastic strip's with nu = 0.5).
 void require_given_traction(const SteadyLoad& load);
 
+// Throws InputError for a horizontal force the roller's own contact cannot carry rolling:
+// |q/p| >= mu (no creep does; the segment slides: slip = 1).
+void require_rollable(const SteadyLoad& load);
+
+// The stationary pass's checks of its load before any pass (a run's set-up): require_given_traction
+// under the Hertz load, require_rollable on the roller's contact.
+void require_stationary_load(const Scene& scene, const SteadyLoad& load);
+
 // The tangential nodal forces in x, one per record of `contact`, of the load's traction on the
 // contact's normal forces: (Q/P) |f_n| along the travel, or Carter's, mu |f_n| less the stick zone's
 // relief (analysis/carter.hpp) placed by the Hertz solution `hertz` of P about the contact's centre
