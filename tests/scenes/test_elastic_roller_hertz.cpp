@@ -37,6 +37,21 @@ TwoBody press(const std::string& backend, Real roller_e, Real roller_nu, int ref
   return t;
 }
 
+// The contact's and the stick zone's extents along x (analysis/contact_zones.hpp).
+struct Zones {
+  ZoneExtent contact, stick;
+};
+Zones zones_of(const std::vector<NodeContactRecord>& contact) {
+  std::vector<Real> x;
+  std::vector<bool> in_contact, stick;
+  for (const auto& c : contact) {
+    x.push_back(c.position.x());
+    in_contact.push_back(c.contact.status != ContactStatus::Open);
+    stick.push_back(c.contact.status == ContactStatus::Stick);
+  }
+  return {zone_extent(x, in_contact), zone_extent(x, stick)};
+}
+
 }  // namespace
 
 // Measured (refine 2, the penalty backend): a within -0.60 / +0.05 / -0.30 % and p0 within 0.19 /
@@ -98,17 +113,11 @@ TEST_CASE("elastic roller (penalty): Cattaneo's stick zone with identical materi
       "cattaneo_mindlin",
       {{"contact.backend", "\"penalty\""}, {"material.nu", "0.3"}, {"roller.E", "2.1e5"}, {"roller.nu", "0.3"}});
   const Real mu = sim.scene().contact.friction;
-  std::vector<Real> x;
-  std::vector<bool> in_contact, stick;
-  for (const auto& c : sim.state().contact) {
-    x.push_back(c.position.x());
-    in_contact.push_back(c.contact.status != ContactStatus::Open);
-    stick.push_back(c.contact.status == ContactStatus::Stick);
-  }
+  const Zones zones = zones_of(sim.state().contact);
   const Vec2 f = force_on_roller(sim.state().contact);
   const Real q_ratio = std::abs(f.x()) / (mu * f.y());
-  const ZoneExtent a = zone_extent(x, in_contact);
-  const ZoneExtent c = zone_extent(x, stick);
+  const ZoneExtent a = zones.contact;
+  const ZoneExtent c = zones.stick;
   const Real expected = std::sqrt(1.0 - q_ratio);
   const HertzSolution hertz = hertz_line_contact(f.y(), sim.scene().roller->radius, sim.scene().contact_modulus());
   INFO("Q/(mu P) = " << q_ratio << ", a = " << a.half_width() << " (two-body Hertz " << hertz.half_width
@@ -140,7 +149,7 @@ TEST_CASE("elastic roller: the condensed and full interior-point formulations an
           "[contact][elastic_roller]") {
   struct Answer {
     Vec2 centre, force;
-    ZoneExtent contact, stick;
+    Zones zones;
     int condensed_dofs = 0;  // the largest over the steps: 0 when the full formulation solved them all
   };
   auto solve = [](const std::string& backend, const std::string& formulation) {
@@ -156,17 +165,9 @@ TEST_CASE("elastic roller: the condensed and full interior-point formulations an
       REQUIRE(report.converged());
       out.condensed_dofs = std::max(out.condensed_dofs, report.details.get<IpoptDetails>().condensed_dofs);
     }
-    std::vector<Real> x;
-    std::vector<bool> in_contact, stick;
-    for (const auto& c : sim.state().contact) {
-      x.push_back(c.position.x());
-      in_contact.push_back(c.contact.status != ContactStatus::Open);
-      stick.push_back(c.contact.status == ContactStatus::Stick);
-    }
     out.centre = sim.state().pose.centre;
     out.force = force_on_roller(sim.state().contact);
-    out.contact = zone_extent(x, in_contact);
-    out.stick = zone_extent(x, stick);
+    out.zones = zones_of(sim.state().contact);
     return out;
   };
   const Answer condensed = solve("ipopt", "condensed");
@@ -174,18 +175,18 @@ TEST_CASE("elastic roller: the condensed and full interior-point formulations an
   const Answer penalty = solve("penalty", "condensed");
   INFO("centre condensed " << condensed.centre.transpose() << ", full " << full.centre.transpose() << ", penalty "
                            << penalty.centre.transpose() << "; Q " << condensed.force.x() << ", " << full.force.x()
-                           << ", " << penalty.force.x() << "; stick half-width " << condensed.stick.half_width() << ", "
-                           << full.stick.half_width() << ", " << penalty.stick.half_width());
+                           << ", " << penalty.force.x() << "; stick half-width " << condensed.zones.stick.half_width()
+                           << ", " << full.zones.stick.half_width() << ", " << penalty.zones.stick.half_width());
   CHECK(condensed.condensed_dofs > 0);
   CHECK(full.condensed_dofs == 0);
   CHECK((condensed.centre - full.centre).norm() < 1e-6);
   CHECK(std::abs(condensed.force.x() / full.force.x() - 1.0) < 1e-4);
   // The same nodes in contact and in stick; the zones' ends (on the deformed positions) to 1e-5.
-  CHECK(condensed.contact.half_width() == Approx(full.contact.half_width()).epsilon(1e-5));
-  CHECK(condensed.stick.half_width() == Approx(full.stick.half_width()).epsilon(1e-5));
+  CHECK(condensed.zones.contact.half_width() == Approx(full.zones.contact.half_width()).epsilon(1e-5));
+  CHECK(condensed.zones.stick.half_width() == Approx(full.zones.stick.half_width()).epsilon(1e-5));
   // The penalty backend's positions carry its penetration (contact.penalty's stiffness).
   CHECK(std::abs(condensed.force.x() / penalty.force.x() - 1.0) < 0.005);
-  CHECK(std::abs(condensed.contact.half_width() / penalty.contact.half_width() - 1.0) < 0.005);
+  CHECK(std::abs(condensed.zones.contact.half_width() / penalty.zones.contact.half_width() - 1.0) < 0.005);
 }
 
 // The thesis's impact scene Z4 (a suspended roller striking the strip's corner with inertia): the
