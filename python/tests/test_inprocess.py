@@ -64,6 +64,20 @@ def test_without_out_no_file_is_written_and_the_answer_is_hertz(tmp_path, monkey
     assert run.roller["fy"][-1] == pytest.approx(np.pi * 100.0 * 2000.0**2 / e_star, rel=1e-6)
 
 
+def test_an_elastic_roller_gives_its_disc_with_the_fields():
+    run = rollerpy.run(HERTZ, set={"roller.E": 2.1e5, "roller.nu": 0.3})
+    disc = run.fields[-1].roller["disc"]
+    n, m = len(disc["points"]), len(disc["cells"])
+    assert disc["points"].shape == (n, 2) and disc["cells"].shape == (m, 4) and disc["cell_type"] == "Q4"
+    assert disc["point_data"]["displacement"].shape == (n, 3) and disc["cell_data"]["stress"].shape == (m, 6)
+    # The disc carries the strip's force on the roller; its points lie about the roller's centre.
+    np.testing.assert_allclose(disc["point_data"]["contact_force"][:, 1].sum(), run.roller["fy"][-1], rtol=1e-9)
+    centre = np.array([run.fields[-1].roller["xc"], run.fields[-1].roller["yc"]])
+    radius = np.linalg.norm(disc["points"] - centre, axis=1)
+    assert abs(radius.max() - 100.0) < 1e-9
+    assert "disc" not in rollerpy.run(HERTZ, set={"steps.count": 1}).fields[-1].roller  # a rigid roller
+
+
 def test_a_scene_from_a_dict_gives_the_results_of_its_file():
     scene = tomllib.load(open(HERTZ, "rb"))
     from_dict = rollerpy.run(scene, set={"steps.count": 2, "roller.path[0].steps": [1, 2]})

@@ -59,6 +59,21 @@ py::dict fields_dict(const std::vector<VtuField>& fields) {
   return d;
 }
 
+// An elastic roller's disc at a step (the VTU's roller_NNNN.vtu): its points placed at the centre,
+// its Q4 cells and its fields.
+py::dict disc_dict(const RollerBody& body) {
+  py::dict d = mesh_dict(*body.mesh);
+  auto points = d["points"].cast<py::array_t<double>>();
+  auto p = points.mutable_unchecked<2>();
+  for (py::ssize_t a = 0; a < p.shape(0); ++a) {
+    p(a, 0) = body.points[static_cast<std::size_t>(a)].x();
+    p(a, 1) = body.points[static_cast<std::size_t>(a)].y();
+  }
+  d["point_data"] = fields_dict(body.point_data);
+  d["cell_data"] = fields_dict(body.cell_data);
+  return d;
+}
+
 }  // namespace
 
 py::dict tables_dict(const MemoryOutputs& outputs) {
@@ -81,11 +96,14 @@ py::list fields_list(const MemoryOutputs& outputs) {
     d["loaded"] = f.loaded;
     d["point_data"] = fields_dict(f.strip.point_data);
     d["cell_data"] = fields_dict(f.strip.cell_data);
-    if (f.roller)
-      d["roller"] = py::dict(py::arg("xc") = f.roller->centre.x(), py::arg("yc") = f.roller->centre.y(),
-                             py::arg("phi") = f.roller->angle);
-    else
+    if (f.roller) {
+      py::dict roller(py::arg("xc") = f.roller->centre.x(), py::arg("yc") = f.roller->centre.y(),
+                      py::arg("phi") = f.roller->angle);
+      if (f.roller_body) roller["disc"] = disc_dict(*f.roller_body);
+      d["roller"] = roller;
+    } else {
       d["roller"] = py::none();
+    }
     out.append(d);
   }
   return out;
