@@ -27,7 +27,7 @@ struct RimArc {
 
 // The disc's polar mesh: nodes on rings from the bore (ring 0) to the rim, the angle measured from
 // the contact's direction (straight down: the rim's lowest point at angle 0, positive towards +x),
-// fine over the arc and to its length's depth, graded beyond; the centre at the origin.
+// fine over the arc and to a quarter of its half-length deep, graded beyond; the centre at the origin.
 struct RollerDiscMesh {
   Mesh mesh;
   std::vector<Index> bore;  // the nodes held (the innermost ring)
