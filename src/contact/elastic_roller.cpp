@@ -107,15 +107,21 @@ RollerDiscMesh roller_disc_mesh(const ElasticRollerSpec& roller, const RimArc& a
   return out;
 }
 
-RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimArc& arc) {
-  RollerDiscMesh disc = roller_disc_mesh(roller, arc);
+std::unique_ptr<StripModel> roller_disc_model(const ElasticRollerSpec& roller, const RollerDiscMesh& disc) {
   MaterialParams elastic;
   elastic.youngs_modulus = roller.youngs_modulus;
   elastic.poisson_ratio = roller.poisson_ratio;
-  StripModel model(disc.mesh, elastic, ElementOptions{Kinematics::Small, Q4Formulation::BBar});
-  std::vector<bool> held(model.n_dofs(), false);
+  auto model = std::make_unique<StripModel>(disc.mesh, elastic, ElementOptions{Kinematics::Small, Q4Formulation::BBar});
+  std::vector<bool> held(model->n_dofs(), false);
   for (Index a : disc.bore) held[2 * a] = held[2 * a + 1] = true;
-  model.set_dof_map(DofMap(held));
+  model->set_dof_map(DofMap(held));
+  return model;
+}
+
+RimStiffness condensed_rim_stiffness(const ElasticRollerSpec& roller, const RimArc& arc) {
+  const RollerDiscMesh disc = roller_disc_mesh(roller, arc);
+  const std::unique_ptr<StripModel> disc_model = roller_disc_model(roller, disc);
+  StripModel& model = *disc_model;
   SparseMatrix k;
   model.evaluate(VecX::Zero(model.n_dofs()), nullptr, &k);
 

@@ -56,17 +56,17 @@ void FileOutputs::add_fields(StepFields f) {
   // and a series lists a file once it is complete.
   writer_.submit([this, f = std::move(f)] {
     const std::vector<VtuField> info = step_field_data(f.step, f.pass, f.time);
-    const std::filesystem::path vtu = vtu_path(f.step, f.loaded), vtp = roller_path(f.step, f.loaded);
+    const std::filesystem::path vtu = vtu_path(f.step, f.loaded), roller_file = roller_path(f.step, f.loaded);
     write_vtu(vtu, mesh_, mesh_.nodes, f.strip.point_data, f.strip.cell_data, VtuCompression::ZLib, info);
     if (f.roller_body) {
       const RollerBody& b = *f.roller_body;
-      write_vtu(vtp, *b.mesh, b.points, b.point_data, b.cell_data, VtuCompression::ZLib, info);
+      write_vtu(roller_file, *b.mesh, b.points, b.point_data, b.cell_data, VtuCompression::ZLib, info);
     } else if (f.roller) {
-      write_roller_vtp(vtp, f.roller->centre, scene_.roller->radius, f.roller->angle, info);
+      write_roller_vtp(roller_file, f.roller->centre, scene_.roller->radius, f.roller->angle, info);
     }
     const std::lock_guard<std::mutex> lock(series_mutex_);
     series_.add(f.time, vtu);
-    if (f.roller && roller_series_) roller_series_->add(f.time, vtp);
+    if (f.roller && roller_series_) roller_series_->add(f.time, roller_file);
   });
 }
 

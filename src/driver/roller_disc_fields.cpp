@@ -11,49 +11,34 @@ namespace roller {
 
 namespace {
 
-ElasticRollerSpec spec_of(const Scene& scene) {
-  const RollerSpec& r = *scene.roller;
-  return {r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
-}
-
-MaterialParams disc_material(const Scene& scene) {
-  MaterialParams m;
-  m.youngs_modulus = scene.roller->youngs_modulus;
-  m.poisson_ratio = scene.roller->poisson_ratio;
-  return m;
-}
-
-// The disc's stiffness on its free dofs (the bore held), as the rim stiffness's.
-DofMap bore_held(const RollerDiscMesh& disc) {
-  std::vector<bool> held(2 * disc.mesh.nodes.size(), false);
-  for (Index a : disc.bore) held[2 * a] = held[2 * a + 1] = true;
-  return DofMap(held);
+// The scene's disc, meshed as the contact's rim stiffness meshes it.
+RollerDiscMesh disc_of(const Scene& scene, const Mesh& strip_mesh) {
+  return roller_disc_mesh(elastic_roller_spec(scene), elastic_rim_arc(scene, strip_mesh));
 }
 
 }  // namespace
 
 RollerDiscFields::RollerDiscFields(const Scene& scene, const Mesh& strip_mesh)
-    : RollerDiscFields(roller_disc_mesh(spec_of(scene), elastic_rim_arc(scene, strip_mesh)), scene) {}
+    : RollerDiscFields(disc_of(scene, strip_mesh), scene) {}
 
-RollerDiscFields::RollerDiscFields(RollerDiscMesh disc, const Scene& scene)
+RollerDiscFields::RollerDiscFields(const RollerDiscMesh& disc, const Scene& scene)
     : mesh_(std::make_shared<const Mesh>(disc.mesh)),
       arc_(disc.arc),
       radius_(scene.roller->radius),
-      model_(disc.mesh, disc_material(scene), ElementOptions{Kinematics::Small, Q4Formulation::BBar}),
+      model_(roller_disc_model(elastic_roller_spec(scene), disc)),
       solver_(MumpsSolver::Symmetry::Symmetric) {
   for (Index a : arc_) arc_positions_.push_back(disc.mesh.nodes[a]);
-  model_.set_dof_map(bore_held(disc));
   SparseMatrix k;
-  model_.evaluate(VecX::Zero(model_.n_dofs()), nullptr, &k);
+  model_->evaluate(VecX::Zero(model_->n_dofs()), nullptr, &k);
   if (!solver_.factorize(k)) throw NumericalError("elastic roller: the disc's stiffness (for its output) is singular");
 }
 
 std::shared_ptr<const RollerBody> RollerDiscFields::at(const std::vector<NodeContactRecord>& contact,
                                                        const Vec2& centre) {
   // The strip's forces on the rim, spread with the contact rows' weights (rim_average).
-  const DofMap& dofs = model_.dof_map();
+  const DofMap& dofs = model_->dof_map();
   VecX load = VecX::Zero(dofs.n_free());
-  VecX nodal = VecX::Zero(model_.n_dofs());
+  VecX nodal = VecX::Zero(model_->n_dofs());
   for (const NodeContactRecord& c : contact) {
     if (c.force.isZero()) continue;
     const Real angle = rim_angle(c.position - centre);
@@ -65,15 +50,15 @@ std::shared_ptr<const RollerBody> RollerDiscFields::at(const std::vector<NodeCon
         load(dofs.free_index(dof)) -= w.weight * c.force(a);
       }
   }
-  VecX u = VecX::Zero(model_.n_dofs());
+  VecX u = VecX::Zero(model_->n_dofs());
   dofs.scatter_free(solver_.solve(load), u);
-  const VecX step = u - model_.total_displacement();
-  model_.commit(step);
+  const VecX step = u - model_->total_displacement();
+  model_->commit(step);
 
   auto body = std::make_shared<RollerBody>();
   body->mesh = mesh_;
   for (const Vec2& p : mesh_->nodes) body->points.push_back(centre + p);
-  const StripFields f = strip_fields(model_, step);
+  const StripFields f = strip_fields(*model_, step);
   // The elastic disc's displacement and element stresses: the disc is finer than the strip (its
   // rings run round it), so fewer fields keep its file near the strip's (ParaView's Cell Data to
   // Point Data smooths the stresses).

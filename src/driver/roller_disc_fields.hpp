@@ -25,14 +25,14 @@ class RollerDiscFields {
   std::shared_ptr<const RollerBody> at(const std::vector<NodeContactRecord>& contact, const Vec2& centre);
 
  private:
-  RollerDiscFields(RollerDiscMesh disc, const Scene& scene);
+  RollerDiscFields(const RollerDiscMesh& disc, const Scene& scene);
 
   std::shared_ptr<const Mesh> mesh_;
   std::vector<Index> arc_;           // the rim arc's nodes
   std::vector<Vec2> arc_positions_;  // about the centre
   Real radius_ = 0.0;
-  StripModel model_;     // the disc, committed to the last fields' displacement (linear: exact)
-  SparseSolver solver_;  // its stiffness on the free dofs, factorised once
+  std::unique_ptr<StripModel> model_;  // the disc, committed to the last fields' displacement (linear: exact)
+  SparseSolver solver_;                // its stiffness on the free dofs, factorised once
 };
 
 }  // namespace roller

@@ -53,11 +53,15 @@ ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& 
   return s;
 }
 
+ElasticRollerSpec elastic_roller_spec(const Scene& scene) {
+  const RollerSpec& r = *scene.roller;
+  return {r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
+}
+
 std::shared_ptr<const RimStiffness> elastic_rim(const Scene& scene, const Mesh& mesh) {
   if (!scene.roller || !scene.roller->elastic()) return nullptr;
-  const RollerSpec& r = *scene.roller;
-  const ElasticRollerSpec spec{r.radius, r.inner_radius, r.youngs_modulus, r.poisson_ratio};
-  return std::make_shared<const RimStiffness>(condensed_rim_stiffness(spec, elastic_rim_arc(scene, mesh)));
+  return std::make_shared<const RimStiffness>(
+      condensed_rim_stiffness(elastic_roller_spec(scene), elastic_rim_arc(scene, mesh)));
 }
 
 }  // namespace roller

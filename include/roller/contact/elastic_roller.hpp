@@ -5,6 +5,7 @@
 // statically condensed onto the rim nodes of an arc around the contact. In the roller's frame
 // the contact does not move, so this is computed once a run: the superelement of the Abaqus
 // rollover models' elastic wheel (docs/elastic-roller-design.md), on the contact arc only.
+#include <memory>
 #include <vector>
 
 #include "roller/core/types.hpp"
@@ -34,6 +35,11 @@ struct RollerDiscMesh {
   std::vector<Index> arc;   // the rim nodes of the arc, by increasing angle
 };
 RollerDiscMesh roller_disc_mesh(const ElasticRollerSpec& roller, const RimArc& arc);
+
+// The disc as a plane-strain, small-strain, linear elastic body (B-bar Q4) with its bore held: the
+// model whose stiffness condensed_rim_stiffness condenses, and whose fields the VTU shows.
+class StripModel;
+std::unique_ptr<StripModel> roller_disc_model(const ElasticRollerSpec& roller, const RollerDiscMesh& disc);
 
 // The condensed stiffness: the rim forces f that the arc's displacements w (the roller's frame,
 // x along the strip, y up; [w_x0, w_y0, w_x1, ...] by increasing angle) need with the bore held:

@@ -16,6 +16,9 @@ ContactSessionSettings contact_session_settings(const Scene& scene, const Mesh& 
 // strip's surface spacings, the spacing the strip's finest along its top.
 RimArc elastic_rim_arc(const Scene& scene, const Mesh& mesh);
 
+// The scene's elastic roller (its [roller] E, nu, inner_radius and radius); the scene has one.
+ElasticRollerSpec elastic_roller_spec(const Scene& scene);
+
 // The scene's elastic roller condensed onto that arc; null for a rigid roller.
 std::shared_ptr<const RimStiffness> elastic_rim(const Scene& scene, const Mesh& mesh);
 
