@@ -86,8 +86,13 @@ void RunOutputs::add_row(OutputTable table, const Row& row) {
 void RunOutputs::write_fields(int step, int pass, const std::vector<NodeContactRecord>& contact,
                               const std::optional<RollerPose>& roller, std::vector<VtuField> cells) {
   if (!scene_.output.vtu || sinks_.empty()) return;
-  StepFields f{step, pass, step * scene_.steps.dt,
-               strip_fields(model_, model_.total_displacement() - step_start_displacement_), roller};
+  StepFields f{step,
+               pass,
+               step * scene_.steps.dt,
+               strip_fields(model_, model_.total_displacement() - step_start_displacement_),
+               roller,
+               false,
+               nullptr};
   for (VtuField& c : cells) f.strip.cell_data.push_back(std::move(c));
   if (scene_.roller) append_contact_fields(contact, model_.mesh().n_nodes(), f.strip.point_data);
   if (scene_.dynamics.strip_inertia) {
@@ -110,7 +115,8 @@ void RunOutputs::write_loaded_fields(const Simulation::StepRecord& step) {
                (step.step - 0.5) * scene_.steps.dt,
                *step.loaded_fields,
                step.roller ? std::optional<RollerPose>(step.roller->pose) : std::nullopt,
-               true};
+               true,
+               nullptr};
   append_contact_fields(step.contact, model_.mesh().n_nodes(), f.strip.point_data);
   if (disc_ && step.roller) f.roller_body = disc_->at(step.contact, step.roller->pose.centre);
   add_fields(std::move(f));
