@@ -20,6 +20,11 @@ namespace {
 // four steps; the active set settles in a few passes from the last press's.
 constexpr int kNewtonSteps = 50;
 constexpr int kActiveSetPasses = 50;
+// The stick trial lambda_t - c s takes c as this share of the slip rows' diagonal's inverse. The
+// steady slip rows are not symmetric; with the full inverse two identical elastic bodies (an
+// elastic roller of the strip's material) flip their slip zone's sign from pass to pass without
+// end, with half of it they settle (docs/model.md, Stationary pass).
+constexpr Real kStickTrialScale = 0.5;
 
 CondensedPlace place_of(const DofMap& dofs, std::vector<Index> nodes, std::vector<Vec2> positions, Real centre_x) {
   CondensedPlace p;
@@ -105,14 +110,14 @@ void CondensedContact::start_from(const CondensedContact& other, int from, int t
 void CondensedContact::set_roller(const RimStiffness& rim) {
   roller_compliance_ = MatX::Zero(compliance_.rows(), compliance_.cols());
   for (std::size_t k = 0; k < places_.size(); ++k) {
-    std::vector<Real> angles, halves;
+    std::vector<Real> angles, reaches;
     for (Index i = first_[k]; i < first_[k + 1]; ++i) {
       const auto s = static_cast<std::size_t>(i);
       angles.push_back(std::asin(std::clamp((reference_[s].x() - places_[k].centre_x) / radius_, -1.0, 1.0)));
-      halves.push_back(0.5 * tributary_[s] / radius_);
+      reaches.push_back(tributary_[s] / radius_);
     }
     const Index size = 2 * (first_[k + 1] - first_[k]);
-    roller_compliance_.block(2 * first_[k], 2 * first_[k], size, size) = rim_compliance(rim, angles, halves);
+    roller_compliance_.block(2 * first_[k], 2 * first_[k], size, size) = rim_compliance(rim, angles, reaches);
   }
 }
 
@@ -316,7 +321,7 @@ CondensedContact::Small CondensedContact::solve_small(const std::vector<Vec2>& b
           next.zone[k] = Zone::Slip;
           continue;
         }
-        const Real c_t = m_st(i, i) > 0.0 ? 1.0 / m_st(i, i) : 1.0 / m_nn(i, i);
+        const Real c_t = kStickTrialScale * (m_st(i, i) > 0.0 ? 1.0 / m_st(i, i) : 1.0 / m_nn(i, i));
         const Real tangential_trial = lambda_t(i) - c_t * s(i);
         if (std::abs(tangential_trial) <= mu * normal_trial) {
           next.zone[k] = Zone::Stick;

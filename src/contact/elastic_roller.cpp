@@ -165,36 +165,53 @@ RimPoint rim_point(const std::vector<Vec2>& positions, Real angle) {
   return p;
 }
 
-std::vector<RimWeight> rim_average(const std::vector<Vec2>& positions, Real from, Real to) {
+std::vector<RimWeight> rim_sample(const std::vector<Vec2>& positions, Real angle, Real reach) {
   const Index n = static_cast<Index>(positions.size());
   const Real first = rim_angle(positions.front()), last = rim_angle(positions.back());
-  from = std::clamp(from, first, last);
-  to = std::clamp(to, first, last);
-  if (!(to > from)) {
-    const RimPoint p = rim_point(positions, from);
+  if (!(reach > 0.0)) {
+    const RimPoint p = rim_point(positions, std::clamp(angle, first, last));
     return {{p.segment, 1.0 - p.weight}, {p.segment + 1, p.weight}};
   }
+  // The dual function psi = 2 - 3 |t - angle| / reach on [angle - reach, angle + reach], times the
+  // arc nodes' hats: products of linear functions on each piece, exact with two Gauss points.
+  const Real g = 0.5 / std::sqrt(3.0);
+  auto psi = [&](Real t) { return 2.0 - 3.0 * std::abs(t - angle) / reach; };
   std::vector<RimWeight> out;
+  Real total = 0.0;
   for (Index s = 0; s + 1 < n; ++s) {
     const Real t0 = rim_angle(positions[s]), t1 = rim_angle(positions[s + 1]);
-    const Real a = std::max(from, t0), b = std::min(to, t1);
-    if (!(b > a)) continue;
-    // The mean of the second node's hat over [a, b] (linear: its value at the midpoint).
-    const Real second = ((a + b) / 2 - t0) / (t1 - t0), share = (b - a) / (to - from);
-    if (out.empty() || out.back().node != s) out.push_back({s, 0.0});
-    out.back().weight += share * (1.0 - second);
-    out.push_back({s + 1, share * second});
+    for (auto [lo, hi] : {std::pair{angle - reach, angle}, {angle, angle + reach}}) {
+      const Real a = std::max(lo, t0), b = std::min(hi, t1);
+      if (!(b > a)) continue;
+      for (Real q : {0.5 - g, 0.5 + g}) {
+        const Real t = a + q * (b - a), wq = 0.5 * (b - a) * psi(t);
+        const Real second = (t - t0) / (t1 - t0);
+        if (out.empty() || out.back().node != s) out.push_back({s, 0.0});
+        out.back().weight += wq * (1.0 - second);
+        out.push_back({s + 1, wq * second});
+        total += wq;
+      }
+    }
   }
-  return out;
+  // Beyond the arc's ends the rim is not held: the part inside it, normalised (far from contact).
+  if (!(std::abs(total) > 0.0)) return rim_sample(positions, angle, 0.0);
+  std::vector<RimWeight> merged;
+  for (const RimWeight& w : out) {
+    if (!merged.empty() && merged.back().node == w.node)
+      merged.back().weight += w.weight / total;
+    else
+      merged.push_back({w.node, w.weight / total});
+  }
+  return merged;
 }
 
-MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& halves) {
-  ROLLER_ASSERT(angles.size() == halves.size(), "rim_compliance: a half-width per point");
+MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& reaches) {
+  ROLLER_ASSERT(angles.size() == reaches.size(), "rim_compliance: a reach per point");
   const auto m = static_cast<Index>(rim.positions.size()), n = static_cast<Index>(angles.size());
   MatX w = MatX::Zero(2 * m, 2 * n);
   for (Index j = 0; j < n; ++j) {
     const auto s = static_cast<std::size_t>(j);
-    for (const RimWeight& k : rim_average(rim.positions, angles[s] - halves[s], angles[s] + halves[s])) {
+    for (const RimWeight& k : rim_sample(rim.positions, angles[s], reaches[s])) {
       w(2 * k.node, 2 * j) += k.weight;
       w(2 * k.node + 1, 2 * j + 1) += k.weight;
     }

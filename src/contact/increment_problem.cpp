@@ -30,8 +30,8 @@ void IncrementProblem::attach_rim(const RimStiffness& rim, const VecX* start) {
     c.rim = RimSample{};
     const Real angle = rim_angle(c.position - roller_.end.centre);
     if (!(angle >= first && angle <= last)) continue;
-    const Real half = 0.5 * c.tributary_length / radius;
-    for (const RimWeight& k : rim_average(rim.positions, angle - half, angle + half)) {
+    const Real reach = c.tributary_length / radius;
+    for (const RimWeight& k : rim_sample(rim.positions, angle, reach)) {
       c.rim.node.push_back(k.node);
       c.rim.gap_weight.push_back(-k.weight * rim_radial(rim_angle(rim.positions[k.node])));
       c.rim.slip_weight.push_back(-k.weight * c.tangent);
@@ -39,7 +39,7 @@ void IncrementProblem::attach_rim(const RimStiffness& rim, const VecX* start) {
     // The material now there lay dphi behind (counter-clockwise positive); beyond the arc its
     // displacement is taken as the arc end's.
     const Real back = roller_.dphi();
-    for (const RimWeight& k : rim_average(rim.positions, angle - half - back, angle + half - back))
+    for (const RimWeight& k : rim_sample(rim.positions, angle - back, reach))
       c.rim.slip_start += k.weight * c.tangent.dot(rim_start_.segment<2>(2 * k.node));
   }
 }

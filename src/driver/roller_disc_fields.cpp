@@ -35,15 +35,14 @@ RollerDiscFields::RollerDiscFields(const RollerDiscMesh& disc, const Scene& scen
 
 std::shared_ptr<const RollerBody> RollerDiscFields::at(const std::vector<NodeContactRecord>& contact,
                                                        const Vec2& centre) {
-  // The strip's forces on the rim, spread with the contact rows' weights (rim_average).
+  // The strip's forces on the rim, spread with the contact rows' weights (rim_sample).
   const DofMap& dofs = model_->dof_map();
   VecX load = VecX::Zero(dofs.n_free());
   VecX nodal = VecX::Zero(model_->n_dofs());
   for (const NodeContactRecord& c : contact) {
     if (c.force.isZero()) continue;
     const Real angle = rim_angle(c.position - centre);
-    const Real half = 0.5 * c.tributary_length / radius_;
-    for (const RimWeight& w : rim_average(arc_positions_, angle - half, angle + half))
+    for (const RimWeight& w : rim_sample(arc_positions_, angle, c.tributary_length / radius_))
       for (int a = 0; a < 2; ++a) {
         const Index dof = 2 * arc_[w.node] + a;
         nodal(dof) -= w.weight * c.force(a);

@@ -1,10 +1,8 @@
 // Carter's steady rolling with creep (problems/carter.toml, docs/validation.md "Carter: steady
 // rolling with creep"): after rolling with creep 0.0013 ~ 0.4 mu a/R the stick zone lies at the
 // leading edge of the contact and its width equals Carter's 2a sqrt(1 - Q/(mu P)) within 5 %.
-// Measured as `rollerpy carter` does: a from a least-squares parabola through p_n^2 over the nodes
-// carrying pressure; the stick zone from the moments of the traction deficit w = mu F_N - |F_T|
-// (zero where the node slips; Carter's w = mu p0 (c/a) sqrt(1 - (x - d)^2/c^2) on the stick zone,
-// so its centroid is d and its standard deviation c/2). The same rolling under a prescribed
+// a and the stick zone from the semi-ellipses fitted to the normal nodal forces and to the traction
+// deficit w = mu F_N - |F_T| (tests/support/stick_zone.hpp). The same rolling under a prescribed
 // traction (roller.path fx) gives the creep as an outcome, on Carter's law.
 #include <catch2/catch.hpp>
 
@@ -19,7 +17,6 @@
 
 using namespace roller;
 using roller::test::measure_stick_zone;
-using roller::test::Parabola;
 using roller::test::StickZone;
 
 TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of width 2a sqrt(1 - Q/(mu P))",
@@ -30,7 +27,7 @@ TEST_CASE("Carter: steady rolling with creep, stick zone at the leading edge of 
   const Real q_ratio = std::abs(f.x()) / (mu * f.y());
 
   const StickZone z = measure_stick_zone(sim.state().contact, mu);
-  const Parabola& contact = z.contact;
+  const EllipticFit& contact = z.contact;
   const Real a = z.a, d_abs = z.d_abs, c = z.c, x_stick_min = z.x_stick_min, x_stick_max = z.x_stick_max;
   const int n_stick = z.n_stick, n_slip = z.n_slip;
   const Real c_carter = a * std::sqrt(1.0 - q_ratio);

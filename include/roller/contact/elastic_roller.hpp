@@ -63,22 +63,24 @@ Real rim_angle(const Vec2& from_centre);
 Vec2 rim_radial(Real angle);  // the outward unit vector at that angle
 RimPoint rim_point(const std::vector<Vec2>& positions, Real angle);
 
-// The rim's displacement averaged over the angles [from, to] (clamped to the arc) as weights of
-// the arc nodes, summing to 1: the integral of their hat functions over the interval over its
-// length (the value at `from` when the interval is empty). A strip node's force spread evenly over
-// its tributary length loads the rim with the same weights.
+// The rim's displacement where a strip node touches it, as weights of the arc nodes (summing to 1):
+// the rim weighted with the node's dual (biorthogonal) shape function psi = 2 - 3 |t - angle| / reach
+// over its support [angle - reach, angle + reach], reach = the node's tributary length over R (the
+// rim's displacement at `angle` when reach is 0). Where the rim's nodes lie on the strip's nodes it
+// is their displacement itself, which the strip's nodal contact sees; a strip node's force loads
+// the rim with the same weights. Wohlmuth's dual mortar (docs/model.md, Elastic roller).
 struct RimWeight {
   Index node = 0;
   Real weight = 0.0;
 };
-std::vector<RimWeight> rim_average(const std::vector<Vec2>& positions, Real from, Real to);
+std::vector<RimWeight> rim_sample(const std::vector<Vec2>& positions, Real angle, Real reach);
 
 // The rim's compliance at points of the strip's surface, for the steady contact
-// (contact/condensed_contact.hpp): point j at the angle angles[j] from the lowest point, spread over
-// [angle - halves[j], angle + halves[j]] (its tributary length); forces f_j on the strip (the
-// roller takes -f_j, spread with rim_average's weights W) move the rim at point i, averaged with
-// the same weights, by -(H f)_i, H = W^T K^-1 W (2n x 2n, x and y of each point in turn).
-MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& halves);
+// (contact/condensed_contact.hpp): point j at the angle angles[j] from the lowest point with the
+// reach reaches[j] (its tributary length over R); forces f_j on the strip (the roller takes -f_j,
+// spread with rim_sample's weights W) move the rim at point i, sampled with the same weights, by
+// -(H f)_i, H = W^T K^-1 W (2n x 2n, x and y of each point in turn).
+MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& reaches);
 
 // A point's gap to the deformed rim arc: the circle through the arc's nodes moved radially by
 // their displacements' radial parts, interpolated linearly in the angle between two nodes

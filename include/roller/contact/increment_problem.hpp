@@ -27,7 +27,7 @@
 namespace roller {
 
 // Where a candidate touches an elastic roller's rim, fixed within the increment: the rim's
-// displacements averaged over the node's tributary length (rim_average; empty: no rim there, the
+// displacements sampled with the node's dual shape function (rim_sample; empty: no rim there, the
 // roller rigid), as the coefficients that make
 //   gap  += sum_k gap_weight[k] . w_node[k]       (the rim moved radially)
 //   slip += sum_k slip_weight[k] . w_node[k] + slip_start
