@@ -43,9 +43,10 @@ inline StickZone measure_stick_zone(const std::vector<NodeContactRecord>& contac
   }
   z.contact = fit_elliptic_forces(x, normal);
   REQUIRE(z.contact.valid);
+  z.a = z.contact.half_width;
+  if (mu == 0.0) return z;  // frictionless: no stick zone
   z.stick = fit_elliptic_forces(x, deficit);
   REQUIRE(z.stick.valid);
-  z.a = z.contact.half_width;
   z.d_abs = z.stick.centre;  // centre of the stick zone
   z.c = z.stick.half_width;  // its half-width
   return z;
