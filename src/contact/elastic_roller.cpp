@@ -176,8 +176,9 @@ std::vector<RimWeight> rim_sample(const std::vector<Vec2>& positions, Real angle
   // arc nodes' hats: products of linear functions on each piece, exact with two Gauss points.
   const Real g = 0.5 / std::sqrt(3.0);
   auto psi = [&](Real t) { return 2.0 - 3.0 * std::abs(t - angle) / reach; };
-  std::vector<RimWeight> out;
+  std::vector<Real> weight(static_cast<std::size_t>(n), 0.0);
   Real total = 0.0;
+  Index lowest = n, highest = -1;
   for (Index s = 0; s + 1 < n; ++s) {
     const Real t0 = rim_angle(positions[s]), t1 = rim_angle(positions[s + 1]);
     for (auto [lo, hi] : {std::pair{angle - reach, angle}, {angle, angle + reach}}) {
@@ -186,23 +187,19 @@ std::vector<RimWeight> rim_sample(const std::vector<Vec2>& positions, Real angle
       for (Real q : {0.5 - g, 0.5 + g}) {
         const Real t = a + q * (b - a), wq = 0.5 * (b - a) * psi(t);
         const Real second = (t - t0) / (t1 - t0);
-        if (out.empty() || out.back().node != s) out.push_back({s, 0.0});
-        out.back().weight += wq * (1.0 - second);
-        out.push_back({s + 1, wq * second});
+        weight[static_cast<std::size_t>(s)] += wq * (1.0 - second);
+        weight[static_cast<std::size_t>(s) + 1] += wq * second;
         total += wq;
       }
+      lowest = std::min(lowest, s);
+      highest = std::max(highest, s + 1);
     }
   }
   // Beyond the arc's ends the rim is not held: the part inside it, normalised (far from contact).
   if (!(std::abs(total) > 0.0)) return rim_sample(positions, angle, 0.0);
-  std::vector<RimWeight> merged;
-  for (const RimWeight& w : out) {
-    if (!merged.empty() && merged.back().node == w.node)
-      merged.back().weight += w.weight / total;
-    else
-      merged.push_back({w.node, w.weight / total});
-  }
-  return merged;
+  std::vector<RimWeight> out;
+  for (Index k = lowest; k <= highest; ++k) out.push_back({k, weight[static_cast<std::size_t>(k)] / total});
+  return out;
 }
 
 MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& reaches) {
@@ -217,29 +214,6 @@ MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, co
     }
   }
   return w.transpose() * Eigen::LLT<MatX>(rim.stiffness).solve(w);
-}
-
-RimGap rim_gap(const std::vector<Vec2>& positions, const VecX& w, const Vec2& x) {
-  [[maybe_unused]] const Index n = static_cast<Index>(positions.size());
-  ROLLER_ASSERT(n >= 2 && w.size() == 2 * n, "rim_gap: one displacement per arc node, at least two nodes");
-  const Real theta = rim_angle(x);
-  const RimPoint p = rim_point(positions, theta);
-  RimGap g;
-  g.segment = p.segment;
-  g.weight = p.weight;
-  const Index i = g.segment;
-  const Real t0 = rim_angle(positions[i]), t1 = rim_angle(positions[i + 1]);
-  const Vec2 e0 = rim_radial(t0), e1 = rim_radial(t1);
-  const Real r0 = positions[i].norm() + e0.dot(w.segment<2>(2 * i));
-  const Real r1 = positions[i + 1].norm() + e1.dot(w.segment<2>(2 * i + 2));
-  const Real rho = (1.0 - g.weight) * r0 + g.weight * r1, slope = (r1 - r0) / (t1 - t0);
-  const Real distance = x.norm();
-  g.gap = distance - rho;
-  // d|x|/dx = e_r; d theta/dx = e_theta / |x|, with e_theta = (cos, sin) the direction of growing angle.
-  g.normal = rim_radial(theta) - slope / distance * Vec2(std::cos(theta), std::sin(theta));
-  g.d_first = -(1.0 - g.weight) * e0;
-  g.d_second = -g.weight * e1;
-  return g;
 }
 
 }  // namespace roller

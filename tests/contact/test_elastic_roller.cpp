@@ -86,41 +86,40 @@ TEST_CASE("elastic roller: under a Hertz pressure the rim flattens as the half-p
   CHECK(fine < 0.005);
 }
 
-TEST_CASE("elastic roller: the gap to the deformed rim and its derivatives", "[contact][elastic_roller]") {
-  // A rim arc of nine nodes a millimetre apart on R = 100 (no stiffness needed: the geometry).
+// The rim sampled with a strip node's dual shape function (rim_sample): the weights sum to one,
+// reproduce a field linear in the angle at any offset, and where the node lies on a rim node of the
+// same spacing they are that node alone (the dual basis's biorthogonality).
+TEST_CASE("elastic roller: the rim's dual-weight sample of a strip node", "[contact][elastic_roller]") {
+  // A rim arc of 21 nodes 0.2 mm apart on R = 100.
+  const Real radius = 100.0, spacing = 0.2, step = spacing / radius;
   std::vector<Vec2> arc;
-  for (int i = -4; i <= 4; ++i) arc.push_back(100.0 * Vec2(std::sin(i * 0.01), -std::cos(i * 0.01)));
-  const Vec2 x(1.234, -100.05);  // below the rim, between nodes 5 and 6 (from 1)
-  // Undeformed: the circle's gap.
-  VecX w = VecX::Zero(18);
-  const RimGap rigid = rim_gap(arc, w, x);
-  CHECK(rigid.gap == Approx(x.norm() - 100.0).epsilon(1e-14));
-  CHECK(rigid.segment == 5);
-  CHECK((rigid.normal - x.normalized()).norm() < 1e-12);
-  // The whole arc pressed in by 0.01 mm along its radii: the gap grows by 0.01.
-  for (int i = 0; i < 9; ++i) w.segment<2>(2 * i) = -0.01 * arc[i].normalized();
-  CHECK(rim_gap(arc, w, x).gap == Approx(rigid.gap + 0.01).epsilon(1e-12));
-  // Derivatives against central differences at an uneven displacement.
-  for (int i = 0; i < 18; ++i) w(i) = 1e-3 * std::sin(1.7 * i + 0.3);
-  const RimGap g = rim_gap(arc, w, x);
-  // The gap is linear in w (no truncation error) and smooth in x: h = 1e-5 keeps round-off of
-  // the 100 mm radii (1e-14) at 1e-9 of the difference quotients.
-  const Real h = 1e-5;
-  for (int c = 0; c < 2; ++c) {
-    Vec2 dx = Vec2::Zero();
-    dx(c) = h;
-    const Real fd = (rim_gap(arc, w, x + dx).gap - rim_gap(arc, w, x - dx).gap) / (2 * h);
-    CHECK(g.normal(c) == Approx(fd).epsilon(1e-6));
+  for (int i = -10; i <= 10; ++i) arc.push_back(radius * Vec2(std::sin(i * step), -std::cos(i * step)));
+  auto sample = [&](const std::vector<RimWeight>& weights, auto field) {
+    Real sum = 0.0;
+    for (const RimWeight& k : weights) sum += k.weight * field(rim_angle(arc[static_cast<std::size_t>(k.node)]));
+    return sum;
+  };
+  for (Real offset : {0.0, 0.13, 0.5, 0.91}) {
+    const Real angle = (2.0 + offset) * step;
+    for (Real reach : {step, 0.7 * step, 1.6 * step}) {
+      const std::vector<RimWeight> w = rim_sample(arc, angle, reach);
+      INFO("offset " << offset << " spacings, reach " << reach / step << " spacings");
+      CHECK(sample(w, [](Real) { return 1.0; }) == Approx(1.0).epsilon(1e-13));
+      CHECK(sample(w, [&](Real t) { return 3.0 + 40.0 * t; }) == Approx(3.0 + 40.0 * angle).epsilon(1e-12));
+    }
   }
-  for (int k = 0; k < 18; ++k) {
-    VecX dw = VecX::Zero(18);
-    dw(k) = h;
-    const Real fd = (rim_gap(arc, w + dw, x).gap - rim_gap(arc, w - dw, x).gap) / (2 * h);
-    const Index node = k / 2;
-    const Real exact = node == g.segment ? g.d_first(k % 2) : node == g.segment + 1 ? g.d_second(k % 2) : 0.0;
-    INFO("dof " << k);
-    CHECK(exact == Approx(fd).margin(1e-8));
-  }
-  // A point beyond the arc: the arc is too short for the contact.
-  CHECK_THROWS_WITH(rim_gap(arc, w, Vec2(10.0, -100.0)), Catch::Contains("outside the rim arc"));
+  // On a rim node with the rim's own spacing: that node's displacement itself.
+  const std::vector<RimWeight> on_node = rim_sample(arc, 3 * step, step);
+  Real own = 0.0, others = 0.0;
+  for (const RimWeight& k : on_node) (k.node == 13 ? own : others) += std::abs(k.weight);
+  CHECK(own == Approx(1.0).epsilon(1e-12));
+  CHECK(others < 1e-12);
+  // An even average over the tributary length (the weights before) gives 3/4 and 1/8, 1/8 instead:
+  // the smear that made the rim stiffer than the strip to first order in the spacing.
+  // Reach 0: the rim's displacement at the point, linear between its two nodes.
+  const std::vector<RimWeight> point = rim_sample(arc, 2.25 * step, 0.0);
+  REQUIRE(point.size() == 2);
+  CHECK(point[0].node == 12);
+  CHECK(point[0].weight == Approx(0.75).epsilon(1e-12));
+  CHECK(point[1].weight == Approx(0.25).epsilon(1e-12));
 }

@@ -82,21 +82,4 @@ std::vector<RimWeight> rim_sample(const std::vector<Vec2>& positions, Real angle
 // -(H f)_i, H = W^T K^-1 W (2n x 2n, x and y of each point in turn).
 MatX rim_compliance(const RimStiffness& rim, const std::vector<Real>& angles, const std::vector<Real>& reaches);
 
-// A point's gap to the deformed rim arc: the circle through the arc's nodes moved radially by
-// their displacements' radial parts, interpolated linearly in the angle between two nodes
-// (displacements far below the spacing; their tangential parts move material along the rim, not
-// its shape). The rows of the contact with an elastic roller (docs/elastic-roller-design.md).
-struct RimGap {
-  Real gap = 0.0;                // |x| - rho(theta) [mm]: > 0 outside the roller
-  Vec2 normal = Vec2::Zero();    // d gap / d x
-  Index segment = -1;            // the arc nodes `segment` and `segment + 1` hold the point's angle
-  Real weight = 0.0;             // its place between them: 0 at the first, 1 at the second
-  Vec2 d_first = Vec2::Zero();   // d gap / d w of the first node: -(1 - weight) e_r
-  Vec2 d_second = Vec2::Zero();  // d gap / d w of the second: -weight e_r
-};
-// `positions`: the arc's nodes relative to the centre (RimStiffness::positions), by increasing
-// angle; `w`: their displacements [w_x0, w_y0, ...]; `x`: the point relative to the centre.
-// Throws NumericalError when x's angle lies outside the arc (the contact left it).
-RimGap rim_gap(const std::vector<Vec2>& positions, const VecX& w, const Vec2& x);
-
 }  // namespace roller
