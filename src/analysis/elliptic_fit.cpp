@@ -5,6 +5,7 @@
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <unsupported/Eigen/NumericalDiff>
 
+#include "roller/analysis/contact_zones.hpp"
 #include "roller/analysis/hertz.hpp"
 
 namespace roller {
@@ -51,25 +52,21 @@ EllipticFit fit_elliptic_forces(const std::vector<Real>& x, const std::vector<Re
   if (!(largest > 0.0)) return fit;
   // The start: the loaded nodes' extent (half a spacing beyond the outermost) and the peak of the
   // ellipse that carries their total force.
-  std::size_t first = x.size(), last = 0, loaded = 0;
+  std::vector<bool> loaded(x.size());
   Real total = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if (force[i] > 1e-6 * largest) {
-      first = std::min(first, i);
-      last = i;
-      ++loaded;
-      total += force[i];
-    }
-  if (loaded < 3) return fit;
-  const Real left = first > 0 ? 0.5 * (x[first - 1] + x[first]) : x[first];
-  const Real right = last + 1 < x.size() ? 0.5 * (x[last] + x[last + 1]) : x[last];
-  const Real w0 = 0.5 * (right - left);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    loaded[i] = force[i] > 1e-6 * largest;
+    if (loaded[i]) total += force[i];
+  }
+  if (std::count(loaded.begin(), loaded.end(), true) < 3) return fit;
+  const ZoneExtent extent = zone_extent(x, loaded);
+  const Real w0 = extent.half_width();
   Residuals functor;
   functor.x = &x;
   functor.force = &force;
   functor.length = w0;
   Eigen::VectorXd p(3);
-  p << 0.5 * (left + right) / w0, 1.0, 2.0 * total / (M_PI * w0);
+  p << extent.centre() / w0, 1.0, 2.0 * total / (M_PI * w0);
   Eigen::NumericalDiff<Residuals> numerical(functor, 1e-10);
   Eigen::LevenbergMarquardt<Eigen::NumericalDiff<Residuals>> lm(numerical);
   lm.parameters.xtol = 1e-12;
